@@ -1,0 +1,26 @@
+# The body of the VTK::NormalMapping module: its classes and private kernels.
+# NORMALMAPPING_SOURCE_DIR is the project root.
+find_package(glm REQUIRED)
+
+set(_nm_classes
+  Filters/vtkPolyDataTangentFrames)
+set(_nm_headers
+  Filters/vtkTangentFrameKernels.h
+  Filters/vtkNormalMappingMeshes.h)
+set(_nm_sources
+  Filters/vtkNormalMappingMeshes.cxx)
+
+list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+list(TRANSFORM _nm_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+list(TRANSFORM _nm_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+
+vtk_module_add_module(VTK::NormalMapping
+  CLASSES ${_nm_classes}
+  HEADERS ${_nm_headers}
+  SOURCES ${_nm_sources})
+vtk_module_include(VTK::NormalMapping
+  PUBLIC
+    "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>")
+# The kernels header (installed, callable from tests and users) is written with GLM.
+vtk_module_link(VTK::NormalMapping PUBLIC glm::glm)
+vtk_module_compile_features(VTK::NormalMapping PUBLIC cxx_std_17)

@@ -1,0 +1,170 @@
+/**
+ * @class   vtkPolyDataTangentFrames
+ * @brief   per-point tangent frames (tangent, handedness sign, bitangent) from texture coordinates
+ *
+ * Needs polydata with point texture coordinates (the active TCoords, or the array named with
+ * SetTCoordsArrayName) and, preferably, point normals. For every triangle it solves
+ * E1 = du1 T + dv1 B, E2 = du2 T + dv2 B, then sums the triangle tangents around each point
+ * with the chosen weighting (see vtkNormalMapping::TangentMethod), removes the component along
+ * the point normal (Gram-Schmidt) and normalizes.
+ *
+ * Outputs (point data, in the output precision):
+ * - `Tangents` (3 components, set as the TANGENTS attribute): unit, perpendicular to the normal.
+ * - `TangentSigns` (1 component): +1 or -1, the handedness in the glTF / MikkTSpace convention
+ *   bitangent = sign * cross(N, T). Points whose triangles have mirrored UVs get -1.
+ * - `Bitangents` (3 components), when ComputeBitangents is on: sign * cross(N, T).
+ * - `Tangents` in cell data (3 components) when ComputeCellTangents is on: the tangent of each
+ *   polygon or strip, perpendicular to its geometric normal; (0, 0, 0) for vertex and line cells.
+ * - `Normals`, when the input had no point normals and the filter computed them.
+ *
+ * Mirror seams: a point whose triangles disagree on handedness cannot hold both frames. With
+ * Splitting on (the default) such a point is duplicated with all its point data, and the
+ * cells on its mirrored (-1) side are re-pointed to the copy; the copies are appended after
+ * the input points and the cells keep their order. With Splitting off the point takes the frame
+ * of the side with the larger total weight and is counted in NumberOfHandednessConflicts.
+ *
+ * Cells: triangles, polygons (fan-triangulated on the fly: corner 0 with i, i+1) and triangle
+ * strips give frames; vertex and line cells pass through untouched.
+ *
+ * Degenerate input never produces NaN or Inf. Triangles with zero UV area or zero area (within a
+ * few epsilons of the stored precision, see vtkNormalMapping::DegeneracyTolerance) or with
+ * non-finite coordinates contribute nothing and are counted (NumberOfDegenerateTriangles). A
+ * point with no usable triangle (a "fallback" point) takes the mean of its neighbours' tangents
+ * projected onto its tangent plane, or where that fails a fixed rule (the Duff et al. basis of
+ * the normal), and the majority sign of its neighbours (+1 if none); they are counted in
+ * NumberOfFallbackPoints.
+ *
+ * Bad input is reported and never crashes: missing or non-numeric texture coordinates, point
+ * ids out of range, or arrays shorter than the point count are errors, and the output is the
+ * input passed through; missing normals are computed (area-weighted, without splitting) with a
+ * warning; cell normals alone are averaged to points with a warning; texture coordinates with 1
+ * or more than 2 components use (u, 0) or the first two with a warning.
+ *
+ * The work runs on vtkSMPTools and is deterministic: the output is bit-identical for any number
+ * of threads, because each point sums its triangles in a fixed order through a point-to-triangle
+ * table. Progress is reported and AbortExecute honoured between parallel passes; an aborted
+ * execution leaves an empty output.
+ */
+#ifndef vtkPolyDataTangentFrames_h
+#define vtkPolyDataTangentFrames_h
+
+#include "vtkNormalMappingModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string> // For TCoordsArrayName
+
+class VTKNORMALMAPPING_EXPORT vtkPolyDataTangentFrames : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPolyDataTangentFrames* New();
+  vtkTypeMacro(vtkPolyDataTangentFrames, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Values of Method (see vtkNormalMapping::TangentMethod for what each costs and gets right).
+  enum Methods
+  {
+    UNWEIGHTED = 0,
+    AREA_WEIGHTED = 1,
+    ANGLE_WEIGHTED = 2,
+  };
+
+  ///@{
+  /**
+   * How the triangles around a point are weighted. Default ANGLE_WEIGHTED: independent of how a
+   * fan is tessellated, at the cost of three atan2 per triangle.
+   */
+  vtkSetClampMacro(Method, int, UNWEIGHTED, ANGLE_WEIGHTED);
+  vtkGetMacro(Method, int);
+  void SetMethodToUnweighted() { this->SetMethod(UNWEIGHTED); }
+  void SetMethodToAreaWeighted() { this->SetMethod(AREA_WEIGHTED); }
+  void SetMethodToAngleWeighted() { this->SetMethod(ANGLE_WEIGHTED); }
+  static const char* GetMethodName(int method);
+  ///@}
+
+  ///@{
+  /**
+   * Name of the point array to read texture coordinates from. Empty (the default): the active
+   * TCoords attribute. Use it to choose a second UV set.
+   */
+  void SetTCoordsArrayName(const std::string& name);
+  const std::string& GetTCoordsArrayName() const { return this->TCoordsArrayName; }
+  ///@}
+
+  ///@{
+  /// Duplicate points on mirror seams so both frames survive (default on).
+  vtkSetMacro(Splitting, bool);
+  vtkGetMacro(Splitting, bool);
+  vtkBooleanMacro(Splitting, bool);
+  ///@}
+
+  ///@{
+  /// Also output point `Bitangents` = sign * cross(N, T) (default off).
+  vtkSetMacro(ComputeBitangents, bool);
+  vtkGetMacro(ComputeBitangents, bool);
+  vtkBooleanMacro(ComputeBitangents, bool);
+  ///@}
+
+  ///@{
+  /// Also output cell `Tangents` (default off).
+  vtkSetMacro(ComputeCellTangents, bool);
+  vtkGetMacro(ComputeCellTangents, bool);
+  vtkBooleanMacro(ComputeCellTangents, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Precision of the output arrays: vtkAlgorithm::DEFAULT_PRECISION (the default) follows the
+   * input points (double points give double arrays, anything else float), SINGLE_PRECISION or
+   * DOUBLE_PRECISION choose. The computation itself is always in double.
+   */
+  vtkSetClampMacro(OutputPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
+  vtkGetMacro(OutputPrecision, int);
+  ///@}
+
+  ///@{
+  /// Counts from the last execution.
+  /// Triangles (after fan-triangulating polygons and strips) with no usable frame.
+  vtkGetMacro(NumberOfDegenerateTriangles, vtkIdType);
+  /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
+  vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
+  /// Points whose triangles disagree on handedness (mirror seams).
+  vtkGetMacro(NumberOfHandednessConflicts, vtkIdType);
+  /// Points added by splitting (equal to NumberOfHandednessConflicts when Splitting is on).
+  vtkGetMacro(NumberOfSplitPoints, vtkIdType);
+  /// Points whose input normal was zero or non-finite (the geometric normal was used).
+  vtkGetMacro(NumberOfInvalidNormals, vtkIdType);
+  ///@}
+
+  /// Names of the arrays the filter writes.
+  static const char* TangentsArrayName() { return "Tangents"; }
+  static const char* SignsArrayName() { return "TangentSigns"; }
+  static const char* BitangentsArrayName() { return "Bitangents"; }
+
+protected:
+  vtkPolyDataTangentFrames();
+  ~vtkPolyDataTangentFrames() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Method = ANGLE_WEIGHTED;
+  std::string TCoordsArrayName;
+  bool Splitting = true;
+  bool ComputeBitangents = false;
+  bool ComputeCellTangents = false;
+  int OutputPrecision = DEFAULT_PRECISION;
+
+  vtkIdType NumberOfDegenerateTriangles = 0;
+  vtkIdType NumberOfFallbackPoints = 0;
+  vtkIdType NumberOfHandednessConflicts = 0;
+  vtkIdType NumberOfSplitPoints = 0;
+  vtkIdType NumberOfInvalidNormals = 0;
+
+private:
+  vtkPolyDataTangentFrames(const vtkPolyDataTangentFrames&) = delete;
+  void operator=(const vtkPolyDataTangentFrames&) = delete;
+
+  struct Internals;
+  friend struct Internals;
+};
+
+#endif

@@ -1,0 +1,363 @@
+/**
+ * @file   vtkTangentFrameKernels.h
+ * @brief  The math of tangent frames, as free functions over GLM vectors.
+ *
+ * vtkPolyDataTangentFrames is a thin pipeline shell around these kernels; tests and users can
+ * call them directly, without a pipeline. Everything is computed in double precision, whatever
+ * the precision of the stored data: every float input is exact in double, products of two floats
+ * are exact, so the only rounding left is that of the stored coordinates themselves.
+ *
+ * Robustness at the extremes: edge and UV-delta vectors are rescaled by an exact power of two
+ * before any product is formed, so positions from 1e-30 to 1e30 and UVs from 1e-10 to 1e10 give
+ * the same frame directions (bit-identical under power-of-two scaling) with no underflow or
+ * overflow. Non-finite input makes a triangle degenerate instead of spreading NaN.
+ */
+#ifndef vtkTangentFrameKernels_h
+#define vtkTangentFrameKernels_h
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace vtkNormalMapping
+{
+
+/// How the triangles around a point are weighted when their tangents are summed.
+enum class TangentMethod : int
+{
+  /// Sum of the unit per-triangle tangents. Cheapest; over-weights small triangles and
+  /// depends on how a fan is tessellated.
+  Unweighted = 0,
+  /// Each unit per-triangle tangent weighted by the triangle's area (Lengyel-style
+  /// accumulation with explicit area weights). Large triangles dominate; cheap.
+  AreaWeighted = 1,
+  /// Each unit per-triangle tangent weighted by the triangle's interior angle at the point.
+  /// Independent of how a fan is split into triangles; costs three atan2 per triangle.
+  AngleWeighted = 2,
+};
+
+/// Relative thresholds below which a triangle is degenerate. They are "shape" ratios,
+/// 2*area / (longest edge)^2, in position space and in UV space; below a few units of the
+/// stored type's epsilon the rounding of the stored coordinates alone decides the frame.
+struct DegeneracyTolerance
+{
+  double Position = 4.0 * FLT_EPSILON;
+  double UV = 4.0 * FLT_EPSILON;
+
+  /// Tolerances for data stored with the given machine epsilons.
+  static DegeneracyTolerance ForEpsilons(double positionEpsilon, double uvEpsilon)
+  {
+    DegeneracyTolerance tol;
+    tol.Position = 4.0 * positionEpsilon;
+    tol.UV = 4.0 * uvEpsilon;
+    return tol;
+  }
+};
+
+/// What one triangle contributes to the frames of its corners.
+struct TriangleFrame
+{
+  /// Unit dP/du (the direction in which u grows on the triangle); zero when Orientation is 0.
+  glm::dvec3 Tangent{ 0.0 };
+  /// Unit normal of the winding (p1-p0)x(p2-p0); zero when degenerate in position.
+  glm::dvec3 UnitNormal{ 0.0 };
+  /// Area of the triangle in position space (finite, possibly 0).
+  double Area = 0.0;
+  /// +1 when the UV winding agrees with the position winding, -1 when mirrored, 0 when the
+  /// triangle has no usable frame (zero UV area, zero area, or non-finite input).
+  signed char Orientation = 0;
+};
+
+namespace detail
+{
+inline double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
+{
+  return std::max(
+    { std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z) });
+}
+inline double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
+{
+  return std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y) });
+}
+/// The exponent k such that x * 2^k lies in [0.5, 1), for positive finite x. Read from the
+/// exponent bits: std::frexp is a library call, and this is the hot path.
+inline int UnitExponent(double x)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased == 0)
+  {
+    int e = 0;
+    std::frexp(x, &e); // subnormal x
+    return -e;
+  }
+  return 1022 - biased;
+}
+
+/// 2^k for k in [-1022, 1023], built from its bits.
+inline double PowerOfTwo(int k)
+{
+  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
+  double p;
+  std::memcpy(&p, &bits, sizeof(p));
+  return p;
+}
+
+/// v * 2^k for any k a double exponent can need (two steps outside the normal range). Exact
+/// whenever the result components are normal numbers: directions and ratios do not change.
+template<typename V>
+inline V ScaleByPowerOfTwo(const V& v, int k)
+{
+  if (k > 1023 || k < -1022)
+  {
+    const int half = k / 2;
+    return (v * PowerOfTwo(half)) * PowerOfTwo(k - half);
+  }
+  return v * PowerOfTwo(k);
+}
+
+/**
+ * atan2(s, c) for s >= 0, in [0, pi], without a library call: reduce to z = min/max in [0, 1],
+ * then to |z'| <= tan(pi/8) with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and sum the odd
+ * Taylor series to z'^25, whose remainder is below tan(pi/8)^27 / 27 < 2e-12 radians. Used for
+ * corner-angle weights, where a relative weight error e moves a tangent by at most e times the
+ * spread of the directions averaged: far below the output's rounding.
+ */
+inline double AngleFromSineCosine(double s, double c)
+{
+  const double ac = std::abs(c);
+  const bool steep = s > ac;
+  const double num = steep ? ac : s;
+  const double den = steep ? s : ac;
+  if (!(den > 0.0))
+  {
+    return 0.0;
+  }
+  double z = num / den;
+  double base = 0.0;
+  constexpr double TanPiOver8 = 0.41421356237309504880;
+  constexpr double PiOver4 = 0.78539816339744830962;
+  if (z > TanPiOver8)
+  {
+    z = (z - 1.0) / (z + 1.0);
+    base = PiOver4;
+  }
+  // Odd Taylor coefficients (-1)^k / (2k + 1), k = 0..12, summed by Horner's rule in z^2.
+  static constexpr double Coefficients[13] = { 1.0,
+    -1.0 / 3,
+    1.0 / 5,
+    -1.0 / 7,
+    1.0 / 9,
+    -1.0 / 11,
+    1.0 / 13,
+    -1.0 / 15,
+    1.0 / 17,
+    -1.0 / 19,
+    1.0 / 21,
+    -1.0 / 23,
+    1.0 / 25 };
+  const double z2 = z * z;
+  double series = Coefficients[12];
+  for (int k = 11; k >= 0; --k)
+  {
+    series = Coefficients[k] + z2 * series;
+  }
+  double angle = base + z * series; // atan(num / den) in [0, pi/4] .. [0, pi/2]
+  angle = steep ? 1.5707963267948966192 - angle : angle;
+  return c < 0.0 ? 3.14159265358979323846 - angle : angle;
+}
+
+inline bool IsFinite(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+} // namespace detail
+
+/**
+ * Solve E1 = du1 T + dv1 B, E2 = du2 T + dv2 B for one triangle and classify it.
+ * The tangent direction is sign(det) * (dv2 E1 - dv1 E2), normalized: dP/du without the
+ * division by det, so a tiny determinant never overflows.
+ */
+inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
+  const glm::dvec3& p1,
+  const glm::dvec3& p2,
+  const glm::dvec2& uv0,
+  const glm::dvec2& uv1,
+  const glm::dvec2& uv2,
+  const DegeneracyTolerance& tol = DegeneracyTolerance())
+{
+  TriangleFrame frame;
+  glm::dvec3 e1 = p1 - p0;
+  glm::dvec3 e2 = p2 - p0;
+  const double maxE = detail::MaxAbs(e1, e2);
+  if (!(maxE > 0.0) || !std::isfinite(maxE))
+  {
+    return frame; // coincident corners or non-finite positions
+  }
+  const int ePos = detail::UnitExponent(maxE);
+  e1 = detail::ScaleByPowerOfTwo(e1, ePos);
+  e2 = detail::ScaleByPowerOfTwo(e2, ePos);
+  const glm::dvec3 e3 = e2 - e1;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double twiceArea = glm::length(n);
+  const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
+  if (!(twiceArea > tol.Position * longest2))
+  {
+    return frame; // zero area (collinear or repeated points), within the position tolerance
+  }
+  frame.UnitNormal = n / twiceArea;
+  // Undo the exact scaling for the area; clamp instead of overflowing for huge double input.
+  const double area =
+    detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(0.5 * twiceArea, -ePos), -ePos);
+  frame.Area = std::isfinite(area) ? area : DBL_MAX;
+
+  glm::dvec2 d1 = uv1 - uv0;
+  glm::dvec2 d2 = uv2 - uv0;
+  const double maxUV = detail::MaxAbs(d1, d2);
+  if (!(maxUV > 0.0) || !std::isfinite(maxUV))
+  {
+    return frame; // collapsed or non-finite texture coordinates
+  }
+  const int eUV = detail::UnitExponent(maxUV);
+  d1 = detail::ScaleByPowerOfTwo(d1, eUV);
+  d2 = detail::ScaleByPowerOfTwo(d2, eUV);
+  const glm::dvec2 d3 = d2 - d1;
+  const double det = d1.x * d2.y - d2.x * d1.y;
+  const double longestUV2 = std::max({ glm::dot(d1, d1), glm::dot(d2, d2), glm::dot(d3, d3) });
+  if (!(std::abs(det) > tol.UV * longestUV2))
+  {
+    return frame; // zero UV area within the UV tolerance
+  }
+  glm::dvec3 t = d2.y * e1 - d1.y * e2;
+  if (det < 0.0)
+  {
+    t = -t;
+  }
+  const double tLength = glm::length(t);
+  if (!(tLength > 0.0) || !std::isfinite(tLength))
+  {
+    return frame;
+  }
+  frame.Tangent = t / tLength;
+  frame.Orientation = det > 0.0 ? 1 : -1;
+  return frame;
+}
+
+/// Interior angles (radians) of a triangle at its three corners, from atan2(|a x b|, a.b),
+/// which stays accurate for angles near 0 and pi where acos does not. Zero for a triangle
+/// that is degenerate in position.
+inline void ComputeCornerAngles(const glm::dvec3& p0,
+  const glm::dvec3& p1,
+  const glm::dvec3& p2,
+  double angles[3])
+{
+  glm::dvec3 e01 = p1 - p0;
+  glm::dvec3 e02 = p2 - p0;
+  glm::dvec3 e12 = p2 - p1;
+  const double maxE = std::max(detail::MaxAbs(e01, e02), detail::MaxAbs(e12, e12));
+  angles[0] = angles[1] = angles[2] = 0.0;
+  if (!(maxE > 0.0) || !std::isfinite(maxE))
+  {
+    return;
+  }
+  const int e = detail::UnitExponent(maxE);
+  e01 = detail::ScaleByPowerOfTwo(e01, e);
+  e02 = detail::ScaleByPowerOfTwo(e02, e);
+  e12 = detail::ScaleByPowerOfTwo(e12, e);
+  const auto angle = [](const glm::dvec3& a, const glm::dvec3& b)
+  { return detail::AngleFromSineCosine(glm::length(glm::cross(a, b)), glm::dot(a, b)); };
+  angles[0] = angle(e01, e02);
+  angles[1] = angle(-e01, e12);
+  angles[2] = angle(-e02, -e12);
+}
+
+/// Weight of a triangle's contribution at one of its corners.
+inline double CornerWeight(TangentMethod method,
+  const TriangleFrame& frame,
+  const double* angles,
+  int corner)
+{
+  switch (method)
+  {
+    case TangentMethod::AreaWeighted:
+      return frame.Area;
+    case TangentMethod::AngleWeighted:
+      return angles[corner];
+    case TangentMethod::Unweighted:
+    default:
+      return 1.0;
+  }
+}
+
+/// The handedness a triangle gives at a corner whose shading normal is n: +1 when
+/// sign * cross(n, T) points along dP/dv. A triangle whose winding disagrees with n (flipped
+/// winding, inward normals) flips its orientation here.
+inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
+{
+  return glm::dot(n, frame.UnitNormal) < 0.0 ? -frame.Orientation : frame.Orientation;
+}
+
+/// Unit normal, or zero when n is zero, denormal-small or non-finite.
+inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
+{
+  if (!detail::IsFinite(n))
+  {
+    return glm::dvec3(0.0);
+  }
+  const double m = std::max({ std::abs(n.x), std::abs(n.y), std::abs(n.z) });
+  if (!(m > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  const glm::dvec3 s = detail::ScaleByPowerOfTwo(n, detail::UnitExponent(m));
+  return s / glm::length(s);
+}
+
+/**
+ * A fixed unit tangent perpendicular to the unit normal n, continuous except where n.z changes
+ * sign (the branch-free orthonormal basis of Duff et al., JCGT 2017). For n == 0 it gives
+ * (1, 0, 0).
+ */
+inline glm::dvec3 FallbackTangent(const glm::dvec3& n)
+{
+  if (n == glm::dvec3(0.0))
+  {
+    return glm::dvec3(1.0, 0.0, 0.0);
+  }
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  return glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+}
+
+/**
+ * Gram-Schmidt: the unit component of t perpendicular to the unit normal n. Returns false (and
+ * leaves out untouched) when t has no usable perpendicular part: zero, non-finite, or parallel
+ * to n within 1e-9 relative (cancellation leaves fewer than ~20 good bits below that).
+ */
+inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm::dvec3& out)
+{
+  const double tMax = std::max({ std::abs(t.x), std::abs(t.y), std::abs(t.z) });
+  if (!(tMax > 0.0) || !std::isfinite(tMax))
+  {
+    return false;
+  }
+  const glm::dvec3 ts = detail::ScaleByPowerOfTwo(t, detail::UnitExponent(tMax));
+  const glm::dvec3 perp = ts - glm::dot(n, ts) * n;
+  const double len = glm::length(perp);
+  if (!(len > 1e-9 * glm::length(ts)))
+  {
+    return false;
+  }
+  out = perp / len;
+  return true;
+}
+
+} // namespace vtkNormalMapping
+
+#endif

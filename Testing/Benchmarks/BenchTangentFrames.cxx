@@ -1,0 +1,180 @@
+// Throughput of vtkPolyDataTangentFrames against VTK's vtkPolyDataTangents, in one process on
+// the same meshes. Each method runs with 1 and 2 threads; VTK's filter with 1 thread is the
+// reference every ratio is taken against.
+//
+//   BenchTangentFrames [--markdown FILE] [google benchmark flags]
+#include "vtkNormalMappingMeshes.h"
+#include "vtkPolyDataTangentFrames.h"
+
+#include "vtkPolyData.h"
+#include "vtkPolyDataTangents.h"
+#include "vtkSMPTools.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> Torus(int64_t triangles)
+{
+  static std::map<int64_t, vtkSmartPointer<vtkPolyData>> cache;
+  auto& mesh = cache[triangles];
+  if (!mesh)
+  {
+    vtkNormalMapping::TorusOptions options;
+    options.V = static_cast<int>(std::sqrt(triangles / 4.0));
+    options.U = static_cast<int>(triangles / (2 * options.V));
+    mesh = vtkNormalMapping::MakeTorus(options);
+  }
+  return mesh;
+}
+
+template<typename Filter, typename Configure>
+void RunFilter(benchmark::State& state, Configure configure)
+{
+  auto mesh = Torus(state.range(0));
+  vtkSMPTools::Config config;
+  config.MaxNumberOfThreads = static_cast<int>(state.range(1));
+  vtkSMPTools::LocalScope(config,
+    [&]()
+    {
+      vtkNew<Filter> filter;
+      filter->SetInputData(mesh);
+      configure(filter.Get());
+      for (auto _ : state)
+      {
+        filter->Modified();
+        filter->Update();
+        benchmark::DoNotOptimize(filter->GetOutput());
+      }
+    });
+  state.SetItemsProcessed(state.iterations() * mesh->GetNumberOfPolys());
+}
+
+void VTKPolyDataTangents(benchmark::State& state)
+{
+  RunFilter<vtkPolyDataTangents>(state, [](vtkPolyDataTangents*) {});
+}
+
+template<int Method>
+void TangentFrames(benchmark::State& state)
+{
+  RunFilter<vtkPolyDataTangentFrames>(
+    state, [](vtkPolyDataTangentFrames* f) { f->SetMethod(Method); });
+}
+
+void Sizes(benchmark::internal::Benchmark* b, bool twoThreads)
+{
+  for (int64_t n : { 1 << 14, 1 << 20 })
+  {
+    b->Args({ n, 1 });
+    if (twoThreads)
+    {
+      b->Args({ n, 2 });
+    }
+  }
+  b->ArgNames({ "triangles", "threads" })->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+BENCHMARK(VTKPolyDataTangents)->Apply([](auto* b) { Sizes(b, false); });
+BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::UNWEIGHTED)
+  ->Name("TangentFrames/Unweighted")
+  ->Apply([](auto* b) { Sizes(b, true); });
+BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::AREA_WEIGHTED)
+  ->Name("TangentFrames/AreaWeighted")
+  ->Apply([](auto* b) { Sizes(b, true); });
+BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
+  ->Name("TangentFrames/AngleWeighted")
+  ->Apply([](auto* b) { Sizes(b, true); });
+
+/// Keeps every run so that ratios to the reference can be printed at the end.
+class Collector : public benchmark::ConsoleReporter
+{
+public:
+  struct Result
+  {
+    std::string Name;
+    double ItemsPerSecond;
+  };
+  std::vector<Result> Results;
+
+  void ReportRuns(const std::vector<Run>& runs) override
+  {
+    for (const Run& run : runs)
+    {
+      const auto it = run.counters.find("items_per_second");
+      if (it != run.counters.end() && run.run_type == Run::RT_Iteration)
+      {
+        this->Results.push_back({ run.benchmark_name(), it->second.value });
+      }
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+};
+
+std::string Field(const std::string& name, const std::string& key)
+{
+  const size_t at = name.find(key + ":");
+  if (at == std::string::npos)
+  {
+    return "";
+  }
+  const size_t begin = at + key.size() + 1;
+  return name.substr(begin, name.find('/', begin) - begin);
+}
+}
+
+int main(int argc, char** argv)
+{
+  std::string markdown;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc)
+    {
+      markdown = argv[++i];
+    }
+    else
+    {
+      args.push_back(argv[i]);
+    }
+  }
+  int count = static_cast<int>(args.size());
+  benchmark::Initialize(&count, args.data());
+  Collector collector;
+  benchmark::RunSpecifiedBenchmarks(&collector);
+
+  // Ratios against VTK's filter on the same mesh, one thread.
+  std::map<std::string, double> reference;
+  for (const auto& r : collector.Results)
+  {
+    if (r.Name.rfind("VTKPolyDataTangents", 0) == 0)
+    {
+      reference[Field(r.Name, "triangles")] = r.ItemsPerSecond;
+    }
+  }
+  std::ostringstream table;
+  table << "| filter | triangles | threads | M triangles/s | ratio to vtkPolyDataTangents |\n"
+        << "|---|---:|---:|---:|---:|\n";
+  for (const auto& r : collector.Results)
+  {
+    const std::string triangles = Field(r.Name, "triangles");
+    const double ref = reference.count(triangles) ? reference[triangles] : 0.0;
+    table << "| " << r.Name.substr(0, r.Name.find('/', r.Name.find('/') + 1)) << " | " << triangles
+          << " | " << Field(r.Name, "threads") << " | " << r.ItemsPerSecond / 1e6 << " | "
+          << (ref > 0 ? r.ItemsPerSecond / ref : 0.0) << " |\n";
+  }
+  std::cout << "\n" << table.str();
+  if (!markdown.empty())
+  {
+    std::ofstream(markdown) << table.str();
+  }
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,1106 @@
+// Tests of vtkPolyDataTangentFrames through the pipeline.
+#include "vtkNormalMappingMeshes.h"
+#include "vtkPolyDataTangentFrames.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCubeSource.h"
+#include "vtkCylinderSource.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkParametricFunctionSource.h"
+#include "vtkParametricTorus.h"
+#include "vtkPlaneSource.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkPolyDataTangents.h"
+#include "vtkSMPTools.h"
+#include "vtkSphereSource.h"
+#include "vtkStringArray.h"
+#include "vtkTextureMapToCylinder.h"
+#include "vtkTextureMapToPlane.h"
+#include "vtkTextureMapToSphere.h"
+#include "vtkTexturedSphereSource.h"
+#include "vtkTriangleFilter.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const double Pi = std::acos(-1.0);
+using Vec = std::array<double, 3>;
+
+Vec Get3(vtkDataArray* a, vtkIdType i)
+{
+  Vec v;
+  a->GetTuple(i, v.data());
+  return v;
+}
+double Dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec Cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+double Norm(const Vec& a)
+{
+  return std::sqrt(Dot(a, a));
+}
+double AngleDeg(const Vec& a, const Vec& b)
+{
+  return std::atan2(Norm(Cross(a, b)), Dot(a, b)) * 180.0 / Pi;
+}
+
+/// Collects the messages a filter emits instead of printing them.
+struct Messages
+{
+  std::vector<std::string> Errors, Warnings;
+  vtkNew<vtkCallbackCommand> Callback;
+
+  explicit Messages(vtkObject* object)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(
+      [](vtkObject*, unsigned long event, void* self, void* data)
+      {
+        auto* m = static_cast<Messages*>(self);
+        (event == vtkCommand::ErrorEvent ? m->Errors : m->Warnings)
+          .emplace_back(static_cast<const char*>(data));
+      });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
+  }
+  bool Has(const std::vector<std::string>& list, const std::string& text) const
+  {
+    return std::any_of(list.begin(),
+      list.end(),
+      [&](const std::string& m) { return m.find(text) != std::string::npos; });
+  }
+};
+
+/// The invariants every output must meet: finite unit tangents perpendicular to the normals,
+/// signs of exactly +1 or -1, and bitangents (when present) equal to sign * cross(N, T).
+/// Output arrays are float unless asked otherwise: a unit vector rounded to float has length
+/// 1 within 2^-23 per component, so 1e-6 bounds both |T| - 1 and T.N (N is float too).
+void ExpectValidFrames(vtkPolyData* out, double tolerance = 1e-6)
+{
+  vtkPointData* pd = out->GetPointData();
+  vtkDataArray* t = pd->GetTangents();
+  vtkDataArray* s = pd->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+  vtkDataArray* n = pd->GetNormals();
+  vtkDataArray* b = pd->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName());
+  ASSERT_NE(t, nullptr);
+  ASSERT_NE(s, nullptr);
+  ASSERT_EQ(t->GetNumberOfTuples(), out->GetNumberOfPoints());
+  ASSERT_EQ(s->GetNumberOfTuples(), out->GetNumberOfPoints());
+  vtkIdType bad = 0;
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints() && bad < 10; ++p)
+  {
+    const Vec tv = Get3(t, p);
+    const double sign = s->GetComponent(p, 0);
+    const bool finite = std::isfinite(tv[0]) && std::isfinite(tv[1]) && std::isfinite(tv[2]);
+    EXPECT_TRUE(finite) << "point " << p;
+    EXPECT_NEAR(Norm(tv), 1.0, tolerance) << "point " << p;
+    EXPECT_TRUE(sign == 1.0 || sign == -1.0) << "point " << p << " sign " << sign;
+    if (n)
+    {
+      Vec nv = Get3(n, p);
+      const double len = Norm(nv);
+      if (std::isfinite(len) && len > 0)
+      {
+        EXPECT_NEAR(Dot(tv, nv) / len, 0.0, tolerance) << "point " << p;
+        if (b)
+        {
+          const Vec c = Cross(nv, tv);
+          const Vec bv = Get3(b, p);
+          for (int k = 0; k < 3; ++k)
+          {
+            EXPECT_NEAR(bv[k], sign * c[k] / len, 4 * tolerance) << "point " << p;
+          }
+        }
+      }
+    }
+    bad += (finite && std::abs(Norm(tv) - 1.0) <= tolerance) ? 0 : 1;
+  }
+}
+
+vtkSmartPointer<vtkPolyData> RunFrames(vtkPolyData* input,
+  const std::function<void(vtkPolyDataTangentFrames*)>& configure = {})
+{
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(input);
+  if (configure)
+  {
+    configure(filter);
+  }
+  filter->Update();
+  return filter->GetOutput();
+}
+
+/// A (nu x nv) grid over [0,1]^2 mapped by `surface`, with texture coordinates from `uv` and
+/// normals from `normal`: the analytic test surfaces.
+vtkSmartPointer<vtkPolyData> MakeGrid(int nu,
+  int nv,
+  const std::function<Vec(double, double)>& surface,
+  const std::function<Vec(double, double)>& normal,
+  const std::function<std::array<double, 2>(double, double)>& uv)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> normals, tcoords;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  tcoords->SetName("TCoords");
+  tcoords->SetNumberOfComponents(2);
+  for (int i = 0; i <= nu; ++i)
+  {
+    for (int j = 0; j <= nv; ++j)
+    {
+      const double s = double(i) / nu, t = double(j) / nv;
+      points->InsertNextPoint(surface(s, t).data());
+      normals->InsertNextTuple(normal(s, t).data());
+      tcoords->InsertNextTuple(uv(s, t).data());
+    }
+  }
+  vtkNew<vtkCellArray> polys;
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const vtkIdType a = i * (nv + 1) + j, b = a + nv + 1;
+      const vtkIdType t1[3] = { a, b, b + 1 }, t2[3] = { a, b + 1, a + 1 };
+      polys->InsertNextCell(3, t1);
+      polys->InsertNextCell(3, t2);
+    }
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  mesh->GetPointData()->SetNormals(normals);
+  mesh->GetPointData()->SetTCoords(tcoords);
+  return mesh;
+}
+
+struct ErrorStats
+{
+  double Mean = 0, Max = 0;
+};
+
+/// Angle between each output tangent and the analytic dP/du projected on the tangent plane.
+ErrorStats CompareToAnalytic(vtkPolyData* out,
+  const std::function<Vec(const Vec&)>& dPdu,
+  const std::function<bool(const Vec&)>& include = {})
+{
+  ErrorStats stats;
+  vtkDataArray* t = out->GetPointData()->GetTangents();
+  vtkDataArray* n = out->GetPointData()->GetNormals();
+  vtkIdType count = 0;
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+  {
+    Vec x;
+    out->GetPoint(p, x.data());
+    if (include && !include(x))
+    {
+      continue;
+    }
+    const Vec nv = Get3(n, p);
+    Vec d = dPdu(x);
+    const double dn = Dot(d, nv);
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] -= dn * nv[k];
+    }
+    const double e = AngleDeg(Get3(t, p), d);
+    stats.Mean += e;
+    stats.Max = std::max(stats.Max, e);
+    ++count;
+  }
+  stats.Mean /= std::max<vtkIdType>(count, 1);
+  return stats;
+}
+
+const int AllMethods[] = { vtkPolyDataTangentFrames::UNWEIGHTED,
+  vtkPolyDataTangentFrames::AREA_WEIGHTED,
+  vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+} // namespace
+
+// ------------------------------------------------------------------ analytic surfaces
+
+TEST(PolyDataTangentFrames, PlaneWithRotatedUVIsExact)
+{
+  const double a = 0.7; // u = cos(a) x + sin(a) y  =>  dP/du = (cos a, sin a, 0)
+  auto mesh = MakeGrid(
+    16,
+    16,
+    [](double s, double t) {
+      return Vec{ s, t, 0.0 };
+    },
+    [](double, double) {
+      return Vec{ 0, 0, 1 };
+    },
+    [a](double x, double y)
+    {
+      return std::array<double, 2>{ std::cos(a) * x + std::sin(a) * y,
+        -std::sin(a) * x + std::cos(a) * y };
+    });
+  for (int method : AllMethods)
+  {
+    auto out = RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
+    ExpectValidFrames(out);
+    const ErrorStats e = CompareToAnalytic(out,
+      [a](const Vec&) {
+        return Vec{ std::cos(a), std::sin(a), 0 };
+      });
+    // Every triangle has the exact frame; only the float output rounding remains: 2^-24 per
+    // component is ~3.4e-6 degrees, bounded with margin by 1e-5.
+    EXPECT_LT(e.Max, 1e-5) << vtkPolyDataTangentFrames::GetMethodName(method);
+    EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetRange()[0], 1.0);
+  }
+}
+
+namespace
+{
+// Analytic surfaces, parametrized over [0,1]^2 with uv = (s, t).
+struct Surface
+{
+  const char* Name;
+  std::function<Vec(double, double)> P, N;
+  std::function<Vec(const Vec&)> dPdu;     // from the position
+  std::function<bool(const Vec&)> Include; // points where the analytic frame is defined
+  double AngularStep(int n) const { return 2.0 * Pi / n; }
+};
+
+std::vector<Surface> AnalyticSurfaces()
+{
+  const double R = 1.0, r = 0.4;
+  return {
+    { "cylinder",
+      [](double s, double t) {
+        return Vec{ std::cos(2 * Pi * s), std::sin(2 * Pi * s), 2.0 * t };
+      },
+      [](double s, double) {
+        return Vec{ std::cos(2 * Pi * s), std::sin(2 * Pi * s), 0 };
+      },
+      [](const Vec& x) {
+        return Vec{ -x[1], x[0], 0 };
+      },
+      {} },
+    { "sphere (latitudes within 60 degrees)",
+      [](double s, double t)
+      {
+        const double th = Pi * (0.1 + 0.8 * t), ph = 2 * Pi * s;
+        return Vec{ std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), -std::cos(th) };
+      },
+      [](double s, double t)
+      {
+        const double th = Pi * (0.1 + 0.8 * t), ph = 2 * Pi * s;
+        return Vec{ std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), -std::cos(th) };
+      },
+      [](const Vec& x) {
+        return Vec{ -x[1], x[0], 0 };
+      },
+      [](const Vec& x) { return std::abs(x[2]) < std::sin(Pi / 3); } },
+    { "torus",
+      [=](double s, double t)
+      {
+        const double ph = 2 * Pi * s, th = 2 * Pi * t, ring = R + r * std::cos(th);
+        return Vec{ ring * std::cos(ph), ring * std::sin(ph), r * std::sin(th) };
+      },
+      [](double s, double t)
+      {
+        const double ph = 2 * Pi * s, th = 2 * Pi * t;
+        return Vec{ std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), std::sin(th) };
+      },
+      [](const Vec& x) {
+        return Vec{ -x[1], x[0], 0 };
+      },
+      {} },
+  };
+}
+}
+
+TEST(PolyDataTangentFrames, AnalyticSurfacesConvergeUnderRefinement)
+{
+  for (const Surface& surface : AnalyticSurfaces())
+  {
+    for (int method : AllMethods)
+    {
+      std::vector<ErrorStats> errors;
+      for (int n : { 16, 32, 64 })
+      {
+        auto mesh = MakeGrid(n,
+          n,
+          surface.P,
+          surface.N,
+          [](double s, double t) {
+            return std::array<double, 2>{ s, t };
+          });
+        auto out = RunFrames(mesh,
+          [&](vtkPolyDataTangentFrames* f)
+          {
+            f->SetMethod(method);
+            f->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+          });
+        ExpectValidFrames(out, 1e-12);
+        errors.push_back(CompareToAnalytic(out, surface.dPdu, surface.Include));
+        // A triangle's dP/du is the direction of a chord of the u-curve through its corner,
+        // which turns by half the angular step (2 pi / n) across one cell: no weighting of
+        // chords on either side can be further from the true tangent than that. Points on the
+        // u seam see one side only and reach the bound exactly where the normal is
+        // perpendicular to the plane the chord turns in (the top and bottom of the torus), so
+        // the bound holds with equality up to rounding (1e-12 relative).
+        const double bound = 0.5 * 360.0 / n * (1 + 1e-12);
+        EXPECT_LE(errors.back().Max, bound)
+          << surface.Name << " " << vtkPolyDataTangentFrames::GetMethodName(method) << " n=" << n;
+      }
+      for (size_t i = 1; i < errors.size(); ++i)
+      {
+        // Halving the cell size at least halves the error (first order, the chord argument);
+        // symmetric fans cancel the first-order term and usually do much better.
+        EXPECT_LT(errors[i].Max, 0.55 * errors[i - 1].Max + 1e-9)
+          << surface.Name << " " << vtkPolyDataTangentFrames::GetMethodName(method);
+        EXPECT_LT(errors[i].Mean, 0.55 * errors[i - 1].Mean + 1e-9)
+          << surface.Name << " " << vtkPolyDataTangentFrames::GetMethodName(method);
+      }
+      std::cout << surface.Name << " " << vtkPolyDataTangentFrames::GetMethodName(method)
+                << ": max angle (deg) at n=16,32,64: " << errors[0].Max << " " << errors[1].Max
+                << " " << errors[2].Max << "; mean " << errors[0].Mean << " " << errors[1].Mean
+                << " " << errors[2].Mean << "\n";
+    }
+  }
+}
+
+// ------------------------------------------------------------------ mirrored UVs
+
+TEST(PolyDataTangentFrames, MirroredTorusSplitsSeamsAndSignsMirroredHalf)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 64;
+  options.V = 16;
+  options.MirrorU = true;
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->ComputeBitangentsOn();
+  filter->Update();
+  vtkPolyData* out = filter->GetOutput();
+  ExpectValidFrames(out);
+
+  // Two mirror seams (s = 0 and s = 1/2), each a column of V + 1 points.
+  const vtkIdType seamPoints = 2 * (options.V + 1);
+  EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), seamPoints);
+  EXPECT_EQ(filter->GetNumberOfSplitPoints(), seamPoints);
+  EXPECT_EQ(out->GetNumberOfPoints(), mesh->GetNumberOfPoints() + seamPoints);
+  EXPECT_EQ(out->GetNumberOfPolys(), mesh->GetNumberOfPolys());
+  EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 0);
+  EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 0);
+
+  // Every point, including both copies of the seam points: the tangent is sign * the analytic
+  // direction (-sin phi, cos phi, 0), and the sign is the side's handedness.
+  vtkDataArray* t = out->GetPointData()->GetTangents();
+  vtkDataArray* s = out->GetPointData()->GetArray("TangentSigns");
+  vtkDataArray* tc = out->GetPointData()->GetTCoords();
+  int negative = 0;
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+  {
+    Vec x;
+    out->GetPoint(p, x.data());
+    const double phi = std::atan2(x[1], x[0]);
+    const double sign = s->GetComponent(p, 0);
+    const Vec expected{ -sign * std::sin(phi), sign * std::cos(phi), 0 };
+    // Chord error bound as in the analytic test: half of 360/64 degrees, reached (up to
+    // rounding) on the seams where each copy's frame comes from one side only.
+    EXPECT_LE(AngleDeg(Get3(t, p), expected), 0.5 * 360.0 / options.U * (1 + 1e-6))
+      << "point " << p;
+    const double frac = std::fmod(phi / (2 * Pi) + 1.0, 1.0);
+    const bool onSeam = std::min({ frac, std::abs(frac - 0.5), 1 - frac }) < 1e-6;
+    if (!onSeam)
+    {
+      EXPECT_EQ(sign, frac < 0.5 ? 1.0 : -1.0) << "point " << p;
+    }
+    negative += sign < 0 ? 1 : 0;
+    (void)tc;
+  }
+  // The copies are the -1 side: the mirrored half has as many points as the other.
+  EXPECT_EQ(negative, out->GetNumberOfPoints() / 2);
+
+  // Each triangle's corners carry its handedness: no triangle mixes the two frames.
+  vtkIdType npts;
+  const vtkIdType* pts;
+  vtkCellArray* polys = out->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
+  {
+    const double s0 = s->GetComponent(pts[0], 0);
+    EXPECT_EQ(s->GetComponent(pts[1], 0), s0);
+    EXPECT_EQ(s->GetComponent(pts[2], 0), s0);
+  }
+}
+
+TEST(PolyDataTangentFrames, MirroredTorusWithoutSplittingCountsConflicts)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 64;
+  options.V = 16;
+  options.MirrorU = true;
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->SplittingOff();
+  filter->Update();
+  ExpectValidFrames(filter->GetOutput());
+  EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2 * (options.V + 1));
+  EXPECT_EQ(filter->GetNumberOfSplitPoints(), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), mesh->GetNumberOfPoints());
+}
+
+// ------------------------------------------------------------------ degenerate, hostile
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> MakeTriangles(const std::vector<Vec>& points,
+  const std::vector<std::array<double, 2>>& uvs,
+  const std::vector<std::vector<vtkIdType>>& cells,
+  const std::vector<Vec>& normals = {})
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  for (const Vec& p : points)
+  {
+    pts->InsertNextPoint(p.data());
+  }
+  vtkNew<vtkFloatArray> tc;
+  tc->SetNumberOfComponents(2);
+  tc->SetName("TCoords");
+  for (const auto& uv : uvs)
+  {
+    tc->InsertNextTuple(uv.data());
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& c : cells)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(c.size()), c.data());
+  }
+  mesh->SetPoints(pts);
+  mesh->SetPolys(polys);
+  mesh->GetPointData()->SetTCoords(tc);
+  if (!normals.empty())
+  {
+    vtkNew<vtkFloatArray> n;
+    n->SetNumberOfComponents(3);
+    n->SetName("Normals");
+    for (const Vec& v : normals)
+    {
+      n->InsertNextTuple(v.data());
+    }
+    mesh->GetPointData()->SetNormals(n);
+  }
+  return mesh;
+}
+}
+
+TEST(PolyDataTangentFrames, SingleTriangle)
+{
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    { { 0, 1, 2 } },
+    { { 0, 0, 1 }, { 0, 0, 1 }, { 0, 0, 1 } });
+  auto out = RunFrames(mesh);
+  ExpectValidFrames(out);
+  for (vtkIdType p = 0; p < 3; ++p)
+  {
+    EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), p), (Vec{ 1, 0, 0 }));
+  }
+}
+
+TEST(PolyDataTangentFrames, ZeroUVAreaTriangleFallsBackToNeighbours)
+{
+  // Two good triangles and a third whose own point 4 has the UVs of point 1: triangle (1,3,4)
+  // has zero UV area, so point 4 has no usable triangle and follows its neighbours.
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 2, 0.5, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 }, { 1, 0 } },
+    { { 0, 1, 2 }, { 1, 3, 2 }, { 1, 4, 3 } },
+    std::vector<Vec>(5, Vec{ 0, 0, 1 }));
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->Update();
+  auto out = filter->GetOutput();
+  ExpectValidFrames(out);
+  EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 1);
+  EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 1);
+  // Its neighbours 1 and 3 both have tangent (1, 0, 0); so has the fallback point.
+  const Vec t4 = Get3(out->GetPointData()->GetTangents(), 4);
+  EXPECT_LT(AngleDeg(t4, { 1, 0, 0 }), 1e-5); // float output rounding, as above
+}
+
+TEST(PolyDataTangentFrames, OnlyDegenerateTrianglesUseTheFixedRule)
+{
+  // All triangles zero-area or zero-UV-area: every point falls back to the fixed rule.
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 0, 0 } },
+    { { 0, 1, 2 }, { 0, 1, 3 } },
+    std::vector<Vec>(4, Vec{ 0, 0, 1 }));
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->Update();
+  ExpectValidFrames(filter->GetOutput());
+  EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 2);
+  EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 4);
+  // The fixed rule for n = +z is (1, 0, 0).
+  EXPECT_EQ(Get3(filter->GetOutput()->GetPointData()->GetTangents(), 0), (Vec{ 1, 0, 0 }));
+}
+
+TEST(PolyDataTangentFrames, NonFiniteInputGivesFiniteOutput)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int where = 0; where < 6; ++where)
+  {
+    std::vector<Vec> pts = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } };
+    std::vector<std::array<double, 2>> uvs = { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 } };
+    std::vector<Vec> normals(4, Vec{ 0, 0, 1 });
+    const double bad = where % 2 ? inf : nan;
+    if (where < 2)
+    {
+      pts[3][0] = bad;
+    }
+    else if (where < 4)
+    {
+      uvs[3][1] = bad;
+    }
+    else
+    {
+      normals[3][2] = bad;
+    }
+    auto mesh = MakeTriangles(pts, uvs, { { 0, 1, 2 }, { 1, 3, 2 } }, normals);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->ComputeBitangentsOn();
+    filter->Update();
+    auto out = filter->GetOutput();
+    SCOPED_TRACE("case " + std::to_string(where));
+    // Finite unit tangents everywhere; the normal check skips the non-finite input normal.
+    ExpectValidFrames(out);
+    EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), where < 4 ? 1 : 0);
+    EXPECT_EQ(filter->GetNumberOfInvalidNormals(), where >= 4 ? 1 : 0);
+    vtkDataArray* b = out->GetPointData()->GetArray("Bitangents");
+    for (vtkIdType p = 0; p < 4; ++p)
+    {
+      const Vec bv = Get3(b, p);
+      EXPECT_TRUE(std::isfinite(bv[0]) && std::isfinite(bv[1]) && std::isfinite(bv[2]));
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, ZeroAndUnnormalizedNormals)
+{
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    { { 0, 1, 2 } },
+    { { 0, 0, 0 }, { 0, 0, 1e-30 }, { 0.3, 0, 5 } });
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->Update();
+  EXPECT_EQ(filter->GetNumberOfInvalidNormals(), 1); // only the zero one; tiny is a direction
+  vtkDataArray* t = filter->GetOutput()->GetPointData()->GetTangents();
+  EXPECT_LT(AngleDeg(Get3(t, 0), { 1, 0, 0 }), 1e-5); // zero normal: the face normal is used
+  EXPECT_LT(AngleDeg(Get3(t, 1), { 1, 0, 0 }), 1e-5);
+  // Point 2: T perpendicular to the normalized (0.3, 0, 5).
+  const Vec n2{ 0.3 / std::hypot(0.3, 5.0), 0, 5 / std::hypot(0.3, 5.0) };
+  EXPECT_NEAR(Dot(Get3(t, 2), n2), 0.0, 1e-6);
+}
+
+TEST(PolyDataTangentFrames, EmptyInputAndNoSurfaceCells)
+{
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  Messages messages(filter);
+  filter->SetInputData(empty);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_TRUE(messages.Errors.empty());
+}
+
+TEST(PolyDataTangentFrames, VerticesLinesPolygonsAndStripsTogether)
+{
+  // A strip of 4 triangles, a quad, a hexagon, plus vertex and line cells on the same points.
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkFloatArray> tc;
+  tc->SetNumberOfComponents(2);
+  vtkNew<vtkFloatArray> n;
+  n->SetNumberOfComponents(3);
+  for (int i = 0; i < 6; ++i)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      pts->InsertNextPoint(i, j, 0);
+      tc->InsertNextTuple2(0.1 * i, 0.5 * j);
+      n->InsertNextTuple3(0, 0, 1);
+    }
+  }
+  vtkNew<vtkCellArray> verts, lines, polys, strips;
+  const vtkIdType v[2] = { 0, 5 }, l[3] = { 0, 2, 4 }, quad[4] = { 0, 2, 3, 1 };
+  // Fanned from corner 0, (3,0): starting at (2,0) would give a collinear (degenerate) triangle.
+  const vtkIdType hexagon[6] = { 6, 8, 9, 7, 5, 4 };
+  const vtkIdType strip[6] = { 0, 1, 2, 3, 4, 5 };
+  verts->InsertNextCell(2, v);
+  lines->InsertNextCell(3, l);
+  polys->InsertNextCell(4, quad);
+  polys->InsertNextCell(6, hexagon);
+  strips->InsertNextCell(6, strip);
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(pts);
+  mesh->SetVerts(verts);
+  mesh->SetLines(lines);
+  mesh->SetPolys(polys);
+  mesh->SetStrips(strips);
+  mesh->GetPointData()->SetTCoords(tc);
+  mesh->GetPointData()->SetNormals(n);
+
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->ComputeCellTangentsOn();
+  filter->Update();
+  vtkPolyData* out = filter->GetOutput();
+  ExpectValidFrames(out);
+  EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 0);
+  // u grows along +x everywhere: every point's tangent is +x, sign +1 (strip triangles
+  // alternate their corner order but keep the strip's winding).
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+  {
+    if (p == 10 || p == 11)
+    {
+      continue; // not in any polygon or strip: fallback (neighbourless) points
+    }
+    EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetTangents(), p), { 1, 0, 0 }), 1e-5) << p;
+    EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetComponent(p, 0), 1.0);
+  }
+  EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 2);
+  // Vertex and line cells pass through untouched.
+  EXPECT_EQ(out->GetNumberOfVerts(), 1);
+  EXPECT_EQ(out->GetNumberOfLines(), 1);
+  EXPECT_EQ(out->GetNumberOfPolys(), 2);
+  EXPECT_EQ(out->GetNumberOfStrips(), 1);
+  // Cell tangents: zero for the vertex and line cells, +x for the polygons and the strip.
+  vtkDataArray* ct = out->GetCellData()->GetTangents();
+  ASSERT_NE(ct, nullptr);
+  EXPECT_EQ(Get3(ct, 0), (Vec{ 0, 0, 0 }));
+  EXPECT_EQ(Get3(ct, 1), (Vec{ 0, 0, 0 }));
+  for (vtkIdType c = 2; c < 5; ++c)
+  {
+    EXPECT_LT(AngleDeg(Get3(ct, c), { 1, 0, 0 }), 1e-5) << c;
+  }
+}
+
+TEST(PolyDataTangentFrames, OutOfRangeIdsAreAnErrorAndPassThrough)
+{
+  auto mesh = MakeTriangles(
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }, { { 0, 0 }, { 1, 0 }, { 0, 1 } }, { { 0, 1, 7 } });
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  Messages messages(filter);
+  filter->SetInputData(mesh);
+  filter->Update();
+  EXPECT_TRUE(messages.Has(messages.Errors, "point id outside")) << messages.Errors.size();
+  EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPolys(), 1);
+}
+
+TEST(PolyDataTangentFrames, MissingAndBadTextureCoordinates)
+{
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    { { 0, 1, 2 } },
+    std::vector<Vec>(3, Vec{ 0, 0, 1 }));
+  {
+    vtkNew<vtkPolyData> noUV;
+    noUV->DeepCopy(mesh);
+    noUV->GetPointData()->SetTCoords(nullptr);
+    noUV->GetPointData()->RemoveArray("TCoords");
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(noUV);
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Errors, "no active TCoords"));
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 3); // passed through
+    EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+  }
+  {
+    vtkNew<vtkPolyData> named;
+    named->DeepCopy(mesh);
+    vtkNew<vtkStringArray> text;
+    text->SetName("UV2");
+    text->SetNumberOfValues(3);
+    named->GetPointData()->AddArray(text);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(named);
+    filter->SetTCoordsArrayName("UV2");
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Errors, "is not numeric"));
+    filter->SetTCoordsArrayName("NoSuchArray");
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Errors, "NoSuchArray"));
+  }
+  {
+    vtkNew<vtkPolyData> threeComponents;
+    threeComponents->DeepCopy(mesh);
+    vtkNew<vtkDoubleArray> uvw;
+    uvw->SetNumberOfComponents(3);
+    uvw->InsertNextTuple3(0, 0, 9);
+    uvw->InsertNextTuple3(1, 0, 9);
+    uvw->InsertNextTuple3(0, 1, 9);
+    threeComponents->GetPointData()->SetTCoords(uvw);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(threeComponents);
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Warnings, "using the first two"));
+    EXPECT_EQ(Get3(filter->GetOutput()->GetPointData()->GetTangents(), 0), (Vec{ 1, 0, 0 }));
+  }
+  {
+    vtkNew<vtkPolyData> shortArray;
+    shortArray->DeepCopy(mesh);
+    shortArray->GetPointData()->GetTCoords()->SetNumberOfTuples(2);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(shortArray);
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Errors, "has 2 tuples for 3 points"));
+  }
+}
+
+TEST(PolyDataTangentFrames, SecondUVSetByName)
+{
+  // TCoords map u along +x; a second set "UV2" maps u along +y.
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    { { 0, 1, 2 } },
+    std::vector<Vec>(3, Vec{ 0, 0, 1 }));
+  vtkNew<vtkFloatArray> uv2;
+  uv2->SetName("UV2");
+  uv2->SetNumberOfComponents(2);
+  uv2->InsertNextTuple2(0, 0);
+  uv2->InsertNextTuple2(0, 1);
+  uv2->InsertNextTuple2(1, 0);
+  mesh->GetPointData()->AddArray(uv2);
+  auto out = RunFrames(mesh, [](vtkPolyDataTangentFrames* f) { f->SetTCoordsArrayName("UV2"); });
+  EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), 0), (Vec{ 0, 1, 0 }));
+  // UV2 is a mirror image of TCoords' layout: handedness -1.
+  EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetComponent(0, 0), -1.0);
+}
+
+TEST(PolyDataTangentFrames, MissingNormalsAreComputedAndCellNormalsUsed)
+{
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 1 } },
+    { { 0, 1, 2 }, { 1, 3, 2 } });
+  {
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(mesh);
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Warnings, "no point normals; computing"));
+    vtkDataArray* n = filter->GetOutput()->GetPointData()->GetNormals();
+    ASSERT_NE(n, nullptr);
+    EXPECT_EQ(Get3(n, 3), (Vec{ 0, 0, 1 }));
+    ExpectValidFrames(filter->GetOutput());
+  }
+  {
+    vtkNew<vtkPolyData> withCellNormals;
+    withCellNormals->DeepCopy(mesh);
+    vtkNew<vtkFloatArray> cn;
+    cn->SetNumberOfComponents(3);
+    cn->InsertNextTuple3(0, 0, 2); // unnormalized on purpose
+    cn->InsertNextTuple3(0, 0, 1);
+    withCellNormals->GetCellData()->SetNormals(cn);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(withCellNormals);
+    filter->Update();
+    EXPECT_TRUE(messages.Has(messages.Warnings, "cell normals but no point normals"));
+    EXPECT_EQ(Get3(filter->GetOutput()->GetPointData()->GetNormals(), 0), (Vec{ 0, 0, 1 }));
+    ExpectValidFrames(filter->GetOutput());
+  }
+}
+
+// ------------------------------------------------------------------ VTK's sources
+
+TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
+{
+  std::vector<std::pair<std::string, vtkSmartPointer<vtkPolyData>>> inputs;
+  const auto add = [&](const std::string& name, vtkAlgorithm* source)
+  {
+    source->Update();
+    auto copy = vtkSmartPointer<vtkPolyData>::New();
+    copy->DeepCopy(vtkPolyData::SafeDownCast(source->GetOutputDataObject(0)));
+    inputs.emplace_back(name, copy);
+  };
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(8, 5);
+  add("plane", plane);
+  vtkNew<vtkCubeSource> cube;
+  add("cube", cube);
+  vtkNew<vtkTexturedSphereSource> texturedSphere;
+  texturedSphere->SetThetaResolution(24);
+  texturedSphere->SetPhiResolution(12);
+  add("textured sphere", texturedSphere);
+  vtkNew<vtkCylinderSource> cylinder;
+  cylinder->SetResolution(16);
+  add("cylinder", cylinder);
+  vtkNew<vtkParametricTorus> torus;
+  vtkNew<vtkParametricFunctionSource> parametric;
+  parametric->SetParametricFunction(torus);
+  parametric->GenerateTextureCoordinatesOn();
+  parametric->SetUResolution(24);
+  parametric->SetVResolution(12);
+  add("parametric torus", parametric);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(24);
+  sphere->SetPhiResolution(12);
+  vtkNew<vtkTextureMapToPlane> toPlane;
+  toPlane->SetInputConnection(sphere->GetOutputPort());
+  add("sphere + vtkTextureMapToPlane", toPlane);
+  vtkNew<vtkTextureMapToSphere> toSphere;
+  toSphere->SetInputConnection(sphere->GetOutputPort());
+  add("sphere + vtkTextureMapToSphere", toSphere);
+  vtkNew<vtkTextureMapToCylinder> toCylinder;
+  toCylinder->SetInputConnection(sphere->GetOutputPort());
+  add("sphere + vtkTextureMapToCylinder", toCylinder);
+
+  for (auto& [name, input] : inputs)
+  {
+    SCOPED_TRACE(name);
+    for (int method : AllMethods)
+    {
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      filter->SetInputData(input);
+      filter->SetMethod(method);
+      filter->ComputeBitangentsOn();
+      filter->Update();
+      EXPECT_TRUE(messages.Errors.empty()) << messages.Errors.front();
+      vtkPolyData* out = filter->GetOutput();
+      ASSERT_NE(out->GetPointData()->GetTangents(), nullptr);
+      ExpectValidFrames(out);
+      EXPECT_EQ(out->GetNumberOfCells(), input->GetNumberOfCells());
+      EXPECT_EQ(
+        out->GetNumberOfPoints(), input->GetNumberOfPoints() + filter->GetNumberOfSplitPoints());
+    }
+  }
+}
+
+// ------------------------------------------------------------------ determinism, settings
+
+TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 300; // 72,000 triangles: several batches and many SMP chunks
+  options.V = 120;
+  options.MirrorU = true;
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  for (int method : AllMethods)
+  {
+    std::vector<std::vector<float>> results;
+    for (int threads : { 1, 2, 8 })
+    {
+      vtkSMPTools::Config config;
+      config.MaxNumberOfThreads = threads;
+      vtkSMPTools::LocalScope(config,
+        [&]()
+        {
+          auto out = RunFrames(mesh,
+            [&](vtkPolyDataTangentFrames* f)
+            {
+              f->SetMethod(method);
+              f->ComputeBitangentsOn();
+            });
+          std::vector<float> bits;
+          for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+          {
+            auto* a = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray(name));
+            bits.insert(bits.end(), a->GetPointer(0), a->GetPointer(0) + a->GetDataSize());
+          }
+          results.push_back(bits);
+        });
+    }
+    ASSERT_EQ(results.size(), 3u);
+    EXPECT_EQ(0, std::memcmp(results[0].data(), results[1].data(), results[0].size() * 4));
+    EXPECT_EQ(0, std::memcmp(results[0].data(), results[2].data(), results[0].size() * 4));
+  }
+}
+
+TEST(PolyDataTangentFrames, OutputPrecision)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 8;
+  options.V = 4;
+  auto floatMesh = vtkNormalMapping::MakeTorus(options);
+  options.DoublePrecision = true;
+  auto doubleMesh = vtkNormalMapping::MakeTorus(options);
+  EXPECT_EQ(RunFrames(floatMesh)->GetPointData()->GetTangents()->GetDataType(), VTK_FLOAT);
+  EXPECT_EQ(RunFrames(doubleMesh)->GetPointData()->GetTangents()->GetDataType(), VTK_DOUBLE);
+  auto out = RunFrames(floatMesh,
+    [](vtkPolyDataTangentFrames* f)
+    {
+      f->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+      f->ComputeBitangentsOn();
+    });
+  EXPECT_EQ(out->GetPointData()->GetTangents()->GetDataType(), VTK_DOUBLE);
+  EXPECT_EQ(out->GetPointData()->GetArray("Bitangents")->GetDataType(), VTK_DOUBLE);
+  out = RunFrames(doubleMesh,
+    [](vtkPolyDataTangentFrames* f) { f->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION); });
+  EXPECT_EQ(out->GetPointData()->GetTangents()->GetDataType(), VTK_FLOAT);
+}
+
+TEST(PolyDataTangentFrames, ProgressAndAbort)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 512;
+  options.V = 256; // 262,144 triangles: more than one batch
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  std::vector<double> progress;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* list, void* amount)
+    { static_cast<std::vector<double>*>(list)->push_back(*static_cast<double*>(amount)); });
+  filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  filter->Update();
+  ASSERT_GE(progress.size(), 5u);
+  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+  EXPECT_EQ(progress.back(), 1.0);
+
+  // Abort at the first progress report: a valid, empty output.
+  vtkNew<vtkCallbackCommand> abortNow;
+  abortNow->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+    { static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn(); });
+  filter->AddObserver(vtkCommand::ProgressEvent, abortNow);
+  filter->Modified();
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
+}
+
+TEST(PolyDataTangentFrames, PrintSelfListsEverySetting)
+{
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  std::ostringstream os;
+  filter->Print(os);
+  for (const char* setting : { "Method: AngleWeighted",
+         "TCoordsArrayName",
+         "Splitting: On",
+         "ComputeBitangents: Off",
+         "ComputeCellTangents: Off",
+         "OutputPrecision",
+         "NumberOfDegenerateTriangles",
+         "NumberOfFallbackPoints",
+         "NumberOfHandednessConflicts",
+         "NumberOfSplitPoints",
+         "NumberOfInvalidNormals" })
+  {
+    EXPECT_NE(os.str().find(setting), std::string::npos) << setting;
+  }
+}
+
+// ------------------------------------------------------------------ against VTK's filter
+
+TEST(PolyDataTangentFrames, AgreesWithVTKWhereVTKIsRightAndNotWhereItIsWrong)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 64;
+  options.V = 32;
+  auto plain = vtkNormalMapping::MakeTorus(options);
+  vtkNew<vtkPolyDataTangents> vtkFilter;
+  vtkFilter->SetInputData(plain);
+  vtkFilter->Update();
+  auto ours = RunFrames(plain);
+  vtkDataArray* theirs = vtkFilter->GetOutput()->GetPointData()->GetTangents();
+  vtkDataArray* mine = ours->GetPointData()->GetTangents();
+  vtkDataArray* n = ours->GetPointData()->GetNormals();
+  double maxAngle = 0;
+  for (vtkIdType p = 0; p < plain->GetNumberOfPoints(); ++p)
+  {
+    Vec t = Get3(theirs, p);
+    const Vec nv = Get3(n, p);
+    const double d = Dot(t, nv);
+    for (int k = 0; k < 3; ++k)
+    {
+      t[k] -= d * nv[k]; // VTK's is not orthogonalized; compare directions in the tangent plane
+    }
+    maxAngle = std::max(maxAngle, AngleDeg(t, Get3(mine, p)));
+  }
+  // Both are within half a cell's turn (360/64/2 degrees) of the truth (see the analytic test).
+  EXPECT_LT(maxAngle, 360.0 / options.U);
+
+  // Mirrored UVs: VTK 9.1 has no sign, so its bitangent cross(N, T) points against dP/dv on the
+  // mirrored half; ours, sign * cross(N, T), points along it. dP/dv on this torus is the
+  // direction around the tube, (-sin theta cos phi, -sin theta sin phi, cos theta).
+  options.MirrorU = true;
+  auto mirrored = vtkNormalMapping::MakeTorus(options);
+  vtkFilter->SetInputData(mirrored);
+  vtkFilter->Update();
+  auto oursMirrored = RunFrames(mirrored);
+  const auto countWrongBitangents = [&](vtkPolyData* out, vtkDataArray* t, vtkDataArray* s)
+  {
+    int wrong = 0, total = 0;
+    for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+    {
+      Vec x;
+      out->GetPoint(p, x.data());
+      const Vec nv = Get3(out->GetPointData()->GetNormals(), p);
+      const double phi = std::atan2(x[1], x[0]);
+      const double theta = std::atan2(nv[2], nv[0] * std::cos(phi) + nv[1] * std::sin(phi));
+      const Vec dPdv{
+        -std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), std::cos(theta)
+      };
+      const double sign = s ? s->GetComponent(p, 0) : 1.0;
+      Vec b = Cross(nv, Get3(t, p));
+      wrong += Dot(b, dPdv) * sign > 0 ? 0 : 1;
+      ++total;
+    }
+    return std::make_pair(wrong, total);
+  };
+  const auto [oursWrong, oursTotal] = countWrongBitangents(oursMirrored,
+    oursMirrored->GetPointData()->GetTangents(),
+    oursMirrored->GetPointData()->GetArray("TangentSigns"));
+  EXPECT_EQ(oursWrong, 0);
+  const auto [vtkWrong, vtkTotal] = countWrongBitangents(
+    vtkFilter->GetOutput(), vtkFilter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+  // Roughly the mirrored half of VTK's points shade with a flipped bitangent.
+  EXPECT_GT(vtkWrong, vtkTotal / 3) << "VTK's filter unexpectedly handles mirrored UVs";
+  std::cout << "mirrored torus: bitangents against dP/dv: ours " << oursWrong << "/" << oursTotal
+            << ", vtkPolyDataTangents " << vtkWrong << "/" << vtkTotal << "\n";
+
+  // Degenerate UVs (all texture coordinates equal): ours gives finite fallback frames.
+  vtkNew<vtkPolyData> collapsed;
+  collapsed->DeepCopy(plain);
+  collapsed->GetPointData()->GetTCoords()->Fill(0.25);
+  auto oursCollapsed = RunFrames(collapsed);
+  ExpectValidFrames(oursCollapsed);
+  vtkFilter->SetInputData(collapsed);
+  vtkFilter->Update();
+  vtkDataArray* vtkCollapsed = vtkFilter->GetOutput()->GetPointData()->GetTangents();
+  int vtkNonFinite = 0;
+  for (vtkIdType p = 0; p < collapsed->GetNumberOfPoints(); ++p)
+  {
+    const Vec t = Get3(vtkCollapsed, p);
+    vtkNonFinite += (std::isfinite(t[0]) && std::isfinite(t[1]) && std::isfinite(t[2])) ? 0 : 1;
+  }
+  std::cout << "collapsed UVs: vtkPolyDataTangents gives " << vtkNonFinite << " of "
+            << collapsed->GetNumberOfPoints() << " non-finite tangents; ours 0\n";
+}

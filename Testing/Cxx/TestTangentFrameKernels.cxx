@@ -1,0 +1,209 @@
+// Unit tests of the tangent-frame kernels, called directly without a pipeline.
+#include "vtkTangentFrameKernels.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace vtkNormalMapping;
+
+namespace
+{
+const double Pi = std::acos(-1.0);
+
+// The kernels compute in double from exactly representable inputs; a unit vector they return is
+// normalized once, so its length is 1 within a few ulps of double.
+constexpr double UnitTolerance = 1e-14;
+
+double AngleBetween(const glm::dvec3& a, const glm::dvec3& b)
+{
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+}
+
+TEST(TangentFrameKernels, RightTriangleWithIdentityUV)
+{
+  const TriangleFrame f =
+    ComputeTriangleFrame({ 0, 0, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, { 0, 0 }, { 1, 0 }, { 0, 1 });
+  EXPECT_EQ(f.Orientation, 1);
+  EXPECT_EQ(f.Tangent, glm::dvec3(1, 0, 0)); // exact: no rounding happens on this input
+  EXPECT_EQ(f.UnitNormal, glm::dvec3(0, 0, 1));
+  EXPECT_DOUBLE_EQ(f.Area, 2.0);
+}
+
+TEST(TangentFrameKernels, RotatedUVGivesRotatedTangent)
+{
+  // u = cos(a) x + sin(a) y, v = -sin(a) x + cos(a) y  =>  dP/du = (cos a, sin a, 0).
+  for (double a : { 0.1, 1.0, 2.5, -2.0 })
+  {
+    const auto uv = [a](double x, double y)
+    { return glm::dvec2(std::cos(a) * x + std::sin(a) * y, -std::sin(a) * x + std::cos(a) * y); };
+    const TriangleFrame f = ComputeTriangleFrame(
+      { 0.3, 0.1, 0 }, { 1.2, 0.4, 0 }, { 0.5, 0.9, 0 }, uv(0.3, 0.1), uv(1.2, 0.4), uv(0.5, 0.9));
+    ASSERT_EQ(f.Orientation, 1);
+    // A handful of roundings on O(1) values: 1e-14 rad is ~50 ulps.
+    EXPECT_LT(AngleBetween(f.Tangent, { std::cos(a), std::sin(a), 0 }), 1e-14) << "a=" << a;
+  }
+}
+
+TEST(TangentFrameKernels, MirroredUVFlipsOrientationAndTangent)
+{
+  const TriangleFrame f =
+    ComputeTriangleFrame({ 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0 }, { -1, 0 }, { 0, 1 });
+  EXPECT_EQ(f.Orientation, -1);
+  EXPECT_EQ(f.Tangent, glm::dvec3(-1, 0, 0));
+  // The sign at a corner whose normal is +z is -1; with the normal flipped it is +1 (the
+  // triangle's winding then disagrees with the shading normal).
+  EXPECT_EQ(CornerSign(f, { 0, 0, 1 }), -1);
+  EXPECT_EQ(CornerSign(f, { 0, 0, -1 }), 1);
+}
+
+TEST(TangentFrameKernels, DegenerateTrianglesHaveNoFrame)
+{
+  const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  // Zero UV area.
+  TriangleFrame f = ComputeTriangleFrame(a, b, c, { 0, 0 }, { 1, 1 }, { 2, 2 });
+  EXPECT_EQ(f.Orientation, 0);
+  EXPECT_EQ(f.UnitNormal, glm::dvec3(0, 0, 1)); // the geometry is still fine
+  // Zero area: collinear and repeated points.
+  f = ComputeTriangleFrame(a, b, { 2, 0, 0 }, { 0, 0 }, { 1, 0 }, { 0, 1 });
+  EXPECT_EQ(f.Orientation, 0);
+  EXPECT_EQ(f.Area, 0.0);
+  f = ComputeTriangleFrame(a, a, c, { 0, 0 }, { 1, 0 }, { 0, 1 });
+  EXPECT_EQ(f.Orientation, 0);
+  // Non-finite input anywhere.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ComputeTriangleFrame({ nan, 0, 0 }, b, c, { 0, 0 }, { 1, 0 }, { 0, 1 }).Orientation, 0);
+  EXPECT_EQ(ComputeTriangleFrame(a, { inf, 0, 0 }, c, { 0, 0 }, { 1, 0 }, { 0, 1 }).Orientation, 0);
+  EXPECT_EQ(ComputeTriangleFrame(a, b, c, { 0, nan }, { 1, 0 }, { 0, 1 }).Orientation, 0);
+  EXPECT_EQ(ComputeTriangleFrame(a, b, c, { 0, 0 }, { inf, 0 }, { 0, 1 }).Orientation, 0);
+}
+
+TEST(TangentFrameKernels, ToleranceSeparatesNearDegenerateUV)
+{
+  // A UV triangle whose shape ratio is 1e-20: below any stored precision, degenerate.
+  const glm::dvec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  TriangleFrame f = ComputeTriangleFrame(a, b, c, { 0, 0 }, { 1, 0 }, { 0.5, 1e-20 });
+  EXPECT_EQ(f.Orientation, 0);
+  // Shape ratio 1e-3: a thin but honest UV triangle keeps its frame.
+  f = ComputeTriangleFrame(a, b, c, { 0, 0 }, { 1, 0 }, { 0.5, 1e-3 });
+  EXPECT_NE(f.Orientation, 0);
+  EXPECT_NEAR(glm::length(f.Tangent), 1.0, UnitTolerance);
+}
+
+TEST(TangentFrameKernels, ScaleInvariantWithoutOverflow)
+{
+  const glm::dvec3 p[3] = { { 0.1, 0.2, 0.3 }, { 1.1, 0.25, 0.2 }, { 0.4, 1.3, 0.5 } };
+  const glm::dvec2 uv[3] = { { 0.1, 0.7 }, { 0.8, 0.6 }, { 0.3, 0.05 } };
+  const TriangleFrame ref = ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2]);
+  ASSERT_NE(ref.Orientation, 0);
+  // Power-of-two scales are exact, and the kernel rescales by powers of two: bit-identical.
+  for (int e : { -1000, -100, -30, 30, 100, 1000 })
+  {
+    const double sp = std::ldexp(1.0, e);
+    const double su = std::ldexp(1.0, -e / 3);
+    const TriangleFrame f =
+      ComputeTriangleFrame(sp * p[0], sp * p[1], sp * p[2], su * uv[0], su * uv[1], su * uv[2]);
+    EXPECT_EQ(f.Tangent, ref.Tangent) << "2^" << e;
+    EXPECT_EQ(f.UnitNormal, ref.UnitNormal) << "2^" << e;
+  }
+  // Decimal scales round the inputs: identical to a few ulps (1e-15 rad).
+  for (double sp : { 1e-30, 1e-10, 1e10, 1e30 })
+  {
+    for (double su : { 1e-10, 1e10 })
+    {
+      const TriangleFrame f =
+        ComputeTriangleFrame(sp * p[0], sp * p[1], sp * p[2], su * uv[0], su * uv[1], su * uv[2]);
+      ASSERT_NE(f.Orientation, 0);
+      EXPECT_LT(AngleBetween(f.Tangent, ref.Tangent), 1e-15 * 8) << sp << " " << su;
+      EXPECT_TRUE(std::isfinite(f.Area) && f.Area > 0.0);
+    }
+  }
+}
+
+TEST(TangentFrameKernels, CornerAnglesSumToPi)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  for (int i = 0; i < 1000; ++i)
+  {
+    const glm::dvec3 a(d(rng), d(rng), d(rng)), b(d(rng), d(rng), d(rng)),
+      c(d(rng), d(rng), d(rng));
+    double angles[3];
+    ComputeCornerAngles(a, b, c, angles);
+    // Three angles from the truncated series, each within 2e-12 rad (see AngleFromSineCosine).
+    EXPECT_NEAR(angles[0] + angles[1] + angles[2], Pi, 3 * 2e-12);
+  }
+  double angles[3];
+  ComputeCornerAngles({ 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, angles);
+  EXPECT_EQ(angles[0] + angles[1] + angles[2], 0.0);
+}
+
+TEST(TangentFrameKernels, FallbackTangentIsUnitAndPerpendicular)
+{
+  std::mt19937 rng(11);
+  std::normal_distribution<double> d;
+  std::vector<glm::dvec3> normals = {
+    { 0, 0, 1 }, { 0, 0, -1 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, -1 + 1e-17 }
+  };
+  for (int i = 0; i < 1000; ++i)
+  {
+    normals.push_back(SafeNormalize({ d(rng), d(rng), d(rng) }));
+  }
+  for (const glm::dvec3& n : normals)
+  {
+    const glm::dvec3 t = FallbackTangent(n);
+    // Duff et al.'s basis is exact in exact arithmetic; in double it is within ~1e-15.
+    EXPECT_NEAR(glm::length(t), 1.0, 1e-14);
+    EXPECT_NEAR(glm::dot(t, n), 0.0, 1e-14);
+  }
+  EXPECT_EQ(FallbackTangent(glm::dvec3(0.0)), glm::dvec3(1, 0, 0));
+}
+
+TEST(TangentFrameKernels, OrthonormalizeTangent)
+{
+  glm::dvec3 out(7.0);
+  EXPECT_TRUE(OrthonormalizeTangent({ 0, 0, 1 }, { 3, 0, 4 }, out));
+  EXPECT_EQ(out, glm::dvec3(1, 0, 0));
+  // Parallel to the normal, zero, non-finite: refused, output untouched.
+  out = glm::dvec3(7.0);
+  EXPECT_FALSE(OrthonormalizeTangent({ 0, 0, 1 }, { 0, 0, 5 }, out));
+  EXPECT_FALSE(OrthonormalizeTangent({ 0, 0, 1 }, { 0, 0, 0 }, out));
+  EXPECT_FALSE(
+    OrthonormalizeTangent({ 0, 0, 1 }, { std::numeric_limits<double>::quiet_NaN(), 0, 0 }, out));
+  EXPECT_EQ(out, glm::dvec3(7.0));
+  // Huge and tiny inputs.
+  EXPECT_TRUE(OrthonormalizeTangent({ 0, 0, 1 }, { 1e300, 1e300, 1e300 }, out));
+  EXPECT_NEAR(glm::length(out), 1.0, UnitTolerance);
+  EXPECT_TRUE(OrthonormalizeTangent({ 0, 0, 1 }, { 1e-310, 0, 0 }, out));
+  EXPECT_EQ(out, glm::dvec3(1, 0, 0));
+}
+
+TEST(TangentFrameKernels, SafeNormalize)
+{
+  EXPECT_EQ(SafeNormalize({ 0, 0, 0 }), glm::dvec3(0.0));
+  EXPECT_EQ(SafeNormalize({ std::numeric_limits<double>::infinity(), 0, 0 }), glm::dvec3(0.0));
+  EXPECT_EQ(SafeNormalize({ 0, 1e-320, 0 }), glm::dvec3(0, 1, 0));
+  EXPECT_NEAR(glm::length(SafeNormalize({ 1e200, 1e200, 0 })), 1.0, UnitTolerance);
+}
+
+TEST(TangentFrameKernels, FastAngleMatchesAtan2)
+{
+  // The series is truncated below 2e-12 rad; the reductions add a few ulps.
+  double worst = 0.0;
+  for (int i = 0; i <= 20000; ++i)
+  {
+    const double a = Pi * i / 20000.0;
+    for (double r : { 1e-300, 1e-3, 1.0, 7.5, 1e300 })
+    {
+      const double s = r * std::sin(a), c = r * std::cos(a);
+      worst = std::max(worst, std::abs(detail::AngleFromSineCosine(s, c) - std::atan2(s, c)));
+    }
+  }
+  EXPECT_LT(worst, 4e-12);
+  EXPECT_EQ(detail::AngleFromSineCosine(0.0, 0.0), 0.0);
+  EXPECT_EQ(detail::AngleFromSineCosine(0.0, -1.0), Pi);
+}

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Set up a fresh Debian (bookworm) machine, build, and run one job:
+#   bash scripts/bootstrap.sh demo   # build and run the built-in demo
+#   bash scripts/bootstrap.sh test   # build and run every test (what CI runs)
+#   bash scripts/bootstrap.sh bench  # build and run the benchmarks
+# Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
+set -euo pipefail
+job="${1:-demo}"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$root/build}"
+
+packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
+  xvfb xauth)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "== installing missing Debian packages: ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+fi
+
+echo "== configuring and building in $build"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j "$(nproc)" 2>&1 | grep -E "error|warning: |Error" || true
+cmake --build "$build" -j "$(nproc)" >/dev/null
+
+case "$job" in
+  demo)
+    "$build/bin/TangentFramesDemo"
+    ;;
+  test)
+    cd "$build"
+    ctest --output-on-failure -j "$(nproc)"
+    ;;
+  bench)
+    "$build/bin/BenchTangentFrames" --markdown "$root/docs/filter-benchmark.md"
+    ;;
+  *)
+    echo "usage: $0 demo|test|bench" >&2
+    exit 2
+    ;;
+esac
