@@ -5,19 +5,27 @@ find_package(glm REQUIRED)
 set(_nm_classes
   Filters/vtkPolyDataTangentFrames)
 set(_nm_headers
+  Filters/vtkMikkTSpaceKernel.h
   Filters/vtkTangentFrameKernels.h
   Filters/vtkNormalMappingMeshes.h)
 set(_nm_sources
-  Filters/vtkNormalMappingMeshes.cxx)
+  Filters/vtkMikkTSpaceKernel.cxx
+  Filters/vtkNormalMappingMeshes.cxx
+  Filters/vtkPolyDataTangentFramesMikkTSpace.cxx)
+set(_nm_private_headers
+  Filters/vtkNormalMappingPrivate.h
+  Filters/vtkPolyDataTangentFramesMikkTSpace.h)
 
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+list(TRANSFORM _nm_private_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 
 vtk_module_add_module(VTK::NormalMapping
   CLASSES ${_nm_classes}
   HEADERS ${_nm_headers}
-  SOURCES ${_nm_sources})
+  SOURCES ${_nm_sources}
+  PRIVATE_HEADERS ${_nm_private_headers})
 vtk_module_include(VTK::NormalMapping
   PUBLIC
     "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>")

@@ -1,10 +1,11 @@
 #include "vtkPolyDataTangentFrames.h"
 
+#include "vtkNormalMappingPrivate.h"
+#include "vtkPolyDataTangentFramesMikkTSpace.h"
 #include "vtkTangentFrameKernels.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
@@ -20,38 +21,36 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cfloat>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
 
+/*
+ * How the work is organized (all in double):
+ *
+ * 1. Scatter: every triangle of every polygon and strip is visited in cell order; its frame is
+ *    computed (vtkNormalMapping::ComputeTriangleFrame) and added, weighted, to an accumulator of
+ *    each of its corners, one sum per handedness. The points are split into as many contiguous
+ *    blocks as there are threads; each thread scans all cells but only computes and adds for
+ *    triangles with a corner in its block. Every point therefore sums its triangles in cell
+ *    order whatever the number of threads: the output is bit-identical for any thread count,
+ *    without a stored point-to-triangle table or per-triangle frames.
+ * 2. Finish: per point, choose or split the handedness, Gram-Schmidt against the normal, write.
+ * 3. Only when needed: fallback frames from neighbours (another ordered scan), split points
+ *    (cells re-pointed), cell tangents.
+ * The accumulators (64 bytes per point) are the only per-point memory besides the outputs.
+ */
 namespace
 {
 using namespace vtkNormalMapping;
+using vtkNormalMapping::detail::WithCellStorage;
 
-/// Items processed between two progress reports / abort checks (on the calling thread).
-constexpr vtkIdType BatchSize = 1 << 17;
-
-/// Runs f(begin, end) over [0, n) with vtkSMPTools, in batches; between batches it reports
-/// progress in [p0, p1] and checks AbortExecute, on the calling thread only. False if aborted.
-template<typename F>
-bool BatchedFor(vtkAlgorithm* algo, vtkIdType n, double p0, double p1, const F& f)
-{
-  for (vtkIdType begin = 0; begin < n; begin += BatchSize)
-  {
-    if (algo->GetAbortExecute())
-    {
-      return false;
-    }
-    const vtkIdType end = std::min(n, begin + BatchSize);
-    vtkSMPTools::For(begin, end, [&](vtkIdType b, vtkIdType e) { f(b, e); });
-    algo->UpdateProgress(p0 + (p1 - p0) * static_cast<double>(end) / static_cast<double>(n));
-  }
-  return !algo->GetAbortExecute();
-}
+/// Cells processed between two progress reports / abort checks (on the calling thread).
+constexpr vtkIdType CellBatch = 1 << 16;
 
 /// Sum of thread-local counters (integer: the order does not matter).
 vtkIdType Total(vtkSMPThreadLocal<vtkIdType>& counter)
@@ -77,64 +76,166 @@ std::vector<T> Merge(vtkSMPThreadLocal<std::vector<T>>& lists, Less less)
   return all;
 }
 
-/// The triangles of the polygon and strip cells, each with its corners in winding order.
-struct SurfaceTriangles
+/// A float or double array read through a raw pointer; any other type is copied to double once.
+struct RealArray
 {
-  std::vector<vtkIdType> Ids;          // 3 per triangle
-  std::vector<vtkIdType> PolyOffsets;  // first triangle of each polygon cell, + end
-  std::vector<vtkIdType> StripOffsets; // first triangle of each strip cell (after polygons), + end
-  vtkIdType NumberOfTriangles() const { return static_cast<vtkIdType>(this->Ids.size() / 3); }
+  vtkSmartPointer<vtkDataArray> Array;
+  int Components = 0;
+
+  explicit RealArray(vtkDataArray* array)
+  {
+    if (array && array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+    {
+      auto copy = vtkSmartPointer<vtkDoubleArray>::New();
+      copy->DeepCopy(array);
+      array = copy;
+    }
+    this->Array = array;
+    this->Components = array ? array->GetNumberOfComponents() : 0;
+  }
+  bool IsDouble() const { return this->Array->GetDataType() == VTK_DOUBLE; }
+  template<typename T>
+  const T* Pointer() const
+  {
+    return static_cast<const T*>(this->Array->GetVoidPointer(0));
+  }
 };
 
-/// Number of triangles per cell (n - 2 for n >= 3) prefix-summed from `first`.
-template<typename IdT>
-void CountTriangles(const IdT* offsets,
-  vtkIdType numCells,
-  vtkIdType first,
-  std::vector<vtkIdType>& triOffsets,
-  vtkIdType& shortCells)
+/// Calls f(const float*) or f(const double*) for a RealArray.
+template<typename F>
+void WithPointer(const RealArray& a, F&& f)
 {
-  triOffsets.resize(numCells + 1);
-  vtkIdType running = first;
-  for (vtkIdType c = 0; c < numCells; ++c)
+  if (a.IsDouble())
   {
-    triOffsets[c] = running;
-    const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
-    if (n < 3)
-    {
-      ++shortCells;
-    }
-    running += std::max<vtkIdType>(n - 2, 0);
+    f(a.Pointer<double>());
   }
-  triOffsets[numCells] = running;
+  else
+  {
+    f(a.Pointer<float>());
+  }
 }
 
-/// Writes the triangles of cells [begin, end); false when a point id is out of range.
-/// Polygons fan from corner 0; strip triangle j is (j, j+1, j+2) with every odd one reversed,
-/// so that all triangles of a strip share its winding.
-template<typename IdT>
-bool FillTriangles(const IdT* offsets,
+/// Typed views of the inputs the kernels read.
+template<typename PT, typename UT, typename NT>
+struct MeshView
+{
+  const PT* Points;
+  const UT* UVs;
+  int UVComponents;
+  const NT* Normals;      // may be null (normals not known yet)
+  const double* Fallback; // geometric normals for points whose normal is unusable, or null
+
+  glm::dvec3 Point(vtkIdType p) const
+  {
+    return glm::dvec3(this->Points[3 * p], this->Points[3 * p + 1], this->Points[3 * p + 2]);
+  }
+  glm::dvec2 UV(vtkIdType p) const
+  {
+    const UT* uv = this->UVs + this->UVComponents * p;
+    return glm::dvec2(uv[0], this->UVComponents > 1 ? static_cast<double>(uv[1]) : 0.0);
+  }
+  /// The unit shading normal of a point, or zero when it has none.
+  glm::dvec3 Normal(vtkIdType p) const
+  {
+    const glm::dvec3 n = SafeNormalize(
+      glm::dvec3(this->Normals[3 * p], this->Normals[3 * p + 1], this->Normals[3 * p + 2]));
+    if (n == glm::dvec3(0.0) && this->Fallback)
+    {
+      return glm::dvec3(
+        this->Fallback[3 * p], this->Fallback[3 * p + 1], this->Fallback[3 * p + 2]);
+    }
+    return n;
+  }
+  TriangleFrame Frame(const vtkIdType* tri,
+    const DegeneracyTolerance& tol,
+    bool withArea = true) const
+  {
+    return ComputeTriangleFrame(this->Point(tri[0]),
+      this->Point(tri[1]),
+      this->Point(tri[2]),
+      this->UV(tri[0]),
+      this->UV(tri[1]),
+      this->UV(tri[2]),
+      tol,
+      withArea);
+  }
+  /// CornerSign(frame, Normal(p)) without normalizing: only the sign of N.n matters. A zero or
+  /// non-finite normal uses the geometric stand-in when there is one.
+  int Side(const TriangleFrame& f, vtkIdType p) const
+  {
+    const NT* n = this->Normals + 3 * p;
+    double d = n[0] * f.Normal.x + n[1] * f.Normal.y + n[2] * f.Normal.z;
+    if (!(d != 0.0 && std::isfinite(d)) && this->Fallback)
+    {
+      const double* g = this->Fallback + 3 * p;
+      d = g[0] * f.Normal.x + g[1] * f.Normal.y + g[2] * f.Normal.z;
+    }
+    // The same rule as CornerSign: a NaN or zero product keeps the triangle's orientation.
+    return d < 0.0 ? -f.Orientation : f.Orientation;
+  }
+};
+
+/// Calls f(view) with the MeshView of the right types.
+template<typename F>
+void WithMeshView(const RealArray& points,
+  const RealArray& uvs,
+  const RealArray& normals,
+  const double* fallback,
+  F&& f)
+{
+  WithPointer(points,
+    [&](auto* p)
+    {
+      WithPointer(uvs,
+        [&](auto* u)
+        {
+          using PT = std::remove_const_t<std::remove_pointer_t<decltype(p)>>;
+          using UT = std::remove_const_t<std::remove_pointer_t<decltype(u)>>;
+          if (!normals.Array)
+          {
+            f(MeshView<PT, UT, float>{ p, u, uvs.Components, nullptr, fallback });
+            return;
+          }
+          WithPointer(normals,
+            [&](auto* n)
+            {
+              using NT = std::remove_const_t<std::remove_pointer_t<decltype(n)>>;
+              f(MeshView<PT, UT, NT>{ p, u, uvs.Components, n, fallback });
+            });
+        });
+    });
+}
+
+/// Calls f(cellIndex, triangleIndexInCell, ids[3]) for the triangles of cells [begin, end):
+/// polygons fan from corner 0, strip triangle j is (j, j+1, j+2) with every odd one reversed so
+/// that all triangles of a strip share its winding. Cells with a point id outside
+/// [0, numPoints) are skipped and reported through `bad`.
+template<typename IdT, typename F>
+void ForEachTriangle(const IdT* offsets,
   const IdT* conn,
   bool strip,
   vtkIdType begin,
   vtkIdType end,
   vtkIdType numPoints,
-  const vtkIdType* triOffsets,
-  vtkIdType* out)
+  bool& bad,
+  F&& f)
 {
+  vtkIdType tri[3];
   for (vtkIdType c = begin; c < end; ++c)
   {
     const IdT* pts = conn + offsets[c];
     const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+    bool inRange = true;
     for (vtkIdType k = 0; k < n; ++k)
     {
-      if (pts[k] < 0 || static_cast<vtkIdType>(pts[k]) >= numPoints)
-      {
-        return false;
-      }
+      inRange &= pts[k] >= 0 && static_cast<vtkIdType>(pts[k]) < numPoints;
     }
-    vtkIdType* tri = out + 3 * triOffsets[c];
-    for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
+    if (!inRange)
+    {
+      bad = true;
+      continue;
+    }
+    for (vtkIdType j = 0; j + 2 < n; ++j)
     {
       if (!strip)
       {
@@ -149,78 +250,208 @@ bool FillTriangles(const IdT* offsets,
         tri[1] = pts[odd ? j : j + 1];
         tri[2] = pts[j + 2];
       }
+      f(c, j, static_cast<const vtkIdType*>(tri));
     }
   }
-  return true;
 }
 
-/// Calls f(offsets, connectivity) with the typed raw storage of a cell array.
-template<typename F>
-void WithCellStorage(vtkCellArray* cells, F&& f)
+/// Per-point sums of one execution, one per handedness (index 0: +1, 1: -1).
+struct Accumulator
 {
-  if (cells->IsStorage64Bit())
-  {
-    f(cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
-  }
-  else
-  {
-    f(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
-  }
-}
+  glm::dvec3 Tangent[2];
+  double Weight[2];
+};
 
-/// Calls f(array) with the array down-cast to its concrete float or double type when it is
-/// one, so that tuple ranges compile to plain loads; other types go through vtkDataArray.
-template<typename F>
-void WithRealArray(vtkDataArray* array, F&& f)
+/// Everything the passes of one execution share.
+struct Execution
 {
-  if (auto* fa = vtkFloatArray::FastDownCast(array))
-  {
-    f(fa);
-  }
-  else if (auto* da = vtkDoubleArray::FastDownCast(array))
-  {
-    f(da);
-  }
-  else
-  {
-    f(array);
-  }
-}
+  vtkPolyDataTangentFrames* Filter = nullptr;
+  TangentMethod Method = TangentMethod::AngleWeighted;
+  bool Splitting = true;
+  vtkIdType NumberOfPoints = 0;
+  vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
+  DegeneracyTolerance Tolerance;
+  int Blocks = 1;
+  bool BadIds = false;
 
-template<typename RangeT>
-glm::dvec3 Load3(const RangeT& range, vtkIdType id)
-{
-  const auto t = range[id];
-  return glm::dvec3(t[0], t[1], t[2]);
-}
-
-/// One point-to-triangle table: the corners (3 * triangle + corner) of each point, in triangle
-/// order, which fixes the order of every per-point sum.
-struct PointCorners
-{
-  std::vector<vtkIdType> Offsets; // numPoints + 1
-  std::vector<vtkIdType> Corners;
-
-  void Build(const SurfaceTriangles& tris, vtkIdType numPoints)
+  /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin: runs
+  /// long enough that few triangles straddle two owners (each owner computes such a triangle),
+  /// short enough that every batch of cells has work for every block, since meshes number
+  /// their points and cells with the same locality.
+  static constexpr int OwnerShift = 12;
+  bool Owns(int block, vtkIdType p) const
   {
-    this->Offsets.assign(numPoints + 1, 0);
-    const vtkIdType numCorners = static_cast<vtkIdType>(tris.Ids.size());
-    for (vtkIdType c = 0; c < numCorners; ++c)
+    return static_cast<int>((p >> OwnerShift) % this->Blocks) == block;
+  }
+
+  /**
+   * Visits every triangle in cell order, in parallel over point blocks: f(block, cell index,
+   * triangle index in cell, ids, cellsAreStrips) runs for each block on the triangles that
+   * have a corner in that block (the caller checks which corners with Owns). Progress goes
+   * from p0 to p1; false when aborted.
+   */
+  template<typename F>
+  bool OrderedScan(double p0, double p1, const F& f)
+  {
+    const vtkIdType total = this->Cells[0]->GetNumberOfCells() + this->Cells[1]->GetNumberOfCells();
+    vtkIdType done = 0;
+    std::vector<char> bad(this->Blocks, 0);
+    for (int kind = 0; kind < 2; ++kind)
     {
-      ++this->Offsets[tris.Ids[c] + 1];
+      vtkCellArray* cells = this->Cells[kind];
+      const vtkIdType numCells = cells->GetNumberOfCells();
+      bool aborted = false;
+      WithCellStorage(cells,
+        [&](const auto* offsets, const auto* conn)
+        {
+          for (vtkIdType begin = 0; begin < numCells && !aborted; begin += CellBatch)
+          {
+            if (this->Filter->GetAbortExecute())
+            {
+              aborted = true;
+              return;
+            }
+            const vtkIdType end = std::min(numCells, begin + CellBatch);
+            vtkSMPTools::For(0,
+              this->Blocks,
+              1,
+              [&](vtkIdType b0, vtkIdType b1)
+              {
+                for (vtkIdType b = b0; b < b1; ++b)
+                {
+                  const int block = static_cast<int>(b);
+                  bool badIds = false;
+                  ForEachTriangle(offsets,
+                    conn,
+                    kind == 1,
+                    begin,
+                    end,
+                    this->NumberOfPoints,
+                    badIds,
+                    [&](vtkIdType c, vtkIdType j, const vtkIdType* tri)
+                    {
+                      if (this->Owns(block, tri[0]) || this->Owns(block, tri[1]) ||
+                        this->Owns(block, tri[2]))
+                      {
+                        f(block, c, j, tri, kind == 1);
+                      }
+                    });
+                  bad[b] |= badIds ? 1 : 0;
+                }
+              });
+            done += end - begin;
+            this->Filter->UpdateProgress(p0 + (p1 - p0) * static_cast<double>(done) / total);
+          }
+        });
+      if (aborted)
+      {
+        return false;
+      }
     }
-    for (vtkIdType p = 0; p < numPoints; ++p)
-    {
-      this->Offsets[p + 1] += this->Offsets[p];
-    }
-    this->Corners.resize(numCorners);
-    std::vector<vtkIdType> cursor(this->Offsets.begin(), this->Offsets.end() - 1);
-    for (vtkIdType c = 0; c < numCorners; ++c)
-    {
-      this->Corners[cursor[tris.Ids[c]]++] = c;
-    }
+    this->BadIds |= std::any_of(bad.begin(), bad.end(), [](char c) { return c != 0; });
+    return !this->Filter->GetAbortExecute();
   }
 };
+
+/// Smooth, area-weighted point normals: the triangles' geometric normals, or the input cell
+/// normals with the same weights. Writes unit normals (points with no area get `empty`).
+template<typename View>
+bool ComputePointNormals(Execution& ex,
+  const View& view,
+  vtkDataArray* cellNormals,
+  vtkIdType firstSurfaceCell,
+  const glm::dvec3& empty,
+  double* out,
+  double p0,
+  double p1)
+{
+  std::fill(out, out + 3 * ex.NumberOfPoints, 0.0);
+  const vtkIdType numPolys = ex.Cells[0]->GetNumberOfCells();
+  const bool done = ex.OrderedScan(p0,
+    p1,
+    [&](int block, vtkIdType c, vtkIdType, const vtkIdType* tri, bool strip)
+    {
+      const TriangleFrame f = view.Frame(tri, ex.Tolerance);
+      glm::dvec3 n = f.Area * SafeNormalize(f.Normal);
+      if (cellNormals)
+      {
+        double cn[3];
+        cellNormals->GetTuple(firstSurfaceCell + c + (strip ? numPolys : 0), cn);
+        n = f.Area * SafeNormalize(glm::dvec3(cn[0], cn[1], cn[2]));
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        if (ex.Owns(block, tri[k]))
+        {
+          for (int d = 0; d < 3; ++d)
+          {
+            out[3 * tri[k] + d] += n[d];
+          }
+        }
+      }
+    });
+  vtkSMPTools::For(0,
+    ex.NumberOfPoints,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType p = b; p < e; ++p)
+      {
+        glm::dvec3 n = SafeNormalize(glm::dvec3(out[3 * p], out[3 * p + 1], out[3 * p + 2]));
+        n = n == glm::dvec3(0.0) ? empty : n;
+        for (int d = 0; d < 3; ++d)
+        {
+          out[3 * p + d] = n[d];
+        }
+      }
+    });
+  return done;
+}
+
+/// The weighted per-handedness sums of every point (the scatter).
+template<typename View>
+bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degenerate)
+{
+  std::vector<vtkIdType> degenerateByBlock(ex.Blocks, 0);
+  const bool angles = ex.Method == TangentMethod::AngleWeighted;
+  const bool area = ex.Method == TangentMethod::AreaWeighted;
+  const bool done = ex.OrderedScan(0.05,
+    0.75,
+    [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
+    {
+      const TriangleFrame f = view.Frame(tri, ex.Tolerance, area);
+      if (f.Orientation == 0)
+      {
+        // Counted once: by the block that owns the first corner.
+        degenerateByBlock[block] += ex.Owns(block, tri[0]) ? 1 : 0;
+        return;
+      }
+      double w[3] = { 1.0, 1.0, 1.0 };
+      if (angles)
+      {
+        ComputeCornerAngles(view.Point(tri[0]), view.Point(tri[1]), view.Point(tri[2]), w);
+      }
+      else if (area)
+      {
+        w[0] = w[1] = w[2] = f.Area;
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        const vtkIdType p = tri[k];
+        if (ex.Owns(block, p))
+        {
+          const int side = view.Side(f, p) > 0 ? 0 : 1;
+          acc[p].Tangent[side] += w[k] * f.Tangent;
+          acc[p].Weight[side] += w[k];
+        }
+      }
+    });
+  degenerate = 0;
+  for (vtkIdType d : degenerateByBlock)
+  {
+    degenerate += d;
+  }
+  return done;
+}
 
 /// A point on a mirror seam: its normal, and the frame of its mirrored (-1) side, which goes
 /// to the point's copy when splitting.
@@ -231,332 +462,172 @@ struct SplitPoint
   glm::dvec3 Tangent;
 };
 
-struct FallbackPoint
-{
-  vtkIdType Id;
-  glm::dvec3 Normal;
-};
-
-/// Everything one execution shares between its passes.
-struct Execution
-{
-  vtkPolyDataTangentFrames* Filter = nullptr;
-  TangentMethod Method = TangentMethod::AngleWeighted;
-  bool Splitting = true;
-  vtkIdType NumberOfPoints = 0;
-  SurfaceTriangles Triangles;
-  std::vector<TriangleFrame> Frames;
-  std::vector<std::array<double, 3>> Angles; // only for AngleWeighted
-  PointCorners Table;
-
-  vtkIdType DegenerateTriangles = 0;
-  vtkIdType InvalidNormals = 0;
-  vtkIdType Conflicts = 0;
-  std::vector<SplitPoint> Splits;
-  std::vector<FallbackPoint> Fallbacks;
-
-  double Weight(vtkIdType corner) const
-  {
-    const vtkIdType t = corner / 3;
-    return CornerWeight(this->Method,
-      this->Frames[t],
-      this->Angles.empty() ? nullptr : this->Angles[t].data(),
-      static_cast<int>(corner % 3));
-  }
-
-  /// The geometric normal of a point: area-weighted mean of its triangles' normals.
-  glm::dvec3 GeometricNormal(vtkIdType p) const
-  {
-    glm::dvec3 sum(0.0);
-    for (vtkIdType i = this->Table.Offsets[p]; i < this->Table.Offsets[p + 1]; ++i)
-    {
-      const TriangleFrame& f = this->Frames[this->Table.Corners[i] / 3];
-      sum += f.Area * f.UnitNormal;
-    }
-    return SafeNormalize(sum);
-  }
-};
-
-/// Per-triangle frames (and corner angles), in parallel.
-struct ComputeFrames
-{
-  template<typename PointsT, typename UVT>
-  bool operator()(PointsT* points, UVT* uvs, Execution& ex, const DegeneracyTolerance& tol)
-  {
-    const auto pts = vtk::DataArrayTupleRange<3>(points);
-    const auto uv = vtk::DataArrayTupleRange(uvs);
-    const bool twoComponents = uvs->GetNumberOfComponents() >= 2;
-    const vtkIdType* ids = ex.Triangles.Ids.data();
-    const bool angles = ex.Method == TangentMethod::AngleWeighted;
-    vtkSMPThreadLocal<vtkIdType> degenerate;
-    const bool done = BatchedFor(ex.Filter,
-      ex.Triangles.NumberOfTriangles(),
-      0.10,
-      0.35,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        vtkIdType& count = degenerate.Local();
-        for (vtkIdType t = begin; t < end; ++t)
-        {
-          const vtkIdType* tri = ids + 3 * t;
-          glm::dvec3 p[3];
-          glm::dvec2 u[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            p[k] = Load3(pts, tri[k]);
-            const auto tc = uv[tri[k]];
-            u[k] = glm::dvec2(tc[0], twoComponents ? static_cast<double>(tc[1]) : 0.0);
-          }
-          ex.Frames[t] = ComputeTriangleFrame(p[0], p[1], p[2], u[0], u[1], u[2], tol);
-          count += ex.Frames[t].Orientation == 0 ? 1 : 0;
-          if (angles)
-          {
-            ComputeCornerAngles(p[0], p[1], p[2], ex.Angles[t].data());
-          }
-        }
-      });
-    ex.DegenerateTriangles = Total(degenerate);
-    return done;
-  }
-};
-
-/// Smooth point normals for input that has none: area-weighted triangle normals, or the input
-/// cell normals averaged with the same weights. Points with no area get (0, 0, 1).
 template<typename OutT>
-bool ComputePointNormals(Execution& ex,
-  vtkDataArray* cellNormals,
-  vtkIdType firstPolyCell,
-  vtkIdType firstStripCell,
-  vtkAOSDataArrayTemplate<OutT>* out)
+void WriteFrame(vtkIdType p,
+  const glm::dvec3& n,
+  const glm::dvec3& t,
+  double sign,
+  OutT* tOut,
+  OutT* sOut,
+  OutT* bOut)
 {
-  const SurfaceTriangles& tris = ex.Triangles;
-  const vtkIdType numPolyTris = tris.PolyOffsets.back();
-  const auto cellOfTriangle = [&](vtkIdType t)
+  for (int c = 0; c < 3; ++c)
   {
-    if (t < numPolyTris)
+    tOut[3 * p + c] = static_cast<OutT>(t[c]);
+  }
+  sOut[p] = static_cast<OutT>(sign);
+  if (bOut)
+  {
+    const glm::dvec3 b = sign * glm::cross(n, t);
+    for (int c = 0; c < 3; ++c)
     {
-      const auto it = std::upper_bound(tris.PolyOffsets.begin(), tris.PolyOffsets.end(), t);
-      return firstPolyCell + static_cast<vtkIdType>(it - tris.PolyOffsets.begin()) - 1;
+      bOut[3 * p + c] = static_cast<OutT>(b[c]);
     }
-    const auto it = std::upper_bound(tris.StripOffsets.begin(), tris.StripOffsets.end(), t);
-    return firstStripCell + static_cast<vtkIdType>(it - tris.StripOffsets.begin()) - 1;
-  };
-  OutT* n = out->GetPointer(0);
-  return BatchedFor(ex.Filter,
+  }
+}
+
+/// Marks a point as a fallback point in its accumulator (no weight can be negative).
+constexpr double FallbackMark = -1.0;
+
+/// Per point: choose or split the handedness, Gram-Schmidt, write. Fallback points are marked
+/// in their accumulators and listed.
+template<typename View, typename OutT>
+void Finish(Execution& ex,
+  const View& view,
+  Accumulator* acc,
+  OutT* tOut,
+  OutT* sOut,
+  OutT* bOut,
+  vtkIdType& conflicts,
+  std::vector<SplitPoint>& splits,
+  std::vector<vtkIdType>& fallbacks)
+{
+  vtkSMPThreadLocal<vtkIdType> conflictCount;
+  vtkSMPThreadLocal<std::vector<SplitPoint>> splitLists;
+  vtkSMPThreadLocal<std::vector<vtkIdType>> fallbackLists;
+  vtkSMPTools::For(0,
     ex.NumberOfPoints,
-    0.45,
-    0.50,
     [&](vtkIdType begin, vtkIdType end)
     {
-      double cellNormal[3];
       for (vtkIdType p = begin; p < end; ++p)
       {
-        glm::dvec3 sum(0.0);
-        for (vtkIdType i = ex.Table.Offsets[p]; i < ex.Table.Offsets[p + 1]; ++i)
+        Accumulator& a = acc[p];
+        if (!(a.Weight[0] > 0.0) && !(a.Weight[1] > 0.0))
         {
-          const vtkIdType t = ex.Table.Corners[i] / 3;
-          const TriangleFrame& f = ex.Frames[t];
-          if (cellNormals)
+          a.Weight[0] = FallbackMark;
+          fallbackLists.Local().push_back(p);
+          continue;
+        }
+        const glm::dvec3 n = view.Normal(p);
+        int side = a.Weight[1] > a.Weight[0] ? 1 : 0;
+        if (a.Weight[0] > 0.0 && a.Weight[1] > 0.0)
+        {
+          ++conflictCount.Local();
+          if (ex.Splitting)
           {
-            cellNormals->GetTuple(cellOfTriangle(t), cellNormal);
-            sum += f.Area * SafeNormalize(glm::dvec3(cellNormal[0], cellNormal[1], cellNormal[2]));
-          }
-          else
-          {
-            sum += f.Area * f.UnitNormal;
+            side = 0;
+            glm::dvec3 mirrored;
+            if (!OrthonormalizeTangent(n, a.Tangent[1], mirrored))
+            {
+              mirrored = FallbackTangent(n);
+            }
+            splitLists.Local().push_back({ p, n, mirrored });
           }
         }
-        glm::dvec3 unit = SafeNormalize(sum);
-        if (unit == glm::dvec3(0.0))
+        glm::dvec3 t;
+        if (!OrthonormalizeTangent(n, a.Tangent[side], t))
         {
-          unit = glm::dvec3(0.0, 0.0, 1.0);
+          t = FallbackTangent(n);
         }
-        for (int c = 0; c < 3; ++c)
+        WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
+      }
+    });
+  conflicts = Total(conflictCount);
+  splits = Merge(splitLists, [](const SplitPoint& a, const SplitPoint& b) { return a.Id < b.Id; });
+  fallbacks = Merge(fallbackLists, std::less<vtkIdType>());
+}
+
+/// Points with no usable triangle: the mean of their non-fallback neighbours' tangents on their
+/// own tangent plane and their neighbours' majority sign; the fixed rule where that fails.
+template<typename View, typename OutT>
+bool FillFallbacks(Execution& ex,
+  const View& view,
+  Accumulator* acc,
+  const std::vector<vtkIdType>& fallbacks,
+  OutT* tOut,
+  OutT* sOut,
+  OutT* bOut)
+{
+  // Reuse the fallback points' (empty) accumulators: Tangent[0] sums the neighbours' tangents,
+  // Weight[1] their signs. Only fallback points are written; others are only read.
+  for (vtkIdType p : fallbacks)
+  {
+    acc[p].Tangent[0] = glm::dvec3(0.0);
+    acc[p].Weight[1] = 0.0;
+  }
+  const bool done = ex.OrderedScan(0.80,
+    0.85,
+    [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        const vtkIdType p = tri[k];
+        if (!ex.Owns(block, p) || acc[p].Weight[0] != FallbackMark)
         {
-          n[3 * p + c] = static_cast<OutT>(unit[c]);
+          continue;
+        }
+        for (int m = 0; m < 3; ++m)
+        {
+          const vtkIdType q = tri[m];
+          if (q != p && acc[q].Weight[0] != FallbackMark)
+          {
+            acc[p].Tangent[0] += glm::dvec3(tOut[3 * q], tOut[3 * q + 1], tOut[3 * q + 2]);
+            acc[p].Weight[1] += sOut[q];
+          }
         }
       }
     });
-}
-
-/// The per-point pass: sums each point's triangles by handedness, picks or splits, and writes
-/// tangent, sign and bitangent of the first numPoints points.
-struct GatherFrames
-{
-  template<typename NormalsT, typename OutT>
-  bool operator()(NormalsT* normals,
-    Execution& ex,
-    vtkAOSDataArrayTemplate<OutT>* tangents,
-    vtkAOSDataArrayTemplate<OutT>* signs,
-    vtkAOSDataArrayTemplate<OutT>* bitangents)
-  {
-    const auto nrm = vtk::DataArrayTupleRange<3>(normals);
-    OutT* tOut = tangents->GetPointer(0);
-    OutT* sOut = signs->GetPointer(0);
-    OutT* bOut = bitangents ? bitangents->GetPointer(0) : nullptr;
-    vtkSMPThreadLocal<vtkIdType> invalidNormals, conflicts;
-    vtkSMPThreadLocal<std::vector<SplitPoint>> splits;
-    vtkSMPThreadLocal<std::vector<FallbackPoint>> fallbacks;
-
-    const bool done = BatchedFor(ex.Filter,
-      ex.NumberOfPoints,
-      0.50,
-      0.85,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType p = begin; p < end; ++p)
-        {
-          glm::dvec3 n = SafeNormalize(Load3(nrm, p));
-          if (n == glm::dvec3(0.0))
-          {
-            ++invalidNormals.Local();
-            n = ex.GeometricNormal(p);
-          }
-          // Index 0: the +1 side, 1: the -1 side.
-          glm::dvec3 sum[2] = { glm::dvec3(0.0), glm::dvec3(0.0) };
-          double weight[2] = { 0.0, 0.0 };
-          vtkIdType count[2] = { 0, 0 };
-          for (vtkIdType i = ex.Table.Offsets[p]; i < ex.Table.Offsets[p + 1]; ++i)
-          {
-            const vtkIdType corner = ex.Table.Corners[i];
-            const TriangleFrame& f = ex.Frames[corner / 3];
-            if (f.Orientation == 0)
-            {
-              continue;
-            }
-            const int side = CornerSign(f, n) > 0 ? 0 : 1;
-            const double w = ex.Weight(corner);
-            sum[side] += w * f.Tangent;
-            weight[side] += w;
-            ++count[side];
-          }
-          if (count[0] + count[1] == 0)
-          {
-            fallbacks.Local().push_back({ p, n });
-            continue;
-          }
-          int side = weight[1] > weight[0] ? 1 : 0;
-          if (count[0] > 0 && count[1] > 0)
-          {
-            ++conflicts.Local();
-            if (ex.Splitting)
-            {
-              side = 0;
-              glm::dvec3 mirrored;
-              if (!OrthonormalizeTangent(n, sum[1], mirrored))
-              {
-                mirrored = FallbackTangent(n);
-              }
-              splits.Local().push_back({ p, n, mirrored });
-            }
-          }
-          glm::dvec3 t;
-          if (!OrthonormalizeTangent(n, sum[side], t))
-          {
-            t = FallbackTangent(n);
-          }
-          WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
-        }
-      });
-    ex.InvalidNormals = Total(invalidNormals);
-    ex.Conflicts = Total(conflicts);
-    ex.Splits = Merge(splits, [](const SplitPoint& a, const SplitPoint& b) { return a.Id < b.Id; });
-    ex.Fallbacks =
-      Merge(fallbacks, [](const FallbackPoint& a, const FallbackPoint& b) { return a.Id < b.Id; });
-    return done;
-  }
-
-  template<typename OutT>
-  static void WriteFrame(vtkIdType p,
-    const glm::dvec3& n,
-    const glm::dvec3& t,
-    double sign,
-    OutT* tOut,
-    OutT* sOut,
-    OutT* bOut)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      tOut[3 * p + c] = static_cast<OutT>(t[c]);
-    }
-    sOut[p] = static_cast<OutT>(sign);
-    if (bOut)
-    {
-      const glm::dvec3 b = sign * glm::cross(n, t);
-      for (int c = 0; c < 3; ++c)
-      {
-        bOut[3 * p + c] = static_cast<OutT>(b[c]);
-      }
-    }
-  }
-};
-
-/// Points with no usable triangle: the mean of their non-fallback neighbours' tangents on their
-/// own tangent plane, and their neighbours' majority sign; the fixed rule where that fails.
-template<typename OutT>
-void FillFallbacks(Execution& ex, OutT* tOut, OutT* sOut, OutT* bOut)
-{
-  std::vector<vtkIdType> fallbackIds(ex.Fallbacks.size());
-  std::transform(ex.Fallbacks.begin(),
-    ex.Fallbacks.end(),
-    fallbackIds.begin(),
-    [](const FallbackPoint& fp) { return fp.Id; });
-  const auto isFallback = [&](vtkIdType q)
-  { return std::binary_search(fallbackIds.begin(), fallbackIds.end(), q); };
   vtkSMPTools::For(0,
-    static_cast<vtkIdType>(ex.Fallbacks.size()),
+    static_cast<vtkIdType>(fallbacks.size()),
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType i = b; i < e; ++i)
       {
-        const FallbackPoint& fp = ex.Fallbacks[i];
-        glm::dvec3 sum(0.0);
-        double signSum = 0.0;
-        for (vtkIdType j = ex.Table.Offsets[fp.Id]; j < ex.Table.Offsets[fp.Id + 1]; ++j)
-        {
-          const vtkIdType corner = ex.Table.Corners[j];
-          const vtkIdType* tri = ex.Triangles.Ids.data() + 3 * (corner / 3);
-          for (int k = 0; k < 3; ++k)
-          {
-            const vtkIdType q = tri[k];
-            if (q != fp.Id && !isFallback(q))
-            {
-              sum += glm::dvec3(tOut[3 * q], tOut[3 * q + 1], tOut[3 * q + 2]);
-              signSum += sOut[q];
-            }
-          }
-        }
+        const vtkIdType p = fallbacks[i];
+        const glm::dvec3 n = view.Normals ? view.Normal(p) : glm::dvec3(0.0);
         glm::dvec3 t;
-        if (!OrthonormalizeTangent(fp.Normal, sum, t))
+        if (!OrthonormalizeTangent(n, acc[p].Tangent[0], t))
         {
-          t = FallbackTangent(fp.Normal);
+          t = FallbackTangent(n);
         }
-        GatherFrames::WriteFrame(fp.Id, fp.Normal, t, signSum < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
+        WriteFrame(p, n, t, acc[p].Weight[1] < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
       }
     });
+  return done;
 }
 
-/// Re-points the corners on the mirrored side of split points to the points' copies.
-/// A corner's side is the majority of the handedness of the cell's triangles that hold it.
-template<typename IdT>
+/// Re-points the corners on the mirrored side of split points to the points' copies. A corner's
+/// side is the majority handedness of the cell's triangles that hold it.
+template<typename View, typename IdT>
 void RepointCells(const Execution& ex,
+  const View& view,
+  const std::vector<SplitPoint>& splits,
   IdT* offsets,
   IdT* conn,
   vtkIdType numCells,
-  bool strip,
-  const std::vector<vtkIdType>& triOffsets)
+  bool strip)
 {
-  const auto& splits = ex.Splits;
   const vtkIdType firstNew = ex.NumberOfPoints;
   vtkSMPTools::For(0,
     numCells,
     [&](vtkIdType begin, vtkIdType end)
     {
+      std::vector<TriangleFrame> frames;
       for (vtkIdType c = begin; c < end; ++c)
       {
         IdT* pts = conn + offsets[c];
         const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
-        const vtkIdType t0 = triOffsets[c];
+        frames.clear();
         for (vtkIdType k = 0; k < n; ++k)
         {
           const auto it = std::lower_bound(splits.begin(),
@@ -566,6 +637,20 @@ void RepointCells(const Execution& ex,
           if (it == splits.end() || it->Id != static_cast<vtkIdType>(pts[k]))
           {
             continue;
+          }
+          if (frames.empty())
+          {
+            // The frames of this cell's triangles (the same as in the scatter).
+            bool bad = false;
+            ForEachTriangle(offsets,
+              conn,
+              strip,
+              c,
+              c + 1,
+              ex.NumberOfPoints,
+              bad,
+              [&](vtkIdType, vtkIdType, const vtkIdType* tri)
+              { frames.push_back(view.Frame(tri, ex.Tolerance)); });
           }
           // Triangles of this cell that hold corner k.
           vtkIdType first = 0, last = -1;
@@ -586,8 +671,7 @@ void RepointCells(const Execution& ex,
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
-            const TriangleFrame& f = ex.Frames[t0 + j];
-            vote += f.Orientation == 0 ? 0 : CornerSign(f, it->Normal);
+            vote += frames[j].Orientation == 0 ? 0 : CornerSign(frames[j], it->Normal);
           }
           if (vote < 0)
           {
@@ -600,44 +684,56 @@ void RepointCells(const Execution& ex,
 
 /// Per-cell tangents of polygons and strips: area-weighted triangle tangents on the cell's
 /// plane. Vertex and line cells get (0, 0, 0).
-template<typename OutT>
+template<typename View, typename OutT>
 void ComputeCellTangentArray(const Execution& ex,
+  const View& view,
   vtkIdType firstSurfaceCell,
-  vtkAOSDataArrayTemplate<OutT>* out)
+  OutT* out,
+  vtkIdType numCells)
 {
-  OutT* cOut = out->GetPointer(0);
-  std::fill(cOut, cOut + 3 * out->GetNumberOfTuples(), OutT(0));
-  const SurfaceTriangles& tris = ex.Triangles;
-  const vtkIdType numPolys = static_cast<vtkIdType>(tris.PolyOffsets.size()) - 1;
-  const vtkIdType numStrips = static_cast<vtkIdType>(tris.StripOffsets.size()) - 1;
-  vtkSMPTools::For(0,
-    numPolys + numStrips,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType c = begin; c < end; ++c)
+  std::fill(out, out + 3 * numCells, OutT(0));
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = ex.Cells[kind];
+    const vtkIdType first = firstSurfaceCell + (kind == 1 ? ex.Cells[0]->GetNumberOfCells() : 0);
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto* conn)
       {
-        const bool strip = c >= numPolys;
-        const auto& offsets = strip ? tris.StripOffsets : tris.PolyOffsets;
-        const vtkIdType local = strip ? c - numPolys : c;
-        glm::dvec3 t(0.0), n(0.0);
-        for (vtkIdType j = offsets[local]; j < offsets[local + 1]; ++j)
-        {
-          const TriangleFrame& f = ex.Frames[j];
-          t += f.Area * f.Tangent;
-          n += f.Area * f.UnitNormal;
-        }
-        n = SafeNormalize(n);
-        glm::dvec3 unit;
-        if (!OrthonormalizeTangent(n, t, unit))
-        {
-          unit = FallbackTangent(n);
-        }
-        for (int k = 0; k < 3; ++k)
-        {
-          cOut[3 * (firstSurfaceCell + c) + k] = static_cast<OutT>(unit[k]);
-        }
-      }
-    });
+        vtkSMPTools::For(0,
+          cells->GetNumberOfCells(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            for (vtkIdType c = begin; c < end; ++c)
+            {
+              glm::dvec3 t(0.0), n(0.0);
+              bool bad = false;
+              ForEachTriangle(offsets,
+                conn,
+                kind == 1,
+                c,
+                c + 1,
+                ex.NumberOfPoints,
+                bad,
+                [&](vtkIdType, vtkIdType, const vtkIdType* tri)
+                {
+                  const TriangleFrame f = view.Frame(tri, ex.Tolerance);
+                  t += f.Area * f.Tangent;
+                  n += f.Area * SafeNormalize(f.Normal);
+                });
+              n = SafeNormalize(n);
+              glm::dvec3 unit;
+              if (!OrthonormalizeTangent(n, t, unit))
+              {
+                unit = FallbackTangent(n);
+              }
+              for (int k = 0; k < 3; ++k)
+              {
+                out[3 * (first + c) + k] = static_cast<OutT>(unit[k]);
+              }
+            }
+          });
+      });
+  }
 }
 
 /// A copy of `array` with `extra` more tuples, tuple numPoints + i copied from ids[i].
@@ -677,6 +773,21 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
   }
   return array;
 }
+
+/// Number of polygon or strip cells with fewer than 3 points.
+vtkIdType CountShortCells(vtkCellArray* cells)
+{
+  vtkIdType count = 0;
+  WithCellStorage(cells,
+    [&](const auto* offsets, const auto*)
+    {
+      for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+      {
+        count += offsets[c + 1] - offsets[c] < 3 ? 1 : 0;
+      }
+    });
+  return count;
+}
 } // namespace
 
 struct vtkPolyDataTangentFrames::Internals
@@ -703,6 +814,8 @@ const char* vtkPolyDataTangentFrames::GetMethodName(int method)
       return "AreaWeighted";
     case ANGLE_WEIGHTED:
       return "AngleWeighted";
+    case MIKKTSPACE:
+      return "MikkTSpace";
     default:
       return "Unknown";
   }
@@ -829,58 +942,21 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.Method = static_cast<TangentMethod>(self->Method);
   ex.Splitting = self->Splitting;
   ex.NumberOfPoints = input->GetNumberOfPoints();
+  ex.Cells[0] = input->GetPolys();
+  ex.Cells[1] = input->GetStrips();
+  ex.Blocks = static_cast<int>(std::max<vtkIdType>(
+    1, std::min<vtkIdType>(vtkSMPTools::GetEstimatedNumberOfThreads(), ex.NumberOfPoints / 1024)));
   const vtkIdType numPoints = ex.NumberOfPoints;
+  const auto epsilon = [](vtkDataArray* a)
+  { return a->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON); };
+  ex.Tolerance =
+    DegeneracyTolerance::ForEpsilons(epsilon(input->GetPoints()->GetData()), epsilon(uvs));
   const auto aborted = [&]()
   {
     output->Initialize();
     return 1;
   };
-
-  // 1. Triangles of polygons and strips, with point ids checked.
-  vtkCellArray* polys = input->GetPolys();
-  vtkCellArray* strips = input->GetStrips();
-  vtkIdType shortCells = 0;
-  WithCellStorage(polys,
-    [&](const auto* offsets, const auto*) {
-      CountTriangles(offsets, polys->GetNumberOfCells(), 0, ex.Triangles.PolyOffsets, shortCells);
-    });
-  WithCellStorage(strips,
-    [&](const auto* offsets, const auto*)
-    {
-      CountTriangles(offsets,
-        strips->GetNumberOfCells(),
-        ex.Triangles.PolyOffsets.back(),
-        ex.Triangles.StripOffsets,
-        shortCells);
-    });
-  ex.Triangles.Ids.resize(3 * ex.Triangles.StripOffsets.back());
-  std::atomic<bool> idsInRange(true);
-  for (vtkCellArray* cells : { polys, strips })
-  {
-    const bool strip = cells == strips;
-    const auto& triOffsets = strip ? ex.Triangles.StripOffsets : ex.Triangles.PolyOffsets;
-    WithCellStorage(cells,
-      [&](const auto* offsets, const auto* conn)
-      {
-        vtkSMPTools::For(0,
-          cells->GetNumberOfCells(),
-          [&](vtkIdType b, vtkIdType e)
-          {
-            if (!FillTriangles(offsets,
-                  conn,
-                  strip,
-                  b,
-                  e,
-                  numPoints,
-                  triOffsets.data(),
-                  ex.Triangles.Ids.data()))
-            {
-              idsInRange = false;
-            }
-          });
-      });
-  }
-  if (!idsInRange)
+  const auto badIds = [&]()
   {
     vtkErrorWithObjectMacro(self,
       "Cannot compute tangent frames: a polygon or strip refers to a "
@@ -888,7 +964,8 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
         << numPoints << "); passing the input through.");
     output->ShallowCopy(input);
     return 1;
-  }
+  };
+  const vtkIdType shortCells = CountShortCells(ex.Cells[0]) + CountShortCells(ex.Cells[1]);
   if (shortCells > 0)
   {
     vtkWarningWithObjectMacro(self,
@@ -896,50 +973,116 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
       << " polygon or strip cells have fewer than 3 points; they "
          "pass through and give no frames.");
   }
-  self->UpdateProgress(0.10);
 
-  // 2. Per-triangle frames, with a degeneracy tolerance from the stored precisions.
-  const vtkIdType numTris = ex.Triangles.NumberOfTriangles();
-  ex.Frames.resize(numTris);
-  if (ex.Method == TangentMethod::AngleWeighted)
-  {
-    ex.Angles.resize(numTris);
-  }
-  const auto epsilon = [](vtkDataArray* a)
-  { return a->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON); };
-  const DegeneracyTolerance tol =
-    DegeneracyTolerance::ForEpsilons(epsilon(input->GetPoints()->GetData()), epsilon(uvs));
-  bool done = true;
-  WithRealArray(input->GetPoints()->GetData(),
-    [&](auto* points)
-    { WithRealArray(uvs, [&](auto* uv) { done = ComputeFrames()(points, uv, ex, tol); }); });
-  if (!done)
-  {
-    return aborted();
-  }
+  const RealArray points(input->GetPoints()->GetData());
+  const RealArray uv(uvs);
+  RealArray normal(normals);
+  const vtkIdType firstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
 
-  // 3. The point-to-triangle table.
-  ex.Table.Build(ex.Triangles, numPoints);
-  self->UpdateProgress(0.45);
-
-  // 4. Normals, computed when the input has no point normals.
+  // 1. Normals: computed when the input has none; geometric stand-ins where they are unusable.
   vtkSmartPointer<OutArray> computedNormals;
+  std::vector<double> geometric;
   if (!normals)
   {
+    geometric.resize(3 * numPoints);
+    bool done = true;
+    WithMeshView(points,
+      uv,
+      normal,
+      nullptr,
+      [&](const auto& view)
+      {
+        done = ComputePointNormals(ex,
+          view,
+          cellNormals,
+          firstSurfaceCell,
+          glm::dvec3(0, 0, 1),
+          geometric.data(),
+          0.0,
+          0.05);
+      });
+    if (!done)
+    {
+      return aborted();
+    }
+    if (ex.BadIds)
+    {
+      return badIds();
+    }
     computedNormals = vtkSmartPointer<OutArray>::New();
     computedNormals->SetName("Normals");
     computedNormals->SetNumberOfComponents(3);
     computedNormals->SetNumberOfTuples(numPoints);
-    const vtkIdType firstPoly = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    if (!ComputePointNormals(
-          ex, cellNormals, firstPoly, firstPoly + input->GetNumberOfPolys(), computedNormals.Get()))
+    std::copy(geometric.begin(), geometric.end(), computedNormals->GetPointer(0));
+    geometric.clear();
+    normal = RealArray(computedNormals);
+  }
+  else
+  {
+    vtkIdType invalid = 0;
+    WithPointer(normal,
+      [&](const auto* n)
+      {
+        for (vtkIdType p = 0; p < numPoints; ++p)
+        {
+          invalid +=
+            SafeNormalize(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) == glm::dvec3(0.0) ? 1
+                                                                                               : 0;
+        }
+      });
+    self->NumberOfInvalidNormals = invalid;
+    if (invalid > 0)
     {
-      return aborted();
+      geometric.resize(3 * numPoints);
+      bool done = true;
+      WithMeshView(points,
+        uv,
+        RealArray(nullptr),
+        nullptr,
+        [&](const auto& view)
+        {
+          done = ComputePointNormals(
+            ex, view, nullptr, firstSurfaceCell, glm::dvec3(0.0), geometric.data(), 0.0, 0.05);
+        });
+      if (!done)
+      {
+        return aborted();
+      }
     }
-    normals = computedNormals;
   }
 
-  // 5. Per-point frames.
+  if (self->Method == MIKKTSPACE)
+  {
+    vtkNormalMapping::detail::MikkTSpaceRequest request;
+    request.Filter = self;
+    request.Input = input;
+    request.TCoords = uvs;
+    request.Normals = computedNormals ? computedNormals.Get() : normals;
+    request.ComputedNormals = computedNormals != nullptr;
+    request.DoublePrecision = std::is_same<OutT, double>::value;
+    request.GLTFSign = self->GLTFSignConvention;
+    request.Splitting = self->Splitting;
+    request.Bitangents = self->ComputeBitangents;
+    request.CellTangents = self->ComputeCellTangents;
+    vtkNormalMapping::detail::MikkTSpaceCounts counts;
+    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, output, counts);
+    self->NumberOfDegenerateTriangles = counts.DegenerateTriangles;
+    self->NumberOfFallbackPoints = counts.DefaultCorners;
+    self->NumberOfHandednessConflicts = counts.Conflicts;
+    self->NumberOfSplitPoints = counts.SplitPoints;
+    return result;
+  }
+
+  // 2. Scatter and finish.
+  std::unique_ptr<Accumulator[]> acc(new Accumulator[numPoints]);
+  vtkSMPTools::For(0,
+    numPoints,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      std::fill(acc.get() + b,
+        acc.get() + e,
+        Accumulator{ { glm::dvec3(0.0), glm::dvec3(0.0) }, { 0.0, 0.0 } });
+    });
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {
     auto array = vtkSmartPointer<OutArray>::New();
@@ -955,28 +1098,54 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   {
     bitangents = makeArray(BitangentsArrayName(), 3, numPoints);
   }
-  WithRealArray(normals,
-    [&](auto* n) { done = GatherFrames()(n, ex, tangents.Get(), signs.Get(), bitangents.Get()); });
+  const auto tOut = [&]() { return tangents->GetPointer(0); };
+  const auto sOut = [&]() { return signs->GetPointer(0); };
+  const auto bOut = [&]() { return bitangents ? bitangents->GetPointer(0) : nullptr; };
+
+  std::vector<SplitPoint> splits;
+  std::vector<vtkIdType> fallbacks;
+  bool done = true;
+  const double* fallbackNormals = geometric.empty() ? nullptr : geometric.data();
+  WithMeshView(points,
+    uv,
+    normal,
+    fallbackNormals,
+    [&](const auto& view)
+    {
+      done = Scatter(ex, view, acc.get(), self->NumberOfDegenerateTriangles);
+      if (!done || ex.BadIds)
+      {
+        return;
+      }
+      Finish(ex,
+        view,
+        acc.get(),
+        tOut(),
+        sOut(),
+        bOut(),
+        self->NumberOfHandednessConflicts,
+        splits,
+        fallbacks);
+      if (!fallbacks.empty())
+      {
+        done = FillFallbacks(ex, view, acc.get(), fallbacks, tOut(), sOut(), bOut());
+      }
+    });
+  acc.reset();
   if (!done)
   {
     return aborted();
   }
-  FillFallbacks(ex,
-    tangents->GetPointer(0),
-    signs->GetPointer(0),
-    bitangents ? bitangents->GetPointer(0) : nullptr);
+  if (ex.BadIds)
+  {
+    return badIds();
+  }
+  self->NumberOfFallbackPoints = static_cast<vtkIdType>(fallbacks.size());
   self->UpdateProgress(0.90);
 
-  // 6. Split points: copies appended after the input points, cells re-pointed.
-  const vtkIdType numSplits = ex.Splitting ? static_cast<vtkIdType>(ex.Splits.size()) : 0;
-  vtkNew<vtkIdList> splitSource, splitTarget;
-  splitSource->SetNumberOfIds(numSplits);
-  splitTarget->SetNumberOfIds(numSplits);
-  for (vtkIdType i = 0; i < numSplits; ++i)
-  {
-    splitSource->SetId(i, ex.Splits[i].Id);
-    splitTarget->SetId(i, numPoints + i);
-  }
+  // 3. Split points: copies appended after the input points, cells re-pointed.
+  const vtkIdType numSplits = ex.Splitting ? static_cast<vtkIdType>(splits.size()) : 0;
+  self->NumberOfSplitPoints = numSplits;
   output->CopyStructure(input);
   output->GetCellData()->PassData(input->GetCellData());
   if (numSplits == 0)
@@ -985,18 +1154,24 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   }
   else
   {
-    vtkNew<vtkPoints> points;
-    points->SetData(
+    vtkNew<vtkIdList> splitSource, splitTarget;
+    splitSource->SetNumberOfIds(numSplits);
+    splitTarget->SetNumberOfIds(numSplits);
+    for (vtkIdType i = 0; i < numSplits; ++i)
+    {
+      splitSource->SetId(i, splits[i].Id);
+      splitTarget->SetId(i, numPoints + i);
+    }
+    vtkNew<vtkPoints> newPoints;
+    newPoints->SetData(
       vtkDataArray::SafeDownCast(Extend(input->GetPoints()->GetData(), splitSource, splitTarget)));
-    output->SetPoints(points);
+    output->SetPoints(newPoints);
     vtkPointData* inPD = input->GetPointData();
     vtkPointData* outPD = output->GetPointData();
     outPD->Initialize();
     for (int a = 0; a < inPD->GetNumberOfArrays(); ++a)
     {
-      vtkAbstractArray* array = inPD->GetAbstractArray(a);
-      auto extended = Extend(array, splitSource, splitTarget);
-      outPD->AddArray(extended);
+      outPD->AddArray(Extend(inPD->GetAbstractArray(a), splitSource, splitTarget));
       const int attribute = inPD->IsArrayAnAttribute(a);
       if (attribute >= 0)
       {
@@ -1008,42 +1183,34 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
       computedNormals =
         OutArray::SafeDownCast(Extend(computedNormals, splitSource, splitTarget).GetPointer());
     }
-    tangents->Resize(numPoints + numSplits);
-    tangents->SetNumberOfTuples(numPoints + numSplits);
-    signs->Resize(numPoints + numSplits);
-    signs->SetNumberOfTuples(numPoints + numSplits);
-    if (bitangents)
+    for (OutArray* array : { tangents.Get(), signs.Get(), bitangents.Get() })
     {
-      bitangents->Resize(numPoints + numSplits);
-      bitangents->SetNumberOfTuples(numPoints + numSplits);
+      if (array)
+      {
+        array->Resize(numPoints + numSplits);
+        array->SetNumberOfTuples(numPoints + numSplits);
+      }
     }
     for (vtkIdType i = 0; i < numSplits; ++i)
     {
-      const SplitPoint& s = ex.Splits[i];
-      GatherFrames::WriteFrame(numPoints + i,
-        s.Normal,
-        s.Tangent,
-        -1.0,
-        tangents->GetPointer(0),
-        signs->GetPointer(0),
-        bitangents ? bitangents->GetPointer(0) : nullptr);
+      WriteFrame(numPoints + i, splits[i].Normal, splits[i].Tangent, -1.0, tOut(), sOut(), bOut());
     }
-    for (vtkCellArray* cells : { polys, strips })
+    for (int kind = 0; kind < 2; ++kind)
     {
-      const bool strip = cells == strips;
       vtkNew<vtkCellArray> copy;
-      copy->DeepCopy(cells);
-      WithCellStorage(copy,
-        [&](auto* offsets, auto* conn)
+      copy->DeepCopy(ex.Cells[kind]);
+      WithMeshView(points,
+        uv,
+        normal,
+        fallbackNormals,
+        [&](const auto& view)
         {
-          RepointCells(ex,
-            offsets,
-            conn,
-            copy->GetNumberOfCells(),
-            strip,
-            strip ? ex.Triangles.StripOffsets : ex.Triangles.PolyOffsets);
+          WithCellStorage(copy,
+            [&](auto* offsets, auto* conn) {
+              RepointCells(ex, view, splits, offsets, conn, copy->GetNumberOfCells(), kind == 1);
+            });
         });
-      if (strip)
+      if (kind == 1)
       {
         output->SetStrips(copy);
       }
@@ -1067,16 +1234,17 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   if (self->ComputeCellTangents)
   {
     auto cellTangents = makeArray(TangentsArrayName(), 3, input->GetNumberOfCells());
-    ComputeCellTangentArray(
-      ex, input->GetNumberOfVerts() + input->GetNumberOfLines(), cellTangents.Get());
+    WithMeshView(points,
+      uv,
+      normal,
+      fallbackNormals,
+      [&](const auto& view)
+      {
+        ComputeCellTangentArray(
+          ex, view, firstSurfaceCell, cellTangents->GetPointer(0), input->GetNumberOfCells());
+      });
     output->GetCellData()->SetTangents(cellTangents);
   }
-
-  self->NumberOfDegenerateTriangles = ex.DegenerateTriangles;
-  self->NumberOfFallbackPoints = static_cast<vtkIdType>(ex.Fallbacks.size());
-  self->NumberOfHandednessConflicts = ex.Conflicts;
-  self->NumberOfSplitPoints = numSplits;
-  self->NumberOfInvalidNormals = ex.InvalidNormals;
   self->UpdateProgress(1.0);
   return 1;
 }
@@ -1088,6 +1256,7 @@ void vtkPolyDataTangentFrames::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TCoordsArrayName: "
      << (this->TCoordsArrayName.empty() ? "(active TCoords)" : this->TCoordsArrayName) << "\n";
   os << indent << "Splitting: " << (this->Splitting ? "On" : "Off") << "\n";
+  os << indent << "GLTFSignConvention: " << (this->GLTFSignConvention ? "On" : "Off") << "\n";
   os << indent << "ComputeBitangents: " << (this->ComputeBitangents ? "On" : "Off") << "\n";
   os << indent << "ComputeCellTangents: " << (this->ComputeCellTangents ? "On" : "Off") << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";

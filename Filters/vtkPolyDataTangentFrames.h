@@ -66,6 +66,9 @@ public:
     UNWEIGHTED = 0,
     AREA_WEIGHTED = 1,
     ANGLE_WEIGHTED = 2,
+    /// MikkTSpace-compatible frames (the tangents Blender, Substance, xNormal, Unity, Unreal
+    /// and glTF bake normal maps against); see vtkMikkTSpaceKernel.h.
+    MIKKTSPACE = 3,
   };
 
   ///@{
@@ -73,11 +76,12 @@ public:
    * How the triangles around a point are weighted. Default ANGLE_WEIGHTED: independent of how a
    * fan is tessellated, at the cost of three atan2 per triangle.
    */
-  vtkSetClampMacro(Method, int, UNWEIGHTED, ANGLE_WEIGHTED);
+  vtkSetClampMacro(Method, int, UNWEIGHTED, MIKKTSPACE);
   vtkGetMacro(Method, int);
   void SetMethodToUnweighted() { this->SetMethod(UNWEIGHTED); }
   void SetMethodToAreaWeighted() { this->SetMethod(AREA_WEIGHTED); }
   void SetMethodToAngleWeighted() { this->SetMethod(ANGLE_WEIGHTED); }
+  void SetMethodToMikkTSpace() { this->SetMethod(MIKKTSPACE); }
   static const char* GetMethodName(int method);
   ///@}
 
@@ -95,6 +99,17 @@ public:
   vtkSetMacro(Splitting, bool);
   vtkGetMacro(Splitting, bool);
   vtkBooleanMacro(Splitting, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Sign convention for texture coordinates whose v axis points down, as glTF's do (default
+   * off: VTK's v-up convention). When on, the MikkTSpace method negates its signs so that
+   * bitangent = sign * cross(N, T) matches glTF's TANGENT.w.
+   */
+  vtkSetMacro(GLTFSignConvention, bool);
+  vtkGetMacro(GLTFSignConvention, bool);
+  vtkBooleanMacro(GLTFSignConvention, bool);
   ///@}
 
   ///@{
@@ -126,10 +141,14 @@ public:
   /// Triangles (after fan-triangulating polygons and strips) with no usable frame.
   vtkGetMacro(NumberOfDegenerateTriangles, vtkIdType);
   /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
+  /// For MIKKTSPACE: face corners left at MikkTSpace's default frame ((1, 0, 0), sign -1).
   vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
-  /// Points whose triangles disagree on handedness (mirror seams).
+  /// Points whose triangles disagree on handedness (mirror seams); for MIKKTSPACE, points whose
+  /// corners have different frames.
   vtkGetMacro(NumberOfHandednessConflicts, vtkIdType);
-  /// Points added by splitting (equal to NumberOfHandednessConflicts when Splitting is on).
+  /// Points added by splitting. For the weighted methods this equals
+  /// NumberOfHandednessConflicts when Splitting is on; MikkTSpace can give a point more than two
+  /// frames (UV seams, hard normals, several mirror groups), so it may add more.
   vtkGetMacro(NumberOfSplitPoints, vtkIdType);
   /// Points whose input normal was zero or non-finite (the geometric normal was used).
   vtkGetMacro(NumberOfInvalidNormals, vtkIdType);
@@ -149,6 +168,7 @@ protected:
   int Method = ANGLE_WEIGHTED;
   std::string TCoordsArrayName;
   bool Splitting = true;
+  bool GLTFSignConvention = false;
   bool ComputeBitangents = false;
   bool ComputeCellTangents = false;
   int OutputPrecision = DEFAULT_PRECISION;

@@ -63,9 +63,11 @@ struct TriangleFrame
 {
   /// Unit dP/du (the direction in which u grows on the triangle); zero when Orientation is 0.
   glm::dvec3 Tangent{ 0.0 };
-  /// Unit normal of the winding (p1-p0)x(p2-p0); zero when degenerate in position.
-  glm::dvec3 UnitNormal{ 0.0 };
-  /// Area of the triangle in position space (finite, possibly 0).
+  /// Along the winding normal (p1-p0)x(p2-p0), of no particular length (it is the cross product
+  /// of the rescaled edges: normalizing it here would cost a square root and a division per
+  /// triangle that the sign tests do not need); zero when degenerate in position.
+  glm::dvec3 Normal{ 0.0 };
+  /// Area of the triangle in position space (finite, possibly 0), when asked for; else 0.
   double Area = 0.0;
   /// +1 when the UV winding agrees with the position winding, -1 when mirrored, 0 when the
   /// triangle has no usable frame (zero UV area, zero area, or non-finite input).
@@ -189,7 +191,8 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec2& uv0,
   const glm::dvec2& uv1,
   const glm::dvec2& uv2,
-  const DegeneracyTolerance& tol = DegeneracyTolerance())
+  const DegeneracyTolerance& tol = DegeneracyTolerance(),
+  bool withArea = true)
 {
   TriangleFrame frame;
   glm::dvec3 e1 = p1 - p0;
@@ -204,17 +207,21 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   e2 = detail::ScaleByPowerOfTwo(e2, ePos);
   const glm::dvec3 e3 = e2 - e1;
   const glm::dvec3 n = glm::cross(e1, e2);
-  const double twiceArea = glm::length(n);
+  const double twiceArea2 = glm::dot(n, n);
   const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
-  if (!(twiceArea > tol.Position * longest2))
+  // |n| > tol * longest^2, squared (no square root); NaN fails it.
+  if (!(twiceArea2 > tol.Position * tol.Position * longest2 * longest2))
   {
     return frame; // zero area (collinear or repeated points), within the position tolerance
   }
-  frame.UnitNormal = n / twiceArea;
-  // Undo the exact scaling for the area; clamp instead of overflowing for huge double input.
-  const double area =
-    detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(0.5 * twiceArea, -ePos), -ePos);
-  frame.Area = std::isfinite(area) ? area : DBL_MAX;
+  frame.Normal = n;
+  if (withArea)
+  {
+    // Undo the exact scaling; clamp instead of overflowing for huge double input.
+    const double area = detail::ScaleByPowerOfTwo(
+      detail::ScaleByPowerOfTwo(0.5 * std::sqrt(twiceArea2), -ePos), -ePos);
+    frame.Area = std::isfinite(area) ? area : DBL_MAX;
+  }
 
   glm::dvec2 d1 = uv1 - uv0;
   glm::dvec2 d2 = uv2 - uv0;
@@ -243,7 +250,7 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   {
     return frame;
   }
-  frame.Tangent = t / tLength;
+  frame.Tangent = t * (1.0 / tLength);
   frame.Orientation = det > 0.0 ? 1 : -1;
   return frame;
 }
@@ -299,7 +306,7 @@ inline double CornerWeight(TangentMethod method,
 /// winding, inward normals) flips its orientation here.
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
-  return glm::dot(n, frame.UnitNormal) < 0.0 ? -frame.Orientation : frame.Orientation;
+  return glm::dot(n, frame.Normal) < 0.0 ? -frame.Orientation : frame.Orientation;
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.

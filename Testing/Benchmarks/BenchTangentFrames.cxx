@@ -3,12 +3,14 @@
 // reference every ratio is taken against.
 //
 //   BenchTangentFrames [--markdown FILE] [google benchmark flags]
+#include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkPolyData.h"
 #include "vtkPolyDataTangents.h"
 #include "vtkSMPTools.h"
+#include "vtkVersionMacros.h"
 
 #include <benchmark/benchmark.h>
 
@@ -16,7 +18,9 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -39,9 +43,7 @@ template<typename Filter, typename Configure>
 void RunFilter(benchmark::State& state, Configure configure)
 {
   auto mesh = Torus(state.range(0));
-  vtkSMPTools::Config config;
-  config.MaxNumberOfThreads = static_cast<int>(state.range(1));
-  vtkSMPTools::LocalScope(config,
+  NormalMappingTesting::WithThreads(static_cast<int>(state.range(1)),
     [&]()
     {
       vtkNew<Filter> filter;
@@ -118,6 +120,28 @@ public:
   }
 };
 
+/// CPU model, core count and load, so that a reader can judge the figures.
+std::string MachineDescription()
+{
+  std::string model = "unknown CPU";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+  {
+    if (line.rfind("model name", 0) == 0)
+    {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  std::string load = "unknown";
+  std::ifstream loadavg("/proc/loadavg");
+  std::getline(loadavg, load);
+  std::ostringstream os;
+  os << model << ", " << std::thread::hardware_concurrency() << " hardware threads, "
+     << "load average at the end of the run: " << load.substr(0, load.find(' ', 10));
+  return os.str();
+}
+
 std::string Field(const std::string& name, const std::string& key)
 {
   const size_t at = name.find(key + ":");
@@ -173,7 +197,15 @@ int main(int argc, char** argv)
   std::cout << "\n" << table.str();
   if (!markdown.empty())
   {
-    std::ofstream(markdown) << table.str();
+    std::ofstream out(markdown);
+    out << "# vtkPolyDataTangentFrames throughput\n\n"
+        << "Written by `BenchTangentFrames --markdown` (`bash scripts/bootstrap.sh bench`); do not "
+           "edit by hand.\n\n"
+        << "Machine: " << MachineDescription() << "\n\n"
+        << "Meshes: generated tori (float points, normals and texture coordinates). Each ratio "
+           "is against vtkPolyDataTangents (VTK "
+        << VTK_VERSION << ", one thread) on the same mesh in the same run.\n\n"
+        << table.str();
   }
   benchmark::Shutdown();
   return 0;

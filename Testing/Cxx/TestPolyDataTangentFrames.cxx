@@ -1,4 +1,5 @@
 // Tests of vtkPolyDataTangentFrames through the pipeline.
+#include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
 
@@ -917,11 +918,11 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     std::vector<std::vector<float>> results;
     for (int threads : { 1, 2, 8 })
     {
-      vtkSMPTools::Config config;
-      config.MaxNumberOfThreads = threads;
-      vtkSMPTools::LocalScope(config,
+      NormalMappingTesting::WithThreads(threads,
         [&]()
         {
+          // The blocks of the ordered scatter follow the estimated thread count.
+          EXPECT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), threads);
           auto out = RunFrames(mesh,
             [&](vtkPolyDataTangentFrames* f)
             {
@@ -1103,4 +1104,26 @@ TEST(PolyDataTangentFrames, AgreesWithVTKWhereVTKIsRightAndNotWhereItIsWrong)
   }
   std::cout << "collapsed UVs: vtkPolyDataTangents gives " << vtkNonFinite << " of "
             << collapsed->GetNumberOfPoints() << " non-finite tangents; ours 0\n";
+}
+
+TEST(PolyDataTangentFrames, MikkTSpaceWithoutNormalsUsesComputedNormals)
+{
+  // No point normals: the filter computes them first and MikkTSpace uses (and outputs) them.
+  vtkNormalMapping::TorusOptions options;
+  options.U = 16;
+  options.V = 8;
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  mesh->GetPointData()->SetNormals(nullptr);
+  mesh->GetPointData()->RemoveArray("Normals");
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  Messages messages(filter);
+  filter->SetInputData(mesh);
+  filter->SetMethodToMikkTSpace();
+  filter->Update();
+  EXPECT_TRUE(messages.Errors.empty());
+  EXPECT_TRUE(messages.Has(messages.Warnings, "no point normals; computing"));
+  vtkPolyData* out = filter->GetOutput();
+  ASSERT_NE(out->GetPointData()->GetNormals(), nullptr);
+  EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 0); // no corner left at MikkTSpace's default
+  ExpectValidFrames(out);
 }

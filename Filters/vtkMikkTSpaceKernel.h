@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkMikkTSpaceKernel.h
+ * @brief MikkTSpace-compatible per-corner tangent frames (plain C++17 kernel, no vtkObject).
+ *
+ * ComputeMikkTSpace() reproduces the behaviour of the reference mikktspace.c
+ * (genTangSpaceDefault, angular threshold 180 degrees) as described in
+ * shared/docs/MIKKTSPACE.md, reimplemented from that description:
+ *
+ * - Triangles and quads follow the reference exactly: quads are split on the shorter UV
+ *   diagonal (position diagonal on an exact tie), welding is by exact value equality of
+ *   position, normal and texture coordinate (+0 == -0, NaN never equal), triangles with two
+ *   equal corner positions are degenerate and copy the frame of the first good corner with the
+ *   same welded vertex, angle-weighted averaging per group in the reference's triangle order,
+ *   float arithmetic as the reference (acos evaluated in double and rounded to float).
+ * - Faces with more than 4 corners (the reference skips them) are fan-triangulated
+ *   (corner 0, i, i+1). The fan triangles are ordinary triangles of that face: they weld,
+ *   group and average like any other triangle, a face corner used by several fan triangles
+ *   receives the reference's pairwise average of their frames (in group creation order), and a
+ *   degenerate fan triangle only fills face corners that no good fan triangle covers. The quad
+ *   specific rules (orientation forcing, "quad with one degenerate triangle") do not apply.
+ * - Faces with fewer than 3 corners, and faces with a point id outside [0, NumberOfPoints) or
+ *   offsets outside the connectivity, are skipped: their corners get the default frame.
+ * - Corners never reached by a tangent group get the reference default: tangent (1,0,0),
+ *   sign -1 (note: not perpendicular to the normal). Any non-finite result (for example from
+ *   NaN or Inf input) is replaced by that default and counted.
+ *
+ * Differences from the reference are limited to float rounding in the sign of zero components
+ * (the reference reads a welded vertex's representative, whose zeros may carry the other sign)
+ * and to inputs with NaN/Inf (where the reference produces NaN or reads out of its grid).
+ *
+ * Sign convention: MikkTSpace's, bitangent = Sign * cross(N, T) with the texture coordinates
+ * as given. glTF stores v downward: tangents for glTF are obtained by running on the glTF UVs
+ * and negating Sign.
+ *
+ * Threading: the per-triangle, per-vertex (grouping and accumulation) and per-face phases run
+ * with vtkSMPTools; results are bit-identical for any number of threads. Point welding and the
+ * orientation adoption of zero-UV-area ("group with any") triangles, which the reference defines
+ * sequentially, are resolved in a sequential pass that only visits vertices touching such
+ * triangles.
+ *
+ * Limits: 3 * (number of face corners) + NumberOfPoints must be below 2^31; larger inputs
+ * return Result::TooLarge with default frames.
+ *
+ * SIMD: the per-corner math runs 8 lanes wide with AVX2 when the CPU has it (run-time check),
+ * else 4 lanes with SSE2; all paths use the same IEEE operations and give identical bits.
+ *
+ * Compile this translation unit without -ffast-math. It disables floating-point contraction
+ * itself (FMA would change rounding compared to the reference by up to ~2e-7).
+ */
+#ifndef vtkMikkTSpaceKernel_h
+#define vtkMikkTSpaceKernel_h
+
+#include <functional>
+#include <vector>
+
+namespace vtkNormalMapping
+{
+namespace mikk
+{
+
+struct MeshInput
+{
+  long long NumberOfFaces = 0;                 ///< faces (polygons)
+  const long long* FaceOffsets = nullptr;      ///< NumberOfFaces+1 offsets into FaceConnectivity
+  const long long* FaceConnectivity = nullptr; ///< point ids, face corners in order
+  long long NumberOfPoints = 0;
+  const float* Positions = nullptr; ///< 3 per point
+  const float* Normals = nullptr;   ///< 3 per point, assumed unit length (not renormalised)
+  const float* TCoords = nullptr;   ///< 2 per point
+};
+
+/// Tangent of one face corner: unit tangent and sign (+1/-1, MikkTSpace convention).
+struct CornerFrame
+{
+  float Tangent[3];
+  float Sign;
+};
+
+struct Result
+{
+  /// One per face corner, same layout as FaceConnectivity (size FaceOffsets[NumberOfFaces]).
+  std::vector<CornerFrame> Corners;
+  long long NumberOfDegenerateTriangles = 0;   ///< triangles with two equal corner positions
+  long long NumberOfDefaultCorners = 0;        ///< corners left at the default (1,0,0), -1
+  long long NumberOfNonFiniteCorners = 0;      ///< of those, corners whose result was not finite
+  long long NumberOfGroupWithAnyTriangles = 0; ///< zero UV area / zero derivative triangles
+  long long NumberOfSkippedFaces = 0;          ///< faces with fewer than 3 corners
+  long long NumberOfInvalidFaces = 0;          ///< faces with bad point ids or offsets
+  bool Aborted = false;                        ///< progress callback requested a stop
+  bool TooLarge = false;                       ///< input exceeds the 32-bit index limits
+};
+
+/// Default frame of a corner that no group reached (the reference's initial value).
+constexpr CornerFrame DefaultCornerFrame = { { 1.0f, 0.0f, 0.0f }, -1.0f };
+
+/**
+ * Compute MikkTSpace tangents for every face corner.
+ * numThreads <= 0: vtkSMPTools default; > 0: at most that many threads (a vtkSMPTools
+ * LocalScope, entered so that VTK 9.1's TBB backend honours repeated equal counts).
+ * Deterministic: identical output for any thread count.
+ * progressAndAbort: optional, called from the calling thread between phases with a progress in
+ * [0,1]; returning true stops the computation (Result::Aborted, corners set to the default).
+ * Empty Normals/TCoords/Positions pointers with a non-empty mesh yield all-default corners.
+ */
+Result ComputeMikkTSpace(const MeshInput& in,
+  int numThreads = 0,
+  const std::function<bool(double progress)>& progressAndAbort = {});
+
+} // namespace mikk
+} // namespace vtkNormalMapping
+
+#endif

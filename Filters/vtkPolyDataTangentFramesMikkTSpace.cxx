@@ -1,0 +1,906 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The MikkTSpace method of vtkPolyDataTangentFrames: input polydata -> kernel faces ->
+// per-corner frames -> per-point output (points split where their corners disagree).
+//
+// Rules (see also vtkPolyDataTangentFramesMikkTSpace.h):
+// * Kernel faces: every polygon as it is (the kernel splits quads like the reference and fans
+//   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
+//   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
+//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0).
+// * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
+//   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
+//   strip triangle containing it. Strip corners whose triangles disagree (bitwise) are counted in
+//   StripCornerConflicts and make their point a conflict.
+// * A point's frame is that of its first corner (cell order, then corner order, polygons before
+//   strips). A point whose corners carry bitwise different frames is a conflict. With Splitting
+//   every further distinct frame of it becomes a new point (appended after the input points in
+//   order of first appearance, with a copy of all point data), and the corners carrying that
+//   frame are re-pointed to it. Points used by no polygon or strip get the default frame.
+// * Cell tangents: the sum of the cell's kernel-corner tangents (corners left at the default
+//   excluded), made perpendicular to the cell's geometric normal (sum of the cross products of
+//   its kernel triangles) and normalised; if that fails the fixed perpendicular of
+//   vtkNormalMapping::FallbackTangent; (0, 0, 0) for vertex and line cells.
+#include "vtkPolyDataTangentFramesMikkTSpace.h"
+
+#include "vtkNormalMappingPrivate.h"
+
+#include "vtkMikkTSpaceKernel.h"
+#include "vtkTangentFrameKernels.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataTangentFrames.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace vtkNormalMapping
+{
+namespace detail
+{
+namespace
+{
+using mikk::CornerFrame;
+static_assert(std::is_same<vtkTypeInt64, long long>::value,
+  "64-bit cell storage is passed to the kernel without a copy");
+
+constexpr long long kNoCorner = std::numeric_limits<long long>::max();
+constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
+
+bool SameFrame(const CornerFrame& a, const CornerFrame& b)
+{
+  return std::memcmp(&a, &b, sizeof(CornerFrame)) == 0;
+}
+
+bool IsDefault(const CornerFrame& f)
+{
+  return SameFrame(f, mikk::DefaultCornerFrame);
+}
+
+/// Copies the first `outComps` components of the first n tuples to float (missing ones: 0),
+/// each value rounded to float as the reference's float interface would.
+struct ToFloat
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array, vtkIdType n, int outComps, float* out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange(array, 0, n);
+    const int copy = std::min(array->GetNumberOfComponents(), outComps);
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          const auto tuple = tuples[i];
+          float* o = out + static_cast<size_t>(i) * outComps;
+          for (int k = 0; k < copy; ++k)
+          {
+            o[k] = static_cast<float>(tuple[k]);
+          }
+          for (int k = copy; k < outComps; ++k)
+          {
+            o[k] = 0.0f;
+          }
+        }
+      });
+  }
+};
+
+std::vector<float> ConvertToFloat(vtkDataArray* array, vtkIdType n, int outComps)
+{
+  std::vector<float> out(static_cast<size_t>(n) * outComps);
+  ToFloat worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, out.data()))
+  {
+    worker(array, n, outComps, out.data());
+  }
+  return out;
+}
+
+/// Output tuple i (< numIn: tuple i; else tuple source[i - numIn]) of a 3-component array.
+template<typename OutT>
+struct GatherTriples
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array,
+    vtkIdType numIn,
+    const std::vector<vtkIdType>& source,
+    OutT* out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(array);
+    const vtkIdType n = numIn + static_cast<vtkIdType>(source.size());
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          const auto tuple = tuples[i < numIn ? i : source[static_cast<size_t>(i - numIn)]];
+          for (int k = 0; k < 3; ++k)
+          {
+            out[3 * i + k] = static_cast<OutT>(tuple[k]);
+          }
+        }
+      });
+  }
+};
+
+/// A copy of `array` with source.size() more tuples, tuple numIn + i copied from source[i].
+vtkSmartPointer<vtkAbstractArray> Extend(vtkAbstractArray* array,
+  vtkIdType numIn,
+  const std::vector<vtkIdType>& source)
+{
+  const vtkIdType extra = static_cast<vtkIdType>(source.size());
+  vtkNew<vtkIdList> src, dst;
+  src->SetNumberOfIds(extra);
+  dst->SetNumberOfIds(extra);
+  for (vtkIdType i = 0; i < extra; ++i)
+  {
+    src->SetId(i, source[static_cast<size_t>(i)]);
+    dst->SetId(i, numIn + i);
+  }
+  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
+  copy->DeepCopy(array);
+  if (array->GetNumberOfTuples() > numIn)
+  {
+    copy->SetNumberOfTuples(numIn); // appended tuples follow the points, not extra input tuples
+  }
+  copy->Resize(numIn + extra);
+  copy->InsertTuples(dst, src, array);
+  return copy;
+}
+
+/// The kernel's faces built from the polygons and strips, and the map from output corners
+/// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
+struct Surface
+{
+  vtkIdType NumPolys = 0;
+  vtkIdType NumStrips = 0;
+  long long PolyCorners = 0;
+  long long StripCorners = 0;
+  long long NumFaces = 0;
+  const long long* FaceOffsets = nullptr;
+  const long long* FaceConnectivity = nullptr;
+  std::vector<long long> OffsetStore, ConnectivityStore; // when the storage cannot be shared
+  std::vector<long long> StripPoint;                     // point id of each strip corner
+  std::vector<long long> StripSlot;          // kernel corner of each strip corner (-1: none)
+  std::vector<long long> StripFirstTriangle; // per strip + 1: first strip triangle
+  std::vector<long long> StripCornerStart;   // per strip + 1: first strip corner
+  std::vector<unsigned char> PolyFrameless;  // per polygon corner, only if some polygon has < 3
+
+  long long NumCorners() const { return PolyCorners + StripCorners; }
+  long long PointOf(long long c) const
+  {
+    return c < PolyCorners ? FaceConnectivity[c] : StripPoint[static_cast<size_t>(c - PolyCorners)];
+  }
+  /// Kernel corner of output corner c; -1 for corners of polygons with fewer than 3 points and
+  /// of strips with fewer than 3 points (no frame: they neither set nor split their point).
+  long long SlotOf(long long c) const
+  {
+    if (c < PolyCorners)
+    {
+      return PolyFrameless.empty() || !PolyFrameless[static_cast<size_t>(c)] ? c : -1;
+    }
+    return StripSlot[static_cast<size_t>(c - PolyCorners)];
+  }
+};
+
+/// Position of strip corner i in strip triangle j (which must contain it).
+int PositionInStripTriangle(long long i, long long j)
+{
+  if ((j & 1) == 0)
+  {
+    return static_cast<int>(i - j);
+  }
+  return i == j + 1 ? 0 : (i == j ? 1 : 2);
+}
+
+/// Fills `s`; returns false with `problem` set when a cell array is malformed.
+bool BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s, std::string& problem)
+{
+  s.NumPolys = polys ? polys->GetNumberOfCells() : 0;
+  s.NumStrips = strips ? strips->GetNumberOfCells() : 0;
+  s.PolyCorners = s.NumPolys > 0 ? polys->GetNumberOfConnectivityIds() : 0;
+  s.StripCorners = s.NumStrips > 0 ? strips->GetNumberOfConnectivityIds() : 0;
+
+  // Strip layout (sequential prefix sums, validating the offsets).
+  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  if (s.NumStrips > 0)
+  {
+    bool ok = true;
+    WithCellStorage(strips,
+      [&](auto* off, auto*)
+      {
+        ok = off[0] == 0 && off[s.NumStrips] == s.StripCorners;
+        for (vtkIdType k = 0; ok && k < s.NumStrips; ++k)
+        {
+          const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
+          ok = n >= 0;
+          s.StripCornerStart[k + 1] = off[k + 1];
+          s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
+        }
+      });
+    if (!ok)
+    {
+      problem = "the triangle strip cell array has inconsistent offsets";
+      return false;
+    }
+  }
+  if (s.NumPolys > 0)
+  {
+    bool ok = true;
+    WithCellStorage(polys,
+      [&](auto* off, auto*)
+      {
+        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
+        if (!ok)
+        {
+          return;
+        }
+        // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
+        // points (rare) are noted: their corners get no frame.
+        std::atomic<bool> small(false), decreasing(false);
+        vtkSMPTools::For(0,
+          s.NumPolys,
+          [&](vtkIdType b, vtkIdType e)
+          {
+            bool anySmall = false, anyDecreasing = false;
+            for (vtkIdType k = b; k < e; ++k)
+            {
+              const auto n = off[k + 1] - off[k];
+              anySmall = anySmall || n < 3;
+              anyDecreasing = anyDecreasing || n < 0;
+            }
+            if (anySmall)
+            {
+              small.store(true, std::memory_order_relaxed);
+            }
+            if (anyDecreasing)
+            {
+              decreasing.store(true, std::memory_order_relaxed);
+            }
+          });
+        if (decreasing.load())
+        {
+          ok = false;
+          return;
+        }
+        if (!small.load())
+        {
+          return;
+        }
+        s.PolyFrameless.assign(static_cast<size_t>(s.PolyCorners), 0);
+        for (vtkIdType k = 0; k < s.NumPolys; ++k)
+        {
+          const long long b = off[k], e = off[k + 1];
+          if (e - b < 3)
+          {
+            for (long long c = std::max(0LL, b); c < std::min<long long>(e, s.PolyCorners); ++c)
+            {
+              s.PolyFrameless[static_cast<size_t>(c)] = 1;
+            }
+          }
+        }
+      });
+    if (!ok)
+    {
+      problem = "the polygon cell array has inconsistent offsets";
+      return false;
+    }
+  }
+  const long long numStripTriangles = s.StripFirstTriangle.back();
+  s.NumFaces = s.NumPolys + numStripTriangles;
+
+  if (s.NumStrips == 0 && s.NumPolys > 0 && polys->IsStorage64Bit())
+  {
+    // Shared: the kernel reads the polygon storage directly.
+    s.FaceOffsets = polys->GetOffsetsArray64()->GetPointer(0);
+    s.FaceConnectivity = polys->GetConnectivityArray64()->GetPointer(0);
+    return true;
+  }
+  s.OffsetStore.resize(static_cast<size_t>(s.NumFaces) + 1);
+  s.ConnectivityStore.resize(static_cast<size_t>(s.PolyCorners + 3 * numStripTriangles));
+  long long* offsets = s.OffsetStore.data();
+  long long* conn = s.ConnectivityStore.data();
+  offsets[0] = 0;
+  if (s.NumPolys > 0)
+  {
+    WithCellStorage(polys,
+      [&](auto* off, auto* ids)
+      {
+        vtkSMPTools::For(0,
+          s.NumPolys,
+          [&](vtkIdType b, vtkIdType e)
+          {
+            for (vtkIdType k = b; k < e; ++k)
+            {
+              offsets[k + 1] = off[k + 1];
+            }
+            for (long long k = off[b]; k < static_cast<long long>(off[e]); ++k)
+            {
+              conn[k] = ids[k];
+            }
+          });
+      });
+  }
+  if (s.NumStrips > 0)
+  {
+    s.StripPoint.resize(static_cast<size_t>(s.StripCorners));
+    s.StripSlot.resize(static_cast<size_t>(s.StripCorners));
+    WithCellStorage(strips,
+      [&](auto*, auto* ids)
+      {
+        vtkSMPTools::For(0,
+          s.NumStrips,
+          [&](vtkIdType b, vtkIdType e)
+          {
+            for (vtkIdType k = b; k < e; ++k)
+            {
+              const long long first = s.StripCornerStart[k];
+              const long long n = s.StripCornerStart[k + 1] - first;
+              const long long t0 = s.StripFirstTriangle[k];
+              for (long long i = 0; i < n; ++i)
+              {
+                s.StripPoint[first + i] = ids[first + i];
+                if (n < 3)
+                {
+                  s.StripSlot[first + i] = -1;
+                  continue;
+                }
+                const long long j = std::max(0LL, i - 2); // first strip triangle containing i
+                s.StripSlot[first + i] =
+                  s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
+              }
+              for (long long j = 0; j + 2 < n; ++j)
+              {
+                const long long face = s.NumPolys + t0 + j;
+                const long long base = s.PolyCorners + 3 * (t0 + j);
+                const bool odd = (j & 1) != 0;
+                offsets[face + 1] = base + 3;
+                conn[base] = ids[first + (odd ? j + 1 : j)];
+                conn[base + 1] = ids[first + (odd ? j : j + 1)];
+                conn[base + 2] = ids[first + j + 2];
+              }
+            }
+          });
+      });
+  }
+  s.FaceOffsets = offsets;
+  s.FaceConnectivity = conn;
+  return true;
+}
+
+/// Which point each output corner uses and which frame each output point gets.
+struct Assignment
+{
+  std::vector<long long> FirstCorner;  // per input point: its first corner, or kNoCorner
+  std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
+  std::vector<CornerFrame> SplitFrame; // per new point: its frame
+  std::vector<std::pair<long long, vtkIdType>> Repoint; // (output corner, new point id)
+  vtkIdType Conflicts = 0;
+  vtkIdType StripCornerConflicts = 0;
+};
+
+void Assign(const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  vtkIdType numPoints,
+  bool splitting,
+  Assignment& a)
+{
+  const long long numCorners = s.NumCorners();
+  const auto frameOf = [&](long long c) -> const CornerFrame&
+  {
+    const long long slot = s.SlotOf(c);
+    return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
+  };
+
+  // 1. First corner of every point (atomic minimum: independent of the scheduling).
+  {
+    std::unique_ptr<std::atomic<long long>[]> first(
+      new std::atomic<long long>[static_cast<size_t>(numPoints)]);
+    vtkSMPTools::For(0,
+      numPoints,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType p = b; p < e; ++p)
+        {
+          first[p].store(kNoCorner, std::memory_order_relaxed);
+        }
+      });
+    vtkSMPTools::For(0,
+      numCorners,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType c = b; c < e; ++c)
+        {
+          if (s.SlotOf(c) < 0)
+          {
+            continue;
+          }
+          std::atomic<long long>& f = first[s.PointOf(c)];
+          long long cur = f.load(std::memory_order_relaxed);
+          while (c < cur && !f.compare_exchange_weak(cur, c, std::memory_order_relaxed))
+          {
+          }
+        }
+      });
+    a.FirstCorner.resize(static_cast<size_t>(numPoints));
+    vtkSMPTools::For(0,
+      numPoints,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType p = b; p < e; ++p)
+        {
+          a.FirstCorner[p] = first[p].load(std::memory_order_relaxed);
+        }
+      });
+  }
+
+  // 2. Corners whose frame differs from their point's first corner, in corner order (each
+  // fixed-size chunk collects its own list; concatenated in chunk order).
+  const vtkIdType numChunks = (numCorners + kChunk - 1) / kChunk;
+  std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
+  vtkSMPTools::For(0,
+    numChunks,
+    1,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType chunk = b; chunk < e; ++chunk)
+      {
+        const long long end = std::min<long long>(numCorners, (chunk + 1) * kChunk);
+        for (long long c = chunk * kChunk; c < end; ++c)
+        {
+          const long long first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
+          if (first != c && s.SlotOf(c) >= 0 && !SameFrame(frameOf(c), frameOf(first)))
+          {
+            differing[chunk].push_back(c);
+          }
+        }
+      }
+    });
+
+  // 3. Strip corners whose strip triangles disagree.
+  const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
+  std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
+  vtkSMPTools::For(0,
+    numStripChunks,
+    1,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType chunk = b; chunk < e; ++chunk)
+      {
+        const vtkIdType end = std::min<vtkIdType>(s.NumStrips, (chunk + 1) * kChunk);
+        for (vtkIdType k = chunk * kChunk; k < end; ++k)
+        {
+          const long long first = s.StripCornerStart[k];
+          const long long n = s.StripCornerStart[k + 1] - first;
+          const long long t0 = s.StripFirstTriangle[k];
+          for (long long i = 0; i < n; ++i)
+          {
+            const CornerFrame& chosen = frameOf(s.PolyCorners + first + i);
+            for (long long j = std::max(0LL, i - 2) + 1; j <= std::min(i, n - 3); ++j)
+            {
+              const long long slot = s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
+              if (!SameFrame(frames[static_cast<size_t>(slot)], chosen))
+              {
+                stripDisagree[chunk].push_back(s.PolyCorners + first + i);
+                break;
+              }
+            }
+          }
+        }
+      }
+    });
+
+  // 4. Sequential, in corner order: conflicts and new points.
+  std::vector<unsigned char> conflict;
+  const auto markConflict = [&](long long p)
+  {
+    if (conflict.empty())
+    {
+      conflict.assign(static_cast<size_t>(numPoints), 0);
+    }
+    if (!conflict[static_cast<size_t>(p)])
+    {
+      conflict[static_cast<size_t>(p)] = 1;
+      ++a.Conflicts;
+    }
+  };
+  for (const auto& list : stripDisagree)
+  {
+    a.StripCornerConflicts += static_cast<vtkIdType>(list.size());
+    for (long long c : list)
+    {
+      markConflict(s.PointOf(c));
+    }
+  }
+  std::unordered_map<long long, std::vector<vtkIdType>> extra; // point -> its new points
+  for (const auto& list : differing)
+  {
+    for (long long c : list)
+    {
+      const long long p = s.PointOf(c);
+      markConflict(p);
+      if (!splitting)
+      {
+        continue;
+      }
+      const CornerFrame& f = frameOf(c);
+      std::vector<vtkIdType>& mine = extra[p];
+      vtkIdType id = -1;
+      for (vtkIdType candidate : mine)
+      {
+        if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
+        {
+          id = candidate;
+          break;
+        }
+      }
+      if (id < 0)
+      {
+        id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
+        a.SplitSource.push_back(static_cast<vtkIdType>(p));
+        a.SplitFrame.push_back(f);
+        mine.push_back(id);
+      }
+      a.Repoint.emplace_back(c, id);
+    }
+  }
+}
+
+/// Re-points the corners [begin, end) of Repoint that fall in this cell array (connectivity
+/// positions offset by `base`); returns the new cell array.
+vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
+  const std::vector<std::pair<long long, vtkIdType>>& repoint,
+  long long base,
+  long long size,
+  vtkIdType maxId)
+{
+  auto copy = vtkSmartPointer<vtkCellArray>::New();
+  copy->DeepCopy(cells);
+  if (!copy->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
+  {
+    copy->ConvertTo64BitStorage();
+  }
+  WithCellStorage(copy,
+    [&](auto*, auto* conn)
+    {
+      using IdT = typename std::remove_pointer<decltype(conn)>::type;
+      for (const auto& r : repoint)
+      {
+        if (r.first >= base && r.first < base + size)
+        {
+          conn[r.first - base] = static_cast<IdT>(r.second);
+        }
+      }
+    });
+  return copy;
+}
+
+template<typename OutArray>
+void WriteOutput(const MikkTSpaceRequest& request,
+  const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  const std::vector<float>& positions,
+  const std::vector<float>& normals,
+  const Assignment& a,
+  vtkPolyData* output)
+{
+  using OutT = typename OutArray::ValueType;
+  vtkPolyData* input = request.Input;
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
+  const vtkIdType numOut = numIn + numSplits;
+  const float signFactor = request.GLTFSign ? -1.0f : 1.0f;
+
+  // Structure, cell data, point data (extended with copies for the new points).
+  output->CopyStructure(input);
+  output->GetCellData()->PassData(input->GetCellData());
+  vtkPointData* inPD = input->GetPointData();
+  vtkPointData* outPD = output->GetPointData();
+  if (numSplits == 0)
+  {
+    outPD->PassData(inPD);
+  }
+  else
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(
+      vtkDataArray::SafeDownCast(Extend(input->GetPoints()->GetData(), numIn, a.SplitSource)));
+    output->SetPoints(points);
+    outPD->Initialize();
+    for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
+    {
+      vtkAbstractArray* array = inPD->GetAbstractArray(k);
+      // An array shorter than the points cannot be extended consistently: passed as it is.
+      outPD->AddArray(
+        array->GetNumberOfTuples() < numIn ? array : Extend(array, numIn, a.SplitSource).Get());
+      const int attribute = inPD->IsArrayAnAttribute(k);
+      if (attribute >= 0)
+      {
+        outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
+      }
+    }
+    const vtkIdType maxId = numOut - 1;
+    if (s.PolyCorners > 0)
+    {
+      output->SetPolys(RepointCells(input->GetPolys(), a.Repoint, 0, s.PolyCorners, maxId));
+    }
+    if (s.StripCorners > 0)
+    {
+      output->SetStrips(
+        RepointCells(input->GetStrips(), a.Repoint, s.PolyCorners, s.StripCorners, maxId));
+    }
+  }
+
+  // Per-point frames.
+  const auto pointFrame = [&](vtkIdType p) -> const CornerFrame&
+  {
+    if (p >= numIn)
+    {
+      return a.SplitFrame[static_cast<size_t>(p - numIn)];
+    }
+    const long long c = a.FirstCorner[static_cast<size_t>(p)];
+    if (c == kNoCorner)
+    {
+      return mikk::DefaultCornerFrame;
+    }
+    const long long slot = s.SlotOf(c);
+    return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
+  };
+  const auto sourceOf = [&](vtkIdType p)
+  { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
+
+  vtkNew<OutArray> tangents, signs;
+  tangents->SetName(vtkPolyDataTangentFrames::TangentsArrayName());
+  tangents->SetNumberOfComponents(3);
+  tangents->SetNumberOfTuples(numOut);
+  signs->SetName(vtkPolyDataTangentFrames::SignsArrayName());
+  signs->SetNumberOfComponents(1);
+  signs->SetNumberOfTuples(numOut);
+  vtkSmartPointer<OutArray> bitangents;
+  if (request.Bitangents)
+  {
+    bitangents = vtkSmartPointer<OutArray>::New();
+    bitangents->SetName(vtkPolyDataTangentFrames::BitangentsArrayName());
+    bitangents->SetNumberOfComponents(3);
+    bitangents->SetNumberOfTuples(numOut);
+  }
+  OutT* tOut = tangents->GetPointer(0);
+  OutT* sOut = signs->GetPointer(0);
+  OutT* bOut = bitangents ? bitangents->GetPointer(0) : nullptr;
+  vtkSMPTools::For(0,
+    numOut,
+    [&](vtkIdType b, vtkIdType e)
+    {
+      for (vtkIdType p = b; p < e; ++p)
+      {
+        const CornerFrame& f = pointFrame(p);
+        const float sign = signFactor * f.Sign;
+        for (int k = 0; k < 3; ++k)
+        {
+          tOut[3 * p + k] = static_cast<OutT>(f.Tangent[k]);
+        }
+        sOut[p] = static_cast<OutT>(sign);
+        if (bOut)
+        {
+          // The normal the kernel used (float), normalised in double; a zero or non-finite
+          // normal gives a zero bitangent (SafeNormalize), never NaN.
+          const float* nf = normals.data() + 3 * static_cast<size_t>(sourceOf(p));
+          const glm::dvec3 n = SafeNormalize(glm::dvec3(nf[0], nf[1], nf[2]));
+          const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
+          const glm::dvec3 bt = static_cast<double>(sign) * glm::cross(n, t);
+          for (int k = 0; k < 3; ++k)
+          {
+            bOut[3 * p + k] = static_cast<OutT>(bt[k]);
+          }
+        }
+      }
+    });
+
+  if (request.ComputedNormals)
+  {
+    vtkNew<OutArray> outNormals;
+    outNormals->SetName("Normals");
+    outNormals->SetNumberOfComponents(3);
+    outNormals->SetNumberOfTuples(numOut);
+    GatherTriples<OutT> worker;
+    std::vector<vtkIdType> source(a.SplitSource);
+    if (!vtkArrayDispatch::Dispatch::Execute(
+          request.Normals, worker, numIn, source, outNormals->GetPointer(0)))
+    {
+      worker(request.Normals, numIn, source, outNormals->GetPointer(0));
+    }
+    outPD->SetNormals(outNormals);
+  }
+  outPD->SetTangents(tangents);
+  outPD->AddArray(signs);
+  if (bitangents)
+  {
+    outPD->AddArray(bitangents);
+  }
+
+  if (request.CellTangents)
+  {
+    const vtkIdType numCells = input->GetNumberOfCells();
+    const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    vtkNew<OutArray> cellTangents;
+    cellTangents->SetName(vtkPolyDataTangentFrames::TangentsArrayName());
+    cellTangents->SetNumberOfComponents(3);
+    cellTangents->SetNumberOfTuples(numCells);
+    OutT* cOut = cellTangents->GetPointer(0);
+    std::fill(cOut, cOut + 3 * numCells, OutT(0));
+    vtkSMPTools::For(0,
+      s.NumPolys + s.NumStrips,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType cell = b; cell < e; ++cell)
+        {
+          // Kernel faces of this cell: polygon c is face c; strip k its strip triangles.
+          long long fb = cell, fe = cell + 1;
+          if (cell >= s.NumPolys)
+          {
+            const vtkIdType k = cell - s.NumPolys;
+            fb = s.NumPolys + s.StripFirstTriangle[k];
+            fe = s.NumPolys + s.StripFirstTriangle[k + 1];
+          }
+          glm::dvec3 t(0.0), n(0.0);
+          for (long long f = fb; f < fe; ++f)
+          {
+            const long long cb = s.FaceOffsets[f], ce = s.FaceOffsets[f + 1];
+            for (long long c = cb; c < ce; ++c)
+            {
+              const CornerFrame& cf = frames[static_cast<size_t>(c)];
+              if (!IsDefault(cf))
+              {
+                t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
+              }
+            }
+            const float* p0 = positions.data() + 3 * s.FaceConnectivity[cb];
+            const glm::dvec3 o(p0[0], p0[1], p0[2]);
+            for (long long c = cb + 1; c + 1 < ce; ++c)
+            {
+              const float* p1 = positions.data() + 3 * s.FaceConnectivity[c];
+              const float* p2 = positions.data() + 3 * s.FaceConnectivity[c + 1];
+              n += glm::cross(
+                glm::dvec3(p1[0], p1[1], p1[2]) - o, glm::dvec3(p2[0], p2[1], p2[2]) - o);
+            }
+          }
+          n = SafeNormalize(n);
+          glm::dvec3 unit;
+          if (!OrthonormalizeTangent(n, t, unit))
+          {
+            unit = FallbackTangent(n);
+          }
+          for (int k = 0; k < 3; ++k)
+          {
+            cOut[3 * (firstSurface + cell) + k] = static_cast<OutT>(unit[k]);
+          }
+        }
+      });
+    output->GetCellData()->SetTangents(cellTangents);
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
+{
+  counts = MikkTSpaceCounts();
+  vtkPolyDataTangentFrames* filter = request.Filter;
+  vtkPolyData* input = request.Input;
+  const auto passThrough = [&]()
+  {
+    output->ShallowCopy(input);
+    return 1;
+  };
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  if (!request.TCoords || request.TCoords->GetNumberOfTuples() < numPoints || !request.Normals ||
+    request.Normals->GetNumberOfComponents() != 3 ||
+    request.Normals->GetNumberOfTuples() < numPoints)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "MikkTSpace needs point texture coordinates and 3-component point normals for every "
+      "point; passing the input through.");
+    return passThrough();
+  }
+
+  Surface surface;
+  std::string problem;
+  if (!BuildSurface(input->GetPolys(), input->GetStrips(), surface, problem))
+  {
+    vtkErrorWithObjectMacro(
+      filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");
+    return passThrough();
+  }
+
+  const std::vector<float> positions = ConvertToFloat(input->GetPoints()->GetData(), numPoints, 3);
+  const std::vector<float> normals = ConvertToFloat(request.Normals, numPoints, 3);
+  const std::vector<float> tcoords = ConvertToFloat(request.TCoords, numPoints, 2);
+  filter->UpdateProgress(0.05);
+
+  mikk::MeshInput in;
+  in.NumberOfFaces = surface.NumFaces;
+  in.FaceOffsets = surface.FaceOffsets;
+  in.FaceConnectivity = surface.FaceConnectivity;
+  in.NumberOfPoints = numPoints;
+  in.Positions = positions.data();
+  in.Normals = normals.data();
+  in.TCoords = tcoords.data();
+  mikk::Result result = mikk::ComputeMikkTSpace(in,
+    0,
+    [filter](double progress)
+    {
+      filter->UpdateProgress(0.05 + 0.8 * progress);
+      return filter->GetAbortExecute() != 0;
+    });
+  if (result.Aborted || filter->GetAbortExecute())
+  {
+    output->Initialize();
+    return 1;
+  }
+  if (result.NumberOfInvalidFaces > 0)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Cannot compute MikkTSpace frames: "
+        << result.NumberOfInvalidFaces << " polygons or strip triangles use point ids outside [0, "
+        << numPoints << "); passing the input through.");
+    return passThrough();
+  }
+  if (result.TooLarge)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Cannot compute MikkTSpace frames: the input exceeds the kernel's 32-bit index limits; "
+      "passing the input through.");
+    return passThrough();
+  }
+  counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
+  counts.DefaultCorners = result.NumberOfDefaultCorners;
+
+  Assignment assignment;
+  Assign(surface, result.Corners, numPoints, request.Splitting, assignment);
+  counts.Conflicts = assignment.Conflicts;
+  counts.StripCornerConflicts = assignment.StripCornerConflicts;
+  counts.SplitPoints = static_cast<vtkIdType>(assignment.SplitSource.size());
+  filter->UpdateProgress(0.9);
+  if (filter->GetAbortExecute())
+  {
+    output->Initialize();
+    return 1;
+  }
+
+  if (request.DoublePrecision)
+  {
+    WriteOutput<vtkDoubleArray>(
+      request, surface, result.Corners, positions, normals, assignment, output);
+  }
+  else
+  {
+    WriteOutput<vtkFloatArray>(
+      request, surface, result.Corners, positions, normals, assignment, output);
+  }
+  filter->UpdateProgress(1.0);
+  return 1;
+}
+} // namespace detail
+} // namespace vtkNormalMapping

@@ -1,0 +1,768 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Tests of the MikkTSpace kernel (vtkMikkTSpaceKernel.h): comparison with tangents produced by
+// the reference mikktspace.c (shared/data/mikktspace/*.vtp), with the tangents stored in the
+// Khronos glTF sample NormalTangentMirrorTest, and unit tests on hand-built meshes.
+//
+// Shared data location: see NormalMappingTestData.h.
+
+#include "NormalMappingTestData.h"
+#include "vtkMikkTSpaceKernel.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace mikk = vtkNormalMapping::mikk;
+using namespace NormalMappingTestData;
+
+namespace
+{
+//------------------------------------------------------------------------------
+// A mesh in the kernel's input layout
+struct Mesh
+{
+  std::vector<long long> Offsets{ 0 };
+  std::vector<long long> Conn;
+  std::vector<float> P, N, U;
+
+  long long AddPoint(std::array<float, 3> p, std::array<float, 3> n, std::array<float, 2> uv)
+  {
+    P.insert(P.end(), p.begin(), p.end());
+    N.insert(N.end(), n.begin(), n.end());
+    U.insert(U.end(), uv.begin(), uv.end());
+    return static_cast<long long>(P.size() / 3 - 1);
+  }
+  void AddFace(std::initializer_list<long long> ids)
+  {
+    Conn.insert(Conn.end(), ids.begin(), ids.end());
+    Offsets.push_back(static_cast<long long>(Conn.size()));
+  }
+  mikk::MeshInput Input() const
+  {
+    mikk::MeshInput in;
+    in.NumberOfFaces = static_cast<long long>(Offsets.size()) - 1;
+    in.FaceOffsets = Offsets.data();
+    in.FaceConnectivity = Conn.data();
+    in.NumberOfPoints = static_cast<long long>(P.size() / 3);
+    in.Positions = P.data();
+    in.Normals = N.data();
+    in.TCoords = U.data();
+    return in;
+  }
+};
+
+mikk::Result RunKernel(const Mesh& m, int threads = 0)
+{
+  return mikk::ComputeMikkTSpace(m.Input(), threads);
+}
+
+bool IsDefault(const mikk::CornerFrame& f)
+{
+  return f.Tangent[0] == 1.0f && f.Tangent[1] == 0.0f && f.Tangent[2] == 0.0f && f.Sign == -1.0f;
+}
+
+bool BitEqual(const mikk::CornerFrame& a, const mikk::CornerFrame& b)
+{
+  return std::memcmp(&a, &b, sizeof(a)) == 0;
+}
+
+//------------------------------------------------------------------------------
+// Reference data
+struct ReferenceMesh
+{
+  Mesh M;
+  std::vector<float> Tangents; // 4 per triangle corner
+};
+
+bool LoadReference(const std::string& path, ReferenceMesh& out, std::string& error)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* pd = reader->GetOutput();
+  if (!pd || !pd->GetPoints())
+  {
+    error = "cannot read " + path;
+    return false;
+  }
+  vtkDataArray* normals = pd->GetPointData()->GetArray("Normals");
+  vtkDataArray* tcoords = pd->GetPointData()->GetArray("TCoords");
+  vtkDataArray* tangents = pd->GetFieldData()->GetArray("CornerTangents");
+  if (!normals || !tcoords || !tangents || tangents->GetNumberOfComponents() != 4)
+  {
+    error = "missing Normals, TCoords or CornerTangents in " + path;
+    return false;
+  }
+  const vtkIdType np = pd->GetNumberOfPoints();
+  Mesh& m = out.M;
+  m.P.resize(3 * static_cast<size_t>(np));
+  m.N.resize(3 * static_cast<size_t>(np));
+  m.U.resize(2 * static_cast<size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i)
+  {
+    double p[3];
+    pd->GetPoints()->GetPoint(i, p);
+    for (int k = 0; k < 3; ++k)
+    {
+      // stored as float32: the double round trip is exact
+      m.P[3 * i + k] = static_cast<float>(p[k]);
+      m.N[3 * i + k] = static_cast<float>(normals->GetComponent(i, k));
+    }
+    m.U[2 * i] = static_cast<float>(tcoords->GetComponent(i, 0));
+    m.U[2 * i + 1] = static_cast<float>(tcoords->GetComponent(i, 1));
+  }
+  vtkCellArray* polys = pd->GetPolys();
+  vtkIdType npts;
+  const vtkIdType* pts;
+  for (polys->InitTraversal(); polys->GetNextCell(npts, pts);)
+  {
+    if (npts != 3)
+    {
+      error = "non-triangle cell in " + path;
+      return false;
+    }
+    m.AddFace({ pts[0], pts[1], pts[2] });
+  }
+  if (tangents->GetNumberOfTuples() != static_cast<vtkIdType>(m.Conn.size()))
+  {
+    error = "CornerTangents size does not match the triangles in " + path;
+    return false;
+  }
+  out.Tangents.resize(4 * m.Conn.size());
+  for (vtkIdType i = 0; i < tangents->GetNumberOfTuples(); ++i)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      out.Tangents[4 * i + k] = static_cast<float>(tangents->GetComponent(i, k));
+    }
+  }
+  return true;
+}
+
+// Largest angle accepted between our tangent and the reference's, in degrees.
+// Both compute the same float expressions in the same order, so they agree bit for bit (the
+// measured distribution is all zeros, see docs/mikktspace.md). Legitimate sources of
+// difference are compilation details of either side: FMA contraction (measured <= 1.8e-7 per
+// component on the reference, MIKKTSPACE.md), a float instead of double acos (<= 1.2e-7) and
+// the sign of zero components. Each amounts to a few float ulps of a unit vector, i.e. about
+// 1e-7 rad = 6e-6 degrees per ulp; 1e-3 degrees allows ~150 ulps, so it only fails on a real
+// algorithmic difference (wrong group, weight or order), which shows as >= ~0.01 degree.
+constexpr double kMaxAngleDeg = 1e-3;
+
+// glTF comparison bound, in degrees. The stored tangents come from Blender's MikkTSpace
+// rewrite, which weights by a polynomial acos approximation (absolute error ~1e-4 rad per
+// weight) instead of libm. A relative weight error e tilts an average of directions spread by
+// at most ~90 degrees by less than e * 90 degrees, ~0.005 degrees here; measured max 0.003.
+constexpr double kGltfMaxAngleDeg = 0.01;
+
+} // namespace
+
+//------------------------------------------------------------------------------
+TEST(MikkTSpaceKernel, MatchesReferenceData)
+{
+  REQUIRE_SHARED_DATA(dataDir);
+  const std::vector<std::string> names = { "sphere_poles",
+    "torus",
+    "mirror_grid",
+    "cylinder_seam",
+    "noisy",
+    "NormalTangentTest",
+    "NormalTangentMirrorTest" };
+  int tested = 0;
+  for (const std::string& name : names)
+  {
+    const std::string path = dataDir + "/mikktspace/" + name + ".vtp";
+    if (!std::ifstream(path).good())
+    {
+      ADD_FAILURE() << "missing reference file " << path;
+      continue;
+    }
+    ReferenceMesh ref;
+    std::string error;
+    ASSERT_TRUE(LoadReference(path, ref, error)) << error;
+    const mikk::Result res = RunKernel(ref.M);
+    ASSERT_EQ(res.Corners.size(), ref.M.Conn.size());
+    Stats st;
+    for (size_t c = 0; c < res.Corners.size(); ++c)
+    {
+      const float* r = &ref.Tangents[4 * c];
+      const mikk::CornerFrame& o = res.Corners[c];
+      const bool refDefault = r[0] == 1.0f && r[1] == 0.0f && r[2] == 0.0f && r[3] == -1.0f;
+      if (refDefault)
+      {
+        ++st.ReferenceDefaults;
+        if (!IsDefault(o))
+        {
+          ++st.DefaultMismatches;
+          ADD_FAILURE() << name << " corner " << c << ": reference default, ours (" << o.Tangent[0]
+                        << ", " << o.Tangent[1] << ", " << o.Tangent[2] << ", " << o.Sign << ")";
+        }
+        continue;
+      }
+      if (r[3] != o.Sign)
+      {
+        ++st.SignMismatches;
+        ADD_FAILURE() << name << " corner " << c << ": sign " << o.Sign << ", reference " << r[3];
+      }
+      const double a = AngleDeg(r, o.Tangent);
+      st.Angles.push_back(a);
+      EXPECT_LE(a, kMaxAngleDeg) << name << " corner " << c << " (triangle " << c / 3 << ")";
+    }
+    std::printf("[ mikk     ] %-24s corners %7zu  exact %7lld  mean %.3g  p99 %.3g  max %.3g deg"
+                "  sign mismatches %lld  reference defaults %lld (mismatched %lld)"
+                "  degenerate triangles %lld\n",
+      name.c_str(),
+      res.Corners.size(),
+      st.Exact(),
+      st.Mean(),
+      st.Quantile(0.99),
+      st.Max(),
+      st.SignMismatches,
+      st.ReferenceDefaults,
+      st.DefaultMismatches,
+      res.NumberOfDegenerateTriangles);
+    ++tested;
+  }
+  EXPECT_EQ(tested, static_cast<int>(names.size()));
+}
+
+//------------------------------------------------------------------------------
+// NormalTangentMirrorTest.gltf stores MikkTSpace tangents exported by Blender (TANGENT, vec4).
+// glTF UVs run v downward, so glTF tangent = ours on the glTF UVs with the sign negated.
+TEST(MikkTSpaceKernel, MatchesGltfStoredTangents)
+{
+  REQUIRE_SHARED_DATA(dataDir);
+  const std::string path = dataDir + "/gltf/NormalTangentMirrorTest/NormalTangentMirrorTest.gltf";
+  GltfPrimitive gltf;
+  std::string error;
+  ASSERT_TRUE(LoadGltfPrimitive(path, gltf, error)) << error;
+  const std::vector<double>& pos = gltf.Positions;
+  const std::vector<double>& nrm = gltf.Normals;
+  const std::vector<double>& uv = gltf.TexCoords;
+  const std::vector<double>& tan = gltf.Tangents;
+  const std::vector<double>& idx = gltf.Indices;
+  ASSERT_FALSE(tan.empty()) << "no TANGENT in " << path;
+  ASSERT_EQ(idx.size() % 3, 0u);
+  Mesh m;
+  m.P.assign(pos.begin(), pos.end()); // float32 values: exact
+  m.N.assign(nrm.begin(), nrm.end());
+  m.U.assign(uv.begin(), uv.end());
+  for (size_t t = 0; t < idx.size(); t += 3)
+  {
+    m.AddFace({ static_cast<long long>(idx[t]),
+      static_cast<long long>(idx[t + 1]),
+      static_cast<long long>(idx[t + 2]) });
+  }
+  const mikk::Result res = RunKernel(m);
+  Stats st;
+  for (size_t c = 0; c < res.Corners.size(); ++c)
+  {
+    const size_t v = static_cast<size_t>(m.Conn[c]);
+    const float stored[3] = { static_cast<float>(tan[4 * v]),
+      static_cast<float>(tan[4 * v + 1]),
+      static_cast<float>(tan[4 * v + 2]) };
+    const mikk::CornerFrame& o = res.Corners[c];
+    if (static_cast<float>(tan[4 * v + 3]) != -o.Sign)
+    {
+      ++st.SignMismatches;
+    }
+    st.Angles.push_back(AngleDeg(stored, o.Tangent));
+  }
+  std::printf(
+    "[ mikk     ] glTF NormalTangentMirrorTest corners %zu  mean %.3g  p99 %.3g  max %.3g deg"
+    "  sign mismatches %lld\n",
+    res.Corners.size(),
+    st.Mean(),
+    st.Quantile(0.99),
+    st.Max(),
+    st.SignMismatches);
+  EXPECT_EQ(st.SignMismatches, 0);
+  EXPECT_LE(st.Max(), kGltfMaxAngleDeg);
+}
+
+//------------------------------------------------------------------------------
+// Unit tests on hand-built meshes
+namespace
+{
+constexpr std::array<float, 3> kUp = { 0.0f, 0.0f, 1.0f };
+
+// Tolerance for tangents expected to be exact axis vectors: they come out of a normalisation
+// of an exactly axis-aligned vector (or a sum of them), so only a 1-ulp error of 1/sqrt is
+// possible: 2 ulps of 1.0f = 2.4e-7.
+constexpr float kAxisTol = 2.4e-7f;
+
+void ExpectTangent(const mikk::CornerFrame& f,
+  float x,
+  float y,
+  float z,
+  float sign,
+  const char* what)
+{
+  EXPECT_NEAR(f.Tangent[0], x, kAxisTol) << what;
+  EXPECT_NEAR(f.Tangent[1], y, kAxisTol) << what;
+  EXPECT_NEAR(f.Tangent[2], z, kAxisTol) << what;
+  EXPECT_EQ(f.Sign, sign) << what;
+}
+
+// Non-planar quad with per-point normals; uv chosen by the caller.
+Mesh BentQuad(const std::array<std::array<float, 2>, 4>& uv,
+  const std::array<std::array<float, 3>, 4>& pos)
+{
+  Mesh m;
+  const std::array<std::array<float, 3>, 4> nrm = { { { -0.2f, -0.1f, 0.974679f },
+    { 0.3f, -0.2f, 0.932738f },
+    { 0.1f, 0.4f, 0.910494f },
+    { -0.3f, 0.2f, 0.932738f } } };
+  for (int i = 0; i < 4; ++i)
+  {
+    m.AddPoint(pos[i], nrm[i], uv[i]);
+  }
+  return m;
+}
+
+// The same points as separate triangles.
+Mesh AsTriangles(const Mesh& quad, std::initializer_list<std::array<long long, 3>> tris)
+{
+  Mesh m = quad;
+  m.Offsets = { 0 };
+  m.Conn.clear();
+  for (const auto& t : tris)
+  {
+    m.AddFace({ t[0], t[1], t[2] });
+  }
+  return m;
+}
+} // namespace
+
+// Quads split on the shorter UV diagonal; on a UV tie, 1-3 only if its position diagonal is
+// strictly shorter. The quad's corners must equal those of the explicitly split triangles.
+TEST(MikkTSpaceKernel, QuadSplitRule)
+{
+  const std::array<std::array<float, 3>, 4> pos = {
+    { { 0, 0, 0 }, { 1, 0, 0.3f }, { 1.2f, 1.1f, -0.2f }, { 0, 1, 0.25f } }
+  };
+  struct Case
+  {
+    const char* Name;
+    std::array<std::array<float, 2>, 4> UV;
+    std::array<std::array<float, 3>, 4> Pos;
+    bool Diag02;
+  };
+  // UV diagonals: (a) |uv2-uv0|^2 = 3.25 > |uv3-uv1|^2 = 1.25 -> 1-3;
+  // (b) the mirror image -> 0-2; (c) unit square (tie), position 0-2 longer -> 1-3;
+  // (d) tie with equal position diagonals -> 0-2.
+  const std::vector<Case> cases = {
+    { "uv 1-3 shorter", { { { 0, 0 }, { 1, 0 }, { 1.5f, 1 }, { 0.5f, 1 } } }, pos, false },
+    { "uv 0-2 shorter", { { { 0.5f, 0 }, { 1.5f, 0 }, { 1, 1 }, { 0, 1 } } }, pos, true },
+    { "uv tie, position 1-3 shorter", { { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } } }, pos, false },
+    { "uv tie, position tie",
+      { { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } } },
+      { { { 0, 0, 0 }, { 1, 0, 0.3f }, { 1, 1, 0 }, { 0, 1, 0.3f } } },
+      true },
+  };
+  for (const Case& c : cases)
+  {
+    Mesh quad = BentQuad(c.UV, c.Pos);
+    quad.AddFace({ 0, 1, 2, 3 });
+    const Mesh split02 = AsTriangles(quad, { { 0, 1, 2 }, { 0, 2, 3 } });
+    const Mesh split13 = AsTriangles(quad, { { 0, 1, 3 }, { 1, 2, 3 } });
+    const mikk::Result q = RunKernel(quad);
+    const mikk::Result a = RunKernel(split02);
+    const mikk::Result b = RunKernel(split13);
+    ASSERT_EQ(q.Corners.size(), 4u);
+    // quad corner -> corner of the split triangles (face*3 + k)
+    const std::array<size_t, 4> map02 = { 0, 1, 2, 5 };
+    const std::array<size_t, 4> map13 = { 0, 1, 4, 2 };
+    const mikk::Result& expected = c.Diag02 ? a : b;
+    const std::array<size_t, 4>& map = c.Diag02 ? map02 : map13;
+    const mikk::Result& other = c.Diag02 ? b : a;
+    const std::array<size_t, 4>& otherMap = c.Diag02 ? map13 : map02;
+    bool differsFromOther = false;
+    for (size_t k = 0; k < 4; ++k)
+    {
+      EXPECT_TRUE(BitEqual(q.Corners[k], expected.Corners[map[k]])) << c.Name << " corner " << k;
+      differsFromOther = differsFromOther || !BitEqual(q.Corners[k], other.Corners[otherMap[k]]);
+    }
+    // the mesh is bent, so the two splits give different tangents: the test can tell them apart
+    EXPECT_TRUE(differsFromOther) << c.Name;
+  }
+}
+
+// Two triangles sharing an edge, u mirrored about x = 0: opposite signs, no averaging across.
+TEST(MikkTSpaceKernel, MirroredPairSigns)
+{
+  Mesh m;
+  const long long l = m.AddPoint({ -1, 0, 0 }, kUp, { 1, 0 });
+  const long long c0 = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  const long long c1 = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
+  const long long r = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+  m.AddFace({ l, c0, c1 }); // u decreases along +x: tangent -x, bitangent +y = -cross(N,T)
+  m.AddFace({ c0, r, c1 }); // u increases along +x: tangent +x, bitangent +y = +cross(N,T)
+  const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), 6u);
+  for (int k = 0; k < 3; ++k)
+  {
+    ExpectTangent(res.Corners[k], -1, 0, 0, -1, "mirrored triangle");
+    ExpectTangent(res.Corners[3 + k], 1, 0, 0, 1, "unmirrored triangle");
+  }
+  EXPECT_EQ(res.NumberOfDefaultCorners, 0);
+}
+
+// Degenerate triangles copy the first good corner with the same welded vertex (or get the
+// default); in a quad with one degenerate triangle the missing corner copies the good
+// triangle's corner at the same position.
+TEST(MikkTSpaceKernel, DegenerateTriangleCopying)
+{
+  Mesh m;
+  const long long a = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  const long long b = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+  const long long c = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
+  const long long bDup = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });      // welds with b
+  const long long bOther = m.AddPoint({ 1, 0, 0 }, kUp, { 0.5f, 0 }); // b's position, other uv
+  const long long lone = m.AddPoint({ 5, 5, 0 }, kUp, { 3, 3 });
+  m.AddFace({ a, b, c });         // good: tangent +x, sign +1
+  m.AddFace({ c, bDup, bOther }); // degenerate (bDup, bOther same position)
+  m.AddFace({ lone, lone, a });   // degenerate
+  m.AddFace({ a, b, bOther, c }); // quad: (0,1,2) degenerate, (0,2,3) good (uv 0-2 shorter)
+  const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), 13u);
+  EXPECT_EQ(res.NumberOfDegenerateTriangles, 3);
+  const mikk::CornerFrame& ta = res.Corners[0];
+  const mikk::CornerFrame& tb = res.Corners[1];
+  const mikk::CornerFrame& tc = res.Corners[2];
+  ExpectTangent(ta, 1, 0, 0, 1, "good triangle");
+  EXPECT_TRUE(BitEqual(res.Corners[3], tc)) << "c copies the good triangle's c";
+  EXPECT_TRUE(BitEqual(res.Corners[4], tb)) << "bDup welds with b";
+  EXPECT_TRUE(BitEqual(res.Corners[5], res.Corners[11]))
+    << "bOther's first good corner is in the quad's good triangle";
+  EXPECT_TRUE(IsDefault(res.Corners[6])) << "lone has no good corner";
+  EXPECT_TRUE(IsDefault(res.Corners[7])) << "lone has no good corner";
+  EXPECT_TRUE(BitEqual(res.Corners[8], ta)) << "a copies the good triangle's a";
+  // quad: corner 1 (b) is missing from the good triangle (0,2,3) = (a, bOther, c) and copies
+  // its corner with b's position, bOther (face corner 2)
+  EXPECT_TRUE(BitEqual(res.Corners[10], res.Corners[11]));
+  EXPECT_FALSE(IsDefault(res.Corners[11]));
+}
+
+// A zero-UV-area ("group with any") triangle X between a right-handed triangle A and a
+// left-handed B around a common vertex takes the orientation of the first group reaching it:
+// the group created first, i.e. of the triangle listed first.
+TEST(MikkTSpaceKernel, GroupWithAnyAdoption)
+{
+  auto build = [](bool aFirst)
+  {
+    Mesh m;
+    const long long c = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+    const long long a = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+    const long long p1 = m.AddPoint({ 1, 1, 0 }, kUp, { 1, 1 });
+    const long long p2 = m.AddPoint({ 0, 1, 0 }, kUp, { 2, 2 }); // uv collinear with c, p1
+    const long long b = m.AddPoint({ -1, 1, 0 }, kUp, { 1, 0 });
+    if (aFirst)
+    {
+      m.AddFace({ c, a, p1 }); // A: det > 0
+      m.AddFace({ c, p2, b }); // B: det < 0
+    }
+    else
+    {
+      m.AddFace({ c, p2, b });
+      m.AddFace({ c, a, p1 });
+    }
+    m.AddFace({ c, p1, p2 }); // X: zero UV area
+    return m;
+  };
+  for (bool aFirst : { true, false })
+  {
+    const mikk::Result res = RunKernel(build(aFirst));
+    ASSERT_EQ(res.Corners.size(), 9u);
+    EXPECT_EQ(res.NumberOfGroupWithAnyTriangles, 1);
+    const size_t faceA = aFirst ? 0 : 3, faceB = aFirst ? 3 : 0;
+    EXPECT_EQ(res.Corners[faceA].Sign, 1.0f);
+    EXPECT_EQ(res.Corners[faceB].Sign, -1.0f);
+    // X = (c, p1, p2): corners 6, 7, 8
+    if (aFirst)
+    {
+      EXPECT_TRUE(BitEqual(res.Corners[6], res.Corners[faceA + 0])) << "X at c joins A";
+      EXPECT_TRUE(BitEqual(res.Corners[7], res.Corners[faceA + 2])) << "X at p1 joins A";
+      EXPECT_TRUE(IsDefault(res.Corners[8])) << "X at p2: B's group cannot enter";
+    }
+    else
+    {
+      EXPECT_TRUE(BitEqual(res.Corners[6], res.Corners[faceB + 0])) << "X at c joins B";
+      EXPECT_TRUE(BitEqual(res.Corners[8], res.Corners[faceB + 1])) << "X at p2 joins B";
+      EXPECT_TRUE(IsDefault(res.Corners[7])) << "X at p1: A's group cannot enter";
+    }
+  }
+}
+
+// Faces with more than 4 corners are fan-triangulated; their corners equal those of the
+// explicit fan. Faces with fewer than 3 corners are skipped with default corners.
+TEST(MikkTSpaceKernel, FanPolygon)
+{
+  Mesh m;
+  const float r = 1.0f;
+  for (int i = 0; i < 6; ++i)
+  {
+    const float ang = static_cast<float>(i) * 1.04719755f;
+    const float x = r * std::cos(ang), y = r * std::sin(ang), z = 0.2f * (i % 2);
+    const float nx = -0.1f * x, ny = -0.1f * y;
+    const float len = std::sqrt(nx * nx + ny * ny + 1.0f);
+    m.AddPoint(
+      { x, y, z }, { nx / len, ny / len, 1.0f / len }, { 0.5f + 0.4f * x, 0.5f + 0.3f * y });
+  }
+  Mesh poly = m;
+  poly.AddFace({ 0, 1, 2, 3, 4, 5 });
+  poly.AddFace({ 0, 3 }); // skipped
+  Mesh fan = m;
+  for (long long k = 1; k + 1 < 6; ++k)
+  {
+    fan.AddFace({ 0, k, k + 1 });
+  }
+  const mikk::Result p = RunKernel(poly);
+  const mikk::Result f = RunKernel(fan);
+  ASSERT_EQ(p.Corners.size(), 8u);
+  EXPECT_EQ(p.NumberOfSkippedFaces, 1);
+  // polygon corner j -> first fan corner using point j
+  const std::array<size_t, 6> map = { 0, 1, 2, 5, 8, 11 };
+  for (size_t j = 0; j < 6; ++j)
+  {
+    EXPECT_TRUE(BitEqual(p.Corners[j], f.Corners[map[j]])) << "polygon corner " << j;
+    EXPECT_FALSE(IsDefault(p.Corners[j]));
+  }
+  EXPECT_TRUE(IsDefault(p.Corners[6]) && IsDefault(p.Corners[7]));
+  EXPECT_EQ(p.NumberOfDefaultCorners, 2);
+}
+
+// Point ids outside [0, NumberOfPoints) skip the face (default corners), leaving the rest of
+// the mesh as if the face were absent.
+TEST(MikkTSpaceKernel, OutOfRangeIds)
+{
+  Mesh m;
+  const long long a = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  const long long b = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+  const long long c = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
+  const long long d = m.AddPoint({ 1, 1, 0.5f }, kUp, { 1, 1 });
+  Mesh clean = m;
+  clean.AddFace({ a, b, c });
+  clean.AddFace({ b, d, c });
+  m.AddFace({ a, b, c });
+  m.AddFace({ b, 4, c });     // == NumberOfPoints
+  m.AddFace({ -1, b, d, c }); // negative
+  m.AddFace({ b, d, c });
+  m.AddFace({ a, 1LL << 40, c, d, b }); // huge
+  const mikk::Result res = RunKernel(m);
+  const mikk::Result ref = RunKernel(clean);
+  ASSERT_EQ(res.Corners.size(), 18u);
+  EXPECT_EQ(res.NumberOfInvalidFaces, 3);
+  for (size_t k = 0; k < 3; ++k)
+  {
+    EXPECT_TRUE(BitEqual(res.Corners[k], ref.Corners[k]));
+    EXPECT_TRUE(BitEqual(res.Corners[10 + k], ref.Corners[3 + k]));
+  }
+  for (size_t k : { 3, 4, 5, 6, 7, 8, 9, 13, 14, 15, 16, 17 })
+  {
+    EXPECT_TRUE(IsDefault(res.Corners[k])) << "corner " << k;
+  }
+  EXPECT_EQ(res.NumberOfDefaultCorners, 12);
+}
+
+// NaN and Inf anywhere in the input never produce non-finite output.
+TEST(MikkTSpaceKernel, NonFiniteInput)
+{
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  Mesh m;
+  const int n = 6;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      m.AddPoint({ float(i), float(j), 0.1f * float((i * j) % 3) },
+        kUp,
+        { 0.1f * float(i), 0.1f * float(j) });
+    }
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const long long p = j * (n + 1) + i;
+      if ((i + j) % 2)
+      {
+        m.AddFace({ p, p + 1, p + n + 2, p + n + 1 });
+      }
+      else
+      {
+        m.AddFace({ p, p + 1, p + n + 2 });
+        m.AddFace({ p, p + n + 2, p + n + 1 });
+      }
+    }
+  }
+  const mikk::Result clean = RunKernel(m);
+  EXPECT_EQ(clean.NumberOfNonFiniteCorners, 0);
+  m.P[3 * 8 + 0] = nan;
+  m.N[3 * 10 + 1] = nan;
+  m.U[2 * 17 + 0] = nan;
+  m.P[3 * 24 + 2] = inf;
+  m.N[3 * 30 + 0] = -inf;
+  m.U[2 * 40 + 1] = inf;
+  m.P[3 * 45 + 0] = nan; // and a whole NaN point
+  m.P[3 * 45 + 1] = nan;
+  m.P[3 * 45 + 2] = nan;
+  const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), clean.Corners.size());
+  long long changed = 0;
+  for (size_t k = 0; k < res.Corners.size(); ++k)
+  {
+    const mikk::CornerFrame& f = res.Corners[k];
+    ASSERT_TRUE(
+      std::isfinite(f.Tangent[0]) && std::isfinite(f.Tangent[1]) && std::isfinite(f.Tangent[2]))
+      << "corner " << k;
+    ASSERT_TRUE(f.Sign == 1.0f || f.Sign == -1.0f);
+    changed += BitEqual(f, clean.Corners[k]) ? 0 : 1;
+  }
+  EXPECT_GT(res.NumberOfNonFiniteCorners, 0);
+  EXPECT_LE(res.NumberOfNonFiniteCorners, res.NumberOfDefaultCorners);
+  // only the neighbourhoods of the bad points change
+  EXPECT_LT(changed, static_cast<long long>(res.Corners.size()) / 2);
+}
+
+namespace
+{
+// Torus with quads and triangles, a mirrored band, collapsed UVs, degenerate triangles,
+// a fan polygon cap row and duplicated faces: exercises every path of the kernel.
+Mesh MixedTorus(int nu, int nv)
+{
+  Mesh m;
+  const float twoPi = 6.28318531f;
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const float a = twoPi * float(i) / float(nu), b = twoPi * float(j) / float(nv);
+      const float ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
+      float u = float(i) / float(nu), v = float(j) / float(nv);
+      if (i > nu / 2)
+      {
+        u = 1.0f - u; // mirrored band
+      }
+      if ((i * 7 + j * 3) % 53 == 0)
+      {
+        u = v = 0.25f; // collapsed UVs -> group-with-any triangles
+      }
+      m.AddPoint({ (2 + cb) * ca, (2 + cb) * sa, sb }, { cb * ca, cb * sa, sb }, { u, v });
+    }
+  }
+  auto id = [&](int i, int j) { return static_cast<long long>((j % nv) * nu + (i % nu)); };
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const long long p00 = id(i, j), p10 = id(i + 1, j), p11 = id(i + 1, j + 1),
+                      p01 = id(i, j + 1);
+      const int kind = (i + 3 * j) % 7;
+      if (kind < 3)
+      {
+        m.AddFace({ p00, p10, p11, p01 });
+      }
+      else if (kind < 6)
+      {
+        m.AddFace({ p00, p10, p11 });
+        m.AddFace({ p00, p11, p01 });
+      }
+      else
+      {
+        m.AddFace({ p00, p10, p11, p01, p00 }); // pentagon with a repeated corner
+      }
+      if ((i + j) % 11 == 0)
+      {
+        m.AddFace({ p00, p00, p11 }); // degenerate
+      }
+      if ((i * j) % 37 == 5)
+      {
+        m.AddFace({ p00, p10, p11 }); // duplicated face: non-manifold edges
+      }
+    }
+  }
+  return m;
+}
+} // namespace
+
+// Identical output for 1, 2 and 8 threads.
+TEST(MikkTSpaceKernel, DeterministicAcrossThreadCounts)
+{
+  const Mesh m = MixedTorus(160, 90);
+  std::vector<mikk::Result> results;
+  for (int threads : { 1, 2, 8 })
+  {
+    mikk::Result r;
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&]() { r = RunKernel(m); });
+    results.push_back(std::move(r));
+    results.push_back(RunKernel(m, threads)); // the kernel's own thread setting
+  }
+  EXPECT_GT(results[0].NumberOfDegenerateTriangles, 0);
+  EXPECT_GT(results[0].NumberOfGroupWithAnyTriangles, 0);
+  for (size_t i = 1; i < results.size(); ++i)
+  {
+    ASSERT_EQ(results[i].Corners.size(), results[0].Corners.size());
+    EXPECT_EQ(0,
+      std::memcmp(results[i].Corners.data(),
+        results[0].Corners.data(),
+        results[0].Corners.size() * sizeof(mikk::CornerFrame)))
+      << "run " << i;
+    EXPECT_EQ(results[i].NumberOfDefaultCorners, results[0].NumberOfDefaultCorners);
+  }
+}
+
+// The callback can stop the computation; it is told the progress.
+TEST(MikkTSpaceKernel, ProgressAndAbort)
+{
+  const Mesh m = MixedTorus(20, 10);
+  std::vector<double> seen;
+  const mikk::Result full = mikk::ComputeMikkTSpace(m.Input(),
+    0,
+    [&](double p)
+    {
+      seen.push_back(p);
+      return false;
+    });
+  EXPECT_FALSE(full.Aborted);
+  ASSERT_GE(seen.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), 1.0);
+  int calls = 0;
+  const mikk::Result stopped =
+    mikk::ComputeMikkTSpace(m.Input(), 0, [&](double) { return ++calls == 2; });
+  EXPECT_TRUE(stopped.Aborted);
+  ASSERT_EQ(stopped.Corners.size(), full.Corners.size());
+  for (const auto& f : stopped.Corners)
+  {
+    EXPECT_TRUE(IsDefault(f));
+  }
+}
+
+TEST(MikkTSpaceKernel, EmptyInput)
+{
+  Mesh m;
+  const mikk::Result res = RunKernel(m);
+  EXPECT_TRUE(res.Corners.empty());
+  EXPECT_FALSE(res.Aborted);
+}
