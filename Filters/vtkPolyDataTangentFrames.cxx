@@ -279,9 +279,11 @@ struct Execution
   /// short enough that every batch of cells has work for every block, since meshes number
   /// their points and cells with the same locality.
   static constexpr int OwnerShift = 12;
+  /// Blocks is a power of two, so that this is a mask and not a division (it runs several times
+  /// per triangle).
   bool Owns(int block, vtkIdType p) const
   {
-    return static_cast<int>((p >> OwnerShift) % this->Blocks) == block;
+    return static_cast<int>((p >> OwnerShift) & (this->Blocks - 1)) == block;
   }
 
   /**
@@ -944,8 +946,15 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.NumberOfPoints = input->GetNumberOfPoints();
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();
-  ex.Blocks = static_cast<int>(std::max<vtkIdType>(
-    1, std::min<vtkIdType>(vtkSMPTools::GetEstimatedNumberOfThreads(), ex.NumberOfPoints / 1024)));
+  // One block per thread (rounded down to a power of two), none smaller than one run of ids.
+  const vtkIdType wanted =
+    std::min<vtkIdType>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()),
+      std::max<vtkIdType>(1, ex.NumberOfPoints >> Execution::OwnerShift));
+  ex.Blocks = 1;
+  while (ex.Blocks * 2 <= wanted && ex.Blocks < 64)
+  {
+    ex.Blocks *= 2;
+  }
   const vtkIdType numPoints = ex.NumberOfPoints;
   const auto epsilon = [](vtkDataArray* a)
   { return a->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON); };

@@ -1005,6 +1005,7 @@ TEST(PolyDataTangentFrames, PrintSelfListsEverySetting)
   for (const char* setting : { "Method: AngleWeighted",
          "TCoordsArrayName",
          "Splitting: On",
+         "GLTFSignConvention: Off",
          "ComputeBitangents: Off",
          "ComputeCellTangents: Off",
          "OutputPrecision",

@@ -1,0 +1,394 @@
+// Numerical stability of vtkPolyDataTangentFrames at the extremes: scaled, translated and
+// near-degenerate input, a vertex of very high valence, and meshes of degenerate triangles.
+#include "vtkNormalMappingMeshes.h"
+#include "vtkPolyDataTangentFrames.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cfloat>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+const double Pi = std::acos(-1.0);
+using Vec = std::array<double, 3>;
+
+const int WeightedMethods[] = { vtkPolyDataTangentFrames::UNWEIGHTED,
+  vtkPolyDataTangentFrames::AREA_WEIGHTED,
+  vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+
+Vec Get3(vtkDataArray* a, vtkIdType i)
+{
+  Vec v;
+  a->GetTuple(i, v.data());
+  return v;
+}
+
+double AngleDeg(const Vec& a, const Vec& b)
+{
+  const Vec c{ a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  return std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
+           a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) *
+    180.0 / Pi;
+}
+
+vtkSmartPointer<vtkPolyData> Frames(vtkPolyData* input, int method, int precision)
+{
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(input);
+  filter->SetMethod(method);
+  filter->SetOutputPrecision(precision);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+/// Every tangent finite, unit and perpendicular to its (normalized) normal within `tol`, every
+/// sign +1 or -1.
+void ExpectValid(vtkPolyData* out, double tol)
+{
+  vtkDataArray* t = out->GetPointData()->GetTangents();
+  vtkDataArray* n = out->GetPointData()->GetNormals();
+  vtkDataArray* s = out->GetPointData()->GetArray("TangentSigns");
+  ASSERT_NE(t, nullptr);
+  int reported = 0;
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints() && reported < 5; ++p)
+  {
+    const Vec tv = Get3(t, p);
+    const Vec nv = Get3(n, p);
+    const double len = std::sqrt(tv[0] * tv[0] + tv[1] * tv[1] + tv[2] * tv[2]);
+    const double nlen = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+    const double dot = (tv[0] * nv[0] + tv[1] * nv[1] + tv[2] * nv[2]) / nlen;
+    const double sign = s->GetComponent(p, 0);
+    const bool ok = std::abs(len - 1.0) <= tol && (!(nlen > 0) || std::abs(dot) <= tol) &&
+      (sign == 1.0 || sign == -1.0);
+    EXPECT_TRUE(ok) << "point " << p << " |T|=" << len << " T.N=" << dot << " sign=" << sign;
+    reported += ok ? 0 : 1;
+  }
+}
+
+/// A copy of mesh with points p -> scale * p + offset and texture coordinates uv -> uvScale * uv,
+/// stored in the given precision (the transform is applied in double, then rounded once).
+vtkSmartPointer<vtkPolyData> Transformed(vtkPolyData* mesh,
+  double scale,
+  double offset,
+  double uvScale,
+  bool doublePrecision)
+{
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->DeepCopy(mesh);
+  const int type = doublePrecision ? VTK_DOUBLE : VTK_FLOAT;
+  vtkNew<vtkPoints> points;
+  points->SetDataType(type);
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  auto uv = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(type));
+  uv->SetNumberOfComponents(2);
+  uv->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  uv->SetName("TCoords");
+  vtkDataArray* inUV = mesh->GetPointData()->GetTCoords();
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    mesh->GetPoint(p, x);
+    points->SetPoint(p, scale * x[0] + offset, scale * x[1] + offset, scale * x[2] + offset);
+    uv->SetTuple2(p, uvScale * inUV->GetComponent(p, 0), uvScale * inUV->GetComponent(p, 1));
+  }
+  out->SetPoints(points);
+  out->GetPointData()->SetTCoords(uv);
+  return out;
+}
+
+vtkSmartPointer<vtkPolyData> Torus(bool mirror)
+{
+  vtkNormalMapping::TorusOptions options;
+  options.U = 32;
+  options.V = 16;
+  options.MirrorU = mirror;
+  options.DoublePrecision = true; // exact reference geometry; Transformed() stores it
+  return vtkNormalMapping::MakeTorus(options);
+}
+
+double MaxAngleBetween(vtkPolyData* a, vtkPolyData* b)
+{
+  double worst = 0.0;
+  vtkDataArray* ta = a->GetPointData()->GetTangents();
+  vtkDataArray* tb = b->GetPointData()->GetTangents();
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    worst = std::max(worst, AngleDeg(Get3(ta, p), Get3(tb, p)));
+  }
+  return worst;
+}
+}
+
+TEST(TangentFramesStability, ScaledPositionsAndTextureCoordinates)
+{
+  // The frame does not depend on the scale of positions or texture coordinates. Double input:
+  // the scaled coordinates are rounded once (relative 2^-53) and the kernels rescale by exact
+  // powers of two, so the frames agree to ~1e-12 degrees. Float input: rounding the scaled
+  // coordinates to float (relative 2^-24 = 6e-8) moves an edge of this torus (length >= 0.07,
+  // coordinates <= 1.35) by up to 1.35/0.07 * 6e-8 relative, about 1.2e-6 rad = 7e-5 degrees;
+  // the float output adds 3.4e-6 degrees. Bounds: 1e-9 (double), 2e-4 (float) degrees.
+  for (bool mirror : { false, true })
+  {
+    auto mesh = Torus(mirror);
+    for (bool dbl : { false, true })
+    {
+      for (int method : WeightedMethods)
+      {
+        const int precision = vtkAlgorithm::DOUBLE_PRECISION;
+        auto reference = Frames(Transformed(mesh, 1.0, 0.0, 1.0, dbl), method, precision);
+        for (double scale : { 1e-30, 1e-20, 1e-10, 1e10, 1e20, 1e30 })
+        {
+          for (double uvScale : { 1e-10, 1.0, 1e10 })
+          {
+            auto out = Frames(Transformed(mesh, scale, 0.0, uvScale, dbl), method, precision);
+            SCOPED_TRACE(std::string(dbl ? "double" : "float") + " method " +
+              vtkPolyDataTangentFrames::GetMethodName(method) + " scale " + std::to_string(scale) +
+              " uv " + std::to_string(uvScale));
+            ASSERT_EQ(out->GetNumberOfPoints(), reference->GetNumberOfPoints());
+            ExpectValid(out, 1e-12);
+            EXPECT_LE(MaxAngleBetween(out, reference), dbl ? 1e-9 : 2e-4);
+            vtkDataArray* s0 = reference->GetPointData()->GetArray("TangentSigns");
+            vtkDataArray* s1 = out->GetPointData()->GetArray("TangentSigns");
+            for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+            {
+              ASSERT_EQ(s0->GetComponent(p, 0), s1->GetComponent(p, 0)) << "point " << p;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(TangentFramesStability, TranslatedFarFromTheOrigin)
+{
+  // Translating by T rounds float coordinates to ulp(T) = T * 2^-24 (about 6e-4 at 1e4, 0.5 at
+  // 1e7): edges of length h lose relative accuracy ulp(T)/h, and the tangent (a combination of
+  // two edges) turns by up to a few times that. This torus has h >= 0.07, so the bound is
+  // min(180, 4 * ulp(T) / 0.07 rad). Double input keeps ulp(T) = T * 2^-53 (2e-9 at 1e7).
+  auto mesh = Torus(false);
+  std::cout << "translation | float input max angle (deg) | double input max angle (deg)\n";
+  for (int method : WeightedMethods)
+  {
+    auto reference =
+      Frames(Transformed(mesh, 1.0, 0.0, 1.0, true), method, vtkAlgorithm::DOUBLE_PRECISION);
+    for (double offset : { 1e4, 1e5, 1e6, 1e7 })
+    {
+      double worst[2];
+      for (bool dbl : { false, true })
+      {
+        auto out =
+          Frames(Transformed(mesh, 1.0, offset, 1.0, dbl), method, vtkAlgorithm::DOUBLE_PRECISION);
+        SCOPED_TRACE(std::to_string(offset) + (dbl ? " double" : " float"));
+        ExpectValid(out, 1e-12); // always a valid frame, however wrong its direction
+        worst[dbl] = MaxAngleBetween(out, reference);
+        const double ulp = offset * std::ldexp(1.0, dbl ? -53 : -24);
+        const double bound = std::min(180.0, 4.0 * ulp / 0.07 * 180.0 / Pi);
+        EXPECT_LE(worst[dbl], bound);
+      }
+      if (method == vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
+      {
+        std::cout << offset << " | " << worst[0] << " | " << worst[1] << "\n";
+      }
+    }
+  }
+}
+
+namespace
+{
+/// Two triangles sharing the edge (0,1)-(1,0) plus one test triangle (0, 1, 2) given by its
+/// points and texture coordinates.
+vtkSmartPointer<vtkPolyData> WithTestTriangle(const std::array<Vec, 3>& p,
+  const std::array<std::array<double, 2>, 3>& uv)
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> tc, n;
+  tc->SetNumberOfComponents(2);
+  tc->SetName("TCoords");
+  n->SetNumberOfComponents(3);
+  n->SetName("Normals");
+  for (int k = 0; k < 3; ++k)
+  {
+    points->InsertNextPoint(p[k].data());
+    tc->InsertNextTuple(uv[k].data());
+    n->InsertNextTuple3(0, 0, 1);
+  }
+  // A well-shaped neighbour so that the test triangle's points are not all fallback points.
+  points->InsertNextPoint(0.0, -1.0, 0.0);
+  tc->InsertNextTuple2(0.0, -1.0);
+  n->InsertNextTuple3(0, 0, 1);
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType t0[3] = { 0, 1, 2 }, t1[3] = { 0, 3, 1 };
+  polys->InsertNextCell(3, t0);
+  polys->InsertNextCell(3, t1);
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  mesh->GetPointData()->SetTCoords(tc);
+  mesh->GetPointData()->SetNormals(n);
+  return mesh;
+}
+}
+
+TEST(TangentFramesStability, NearDegenerateSliversAndNeedles)
+{
+  struct Case
+  {
+    const char* Name;
+    std::array<Vec, 3> P;
+    std::array<std::array<double, 2>, 3> UV;
+    bool Degenerate; // expected classification of the test triangle
+  };
+  const double d = 1e-20;
+  const std::vector<Case> cases = {
+    { "UV determinant 1e-20 relative",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0.5, d } } },
+      true },
+    { "UV determinant 1e-3 relative",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0.5, 1e-3 } } },
+      false },
+    { "position sliver 1e-20",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, d, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0, 1 } } },
+      true },
+    { "needle (one edge 1e-20)",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 1, d, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0, 1 } } },
+      true },
+    { "zero area, good UVs",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0, 1 } } },
+      true },
+    { "good area, zero UV area",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } } },
+      { { { 0, 0 }, { 1, 1 }, { 2, 2 } } },
+      true },
+    { "thin but honest (shape 1e-3)",
+      { { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, 1e-3, 0 } } },
+      { { { 0, 0 }, { 1, 0 }, { 0.5, 1e-3 } } },
+      false },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.Name);
+    for (int method : WeightedMethods)
+    {
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      filter->SetInputData(WithTestTriangle(c.P, c.UV));
+      filter->SetMethod(method);
+      filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+      filter->Update();
+      ExpectValid(filter->GetOutput(), 1e-12);
+      EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), c.Degenerate ? 1 : 0);
+    }
+  }
+}
+
+TEST(TangentFramesStability, VertexSharedByHundredThousandTriangles)
+{
+  // A disk fanned around its centre with 100,000 triangles and a planar map u = x: the centre's
+  // tangent is (1, 0, 0) for every weighting (the fan is symmetric), up to the rounding of
+  // 100,000 summands (relative 1e5 * 2^-53 ~ 1e-11): bound 1e-8 degrees.
+  const int n = 100000;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> tc, nrm;
+  tc->SetNumberOfComponents(2);
+  tc->SetName("TCoords");
+  nrm->SetNumberOfComponents(3);
+  nrm->SetName("Normals");
+  points->InsertNextPoint(0, 0, 0);
+  tc->InsertNextTuple2(0, 0);
+  nrm->InsertNextTuple3(0, 0, 1);
+  for (int i = 0; i < n; ++i)
+  {
+    const double a = 2 * Pi * i / n;
+    points->InsertNextPoint(std::cos(a), std::sin(a), 0);
+    tc->InsertNextTuple2(std::cos(a), std::sin(a));
+    nrm->InsertNextTuple3(0, 0, 1);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (int i = 0; i < n; ++i)
+  {
+    const vtkIdType tri[3] = { 0, 1 + i, 1 + (i + 1) % n };
+    polys->InsertNextCell(3, tri);
+  }
+  vtkNew<vtkPolyData> disk;
+  disk->SetPoints(points);
+  disk->SetPolys(polys);
+  disk->GetPointData()->SetTCoords(tc);
+  disk->GetPointData()->SetNormals(nrm);
+  for (int method : WeightedMethods)
+  {
+    auto out = Frames(disk, method, vtkAlgorithm::DOUBLE_PRECISION);
+    ExpectValid(out, 1e-12);
+    EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetTangents(), 0), { 1, 0, 0 }), 1e-8);
+  }
+}
+
+TEST(TangentFramesStability, MeshOfOnlyDegenerateTriangles)
+{
+  // 10,000 triangles, each with zero area or zero UV area: every point is a fallback point with
+  // the fixed rule's frame, and the counts say so.
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> tc;
+  tc->SetNumberOfComponents(2);
+  vtkNew<vtkCellArray> polys;
+  for (int i = 0; i < 10000; ++i)
+  {
+    const vtkIdType base = points->GetNumberOfPoints();
+    if (i % 2)
+    {
+      // Collinear points with good UVs.
+      points->InsertNextPoint(i, 0, 0);
+      points->InsertNextPoint(i + 1, 0, 0);
+      points->InsertNextPoint(i + 2, 0, 0);
+      tc->InsertNextTuple2(0, 0);
+      tc->InsertNextTuple2(1, 0);
+      tc->InsertNextTuple2(0, 1);
+    }
+    else
+    {
+      // A good triangle with every UV equal.
+      points->InsertNextPoint(i, 0, 0);
+      points->InsertNextPoint(i + 1, 0, 0);
+      points->InsertNextPoint(i, 1, 0);
+      tc->InsertNextTuple2(0.5, 0.5);
+      tc->InsertNextTuple2(0.5, 0.5);
+      tc->InsertNextTuple2(0.5, 0.5);
+    }
+    const vtkIdType tri[3] = { base, base + 1, base + 2 };
+    polys->InsertNextCell(3, tri);
+  }
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  mesh->GetPointData()->SetTCoords(tc);
+  for (int method : WeightedMethods)
+  {
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    // Normals were computed (collinear triangles have none: (0, 0, 1) there).
+    ExpectValid(out, 1e-6); // float output: 2^-23 per component
+    EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 10000);
+    EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 30000);
+  }
+}
