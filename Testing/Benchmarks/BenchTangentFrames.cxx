@@ -94,6 +94,9 @@ BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::AREA_WEIGHTED)
 BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
   ->Name("TangentFrames/AngleWeighted")
   ->Apply([](auto* b) { Sizes(b, true); });
+BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::MIKKTSPACE)
+  ->Name("TangentFrames/MikkTSpace")
+  ->Apply([](auto* b) { Sizes(b, true); });
 
 /// Keeps every run so that ratios to the reference can be printed at the end.
 class Collector : public benchmark::ConsoleReporter
