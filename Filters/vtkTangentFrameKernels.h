@@ -276,11 +276,12 @@ inline void ComputeCornerAngles(const glm::dvec3& p0,
   e01 = detail::ScaleByPowerOfTwo(e01, e);
   e02 = detail::ScaleByPowerOfTwo(e02, e);
   e12 = detail::ScaleByPowerOfTwo(e12, e);
-  const auto angle = [](const glm::dvec3& a, const glm::dvec3& b)
-  { return detail::AngleFromSineCosine(glm::length(glm::cross(a, b)), glm::dot(a, b)); };
-  angles[0] = angle(e01, e02);
-  angles[1] = angle(-e01, e12);
-  angles[2] = angle(-e02, -e12);
+  // |a x b| is twice the area for the two edges at any corner, so one cross product and one
+  // square root serve all three angles; each corner has its own cosine term.
+  const double sine = glm::length(glm::cross(e01, e02));
+  angles[0] = detail::AngleFromSineCosine(sine, glm::dot(e01, e02));
+  angles[1] = detail::AngleFromSineCosine(sine, -glm::dot(e01, e12));
+  angles[2] = detail::AngleFromSineCosine(sine, glm::dot(e02, e12));
 }
 
 /// Weight of a triangle's contribution at one of its corners.
