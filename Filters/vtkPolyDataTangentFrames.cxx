@@ -148,7 +148,8 @@ struct MeshView
   }
   TriangleFrame Frame(const vtkIdType* tri,
     const DegeneracyTolerance& tol,
-    bool withArea = true) const
+    bool withArea = true,
+    double* angles = nullptr) const
   {
     return ComputeTriangleFrame(this->Point(tri[0]),
       this->Point(tri[1]),
@@ -157,7 +158,8 @@ struct MeshView
       this->UV(tri[1]),
       this->UV(tri[2]),
       tol,
-      withArea);
+      withArea,
+      angles);
   }
   /// CornerSign(frame, Normal(p)) without normalizing: only the sign of N.n matters. A zero or
   /// non-finite normal uses the geometric stand-in when there is one.
@@ -420,19 +422,15 @@ bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degen
     0.75,
     [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
     {
-      const TriangleFrame f = view.Frame(tri, ex.Tolerance, area);
+      double w[3] = { 1.0, 1.0, 1.0 };
+      const TriangleFrame f = view.Frame(tri, ex.Tolerance, area, angles ? w : nullptr);
       if (f.Orientation == 0)
       {
         // Counted once: by the block that owns the first corner.
         degenerateByBlock[block] += ex.Owns(block, tri[0]) ? 1 : 0;
         return;
       }
-      double w[3] = { 1.0, 1.0, 1.0 };
-      if (angles)
-      {
-        ComputeCornerAngles(view.Point(tri[0]), view.Point(tri[1]), view.Point(tri[2]), w);
-      }
-      else if (area)
+      if (area)
       {
         w[0] = w[1] = w[2] = f.Area;
       }

@@ -174,6 +174,22 @@ inline double AngleFromSineCosine(double s, double c)
   return c < 0.0 ? 3.14159265358979323846 - angle : angle;
 }
 
+/**
+ * Interior angles from the edges e1 = p1 - p0, e2 = p2 - p0, e3 = p2 - p1 and
+ * sine = |e1 x e2|: the two edges at any corner span the same parallelogram, so one cross
+ * product serves all three corners; each has its own cosine term.
+ */
+inline void CornerAnglesFromEdges(const glm::dvec3& e1,
+  const glm::dvec3& e2,
+  const glm::dvec3& e3,
+  double sine,
+  double angles[3])
+{
+  angles[0] = AngleFromSineCosine(sine, glm::dot(e1, e2));
+  angles[1] = AngleFromSineCosine(sine, -glm::dot(e1, e3));
+  angles[2] = AngleFromSineCosine(sine, glm::dot(e2, e3));
+}
+
 inline bool IsFinite(const glm::dvec3& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -192,9 +208,14 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec2& uv1,
   const glm::dvec2& uv2,
   const DegeneracyTolerance& tol = DegeneracyTolerance(),
-  bool withArea = true)
+  bool withArea = true,
+  double* angles = nullptr)
 {
   TriangleFrame frame;
+  if (angles)
+  {
+    angles[0] = angles[1] = angles[2] = 0.0;
+  }
   glm::dvec3 e1 = p1 - p0;
   glm::dvec3 e2 = p2 - p0;
   const double maxE = detail::MaxAbs(e1, e2);
@@ -215,6 +236,10 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
     return frame; // zero area (collinear or repeated points), within the position tolerance
   }
   frame.Normal = n;
+  if (angles)
+  {
+    detail::CornerAnglesFromEdges(e1, e2, e3, std::sqrt(twiceArea2), angles);
+  }
   if (withArea)
   {
     // Undo the exact scaling; clamp instead of overflowing for huge double input.
@@ -263,10 +288,10 @@ inline void ComputeCornerAngles(const glm::dvec3& p0,
   const glm::dvec3& p2,
   double angles[3])
 {
+  // The same rescaled edges as ComputeTriangleFrame, so both give the same bits.
   glm::dvec3 e01 = p1 - p0;
   glm::dvec3 e02 = p2 - p0;
-  glm::dvec3 e12 = p2 - p1;
-  const double maxE = std::max(detail::MaxAbs(e01, e02), detail::MaxAbs(e12, e12));
+  const double maxE = detail::MaxAbs(e01, e02);
   angles[0] = angles[1] = angles[2] = 0.0;
   if (!(maxE > 0.0) || !std::isfinite(maxE))
   {
@@ -275,13 +300,8 @@ inline void ComputeCornerAngles(const glm::dvec3& p0,
   const int e = detail::UnitExponent(maxE);
   e01 = detail::ScaleByPowerOfTwo(e01, e);
   e02 = detail::ScaleByPowerOfTwo(e02, e);
-  e12 = detail::ScaleByPowerOfTwo(e12, e);
-  // |a x b| is twice the area for the two edges at any corner, so one cross product and one
-  // square root serve all three angles; each corner has its own cosine term.
-  const double sine = glm::length(glm::cross(e01, e02));
-  angles[0] = detail::AngleFromSineCosine(sine, glm::dot(e01, e02));
-  angles[1] = detail::AngleFromSineCosine(sine, -glm::dot(e01, e12));
-  angles[2] = detail::AngleFromSineCosine(sine, glm::dot(e02, e12));
+  const glm::dvec3 e12 = e02 - e01;
+  detail::CornerAnglesFromEdges(e01, e02, e12, glm::length(glm::cross(e01, e02)), angles);
 }
 
 /// Weight of a triangle's contribution at one of its corners.

@@ -207,3 +207,36 @@ TEST(TangentFrameKernels, FastAngleMatchesAtan2)
   EXPECT_EQ(detail::AngleFromSineCosine(0.0, 0.0), 0.0);
   EXPECT_EQ(detail::AngleFromSineCosine(0.0, -1.0), Pi);
 }
+
+TEST(TangentFrameKernels, FrameAnglesMatchCornerAngles)
+{
+  // The angles ComputeTriangleFrame can return are those of ComputeCornerAngles (the same
+  // formula on the same rescaled edges, so the same bits), for any triangle that is not
+  // degenerate in position, and zero for one that is.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  for (int i = 0; i < 1000; ++i)
+  {
+    const glm::dvec3 a(d(rng), d(rng), d(rng)), b(d(rng), d(rng), d(rng)),
+      c(d(rng), d(rng), d(rng));
+    double fromFrame[3], direct[3];
+    ComputeTriangleFrame(
+      a, b, c, { 0, 0 }, { 1, 0 }, { 0, 1 }, DegeneracyTolerance(), false, fromFrame);
+    ComputeCornerAngles(a, b, c, direct);
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_EQ(fromFrame[k], direct[k]);
+    }
+  }
+  double angles[3] = { 9, 9, 9 };
+  ComputeTriangleFrame({ 0, 0, 0 },
+    { 1, 0, 0 },
+    { 2, 0, 0 },
+    { 0, 0 },
+    { 1, 0 },
+    { 0, 1 },
+    DegeneracyTolerance(),
+    false,
+    angles);
+  EXPECT_EQ(angles[0] + angles[1] + angles[2], 0.0);
+}
