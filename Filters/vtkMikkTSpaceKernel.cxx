@@ -1180,33 +1180,36 @@ void Kernel::BuildFans()
   const int nb = std::max(1, std::min(NumBlocks, int(nt / 4096) + 1));
   Buffer<Idx> counts;
   counts.Assign(size_t(nb) * nv, 0, &Pool);
-  auto blockRange = [&](int blk, Idx& t0, Idx& t1)
+  // Both passes visit the included triangles of each block in order, with the block's row of
+  // `counts` (first the counts, then the running write positions).
+  auto forEachBlockTriangle = [&](const auto& visit)
   {
-    t0 = Idx((long long)nt * blk / nb);
-    t1 = Idx((long long)nt * (blk + 1) / nb);
-  };
-  vtkSMPTools::For(0,
-    nb,
-    1,
-    [&](vtkIdType bb, vtkIdType be)
-    {
-      for (vtkIdType blk = bb; blk < be; ++blk)
+    vtkSMPTools::For(0,
+      nb,
+      1,
+      [&](vtkIdType bb, vtkIdType be)
       {
-        Idx t0, t1;
-        blockRange(int(blk), t0, t1);
-        Idx* cnt = &counts[size_t(blk) * nv];
-        for (Idx t = t0; t < t1; ++t)
+        for (vtkIdType blk = bb; blk < be; ++blk)
         {
-          if (TriFlags[size_t(t)] & kExcluded)
+          const Idx t0 = Idx((long long)nt * blk / nb);
+          const Idx t1 = Idx((long long)nt * (blk + 1) / nb);
+          Idx* row = &counts[size_t(blk) * nv];
+          for (Idx t = t0; t < t1; ++t)
           {
-            continue;
+            if (!(TriFlags[size_t(t)] & kExcluded))
+            {
+              visit(row, &TriWeld[3 * size_t(t)], t);
+            }
           }
-          const Idx* w = &TriWeld[3 * size_t(t)];
-          ++cnt[w[0]];
-          ++cnt[w[1]];
-          ++cnt[w[2]];
         }
-      }
+      });
+  };
+  forEachBlockTriangle(
+    [](Idx* cnt, const Idx* w, Idx)
+    {
+      ++cnt[w[0]];
+      ++cnt[w[1]];
+      ++cnt[w[2]];
     });
   FanStart.Allocate(nv + 1, &Pool);
   Idx sum = 0;
@@ -1223,28 +1226,12 @@ void Kernel::BuildFans()
   }
   FanStart[nv] = sum;
   Fan.Allocate(size_t(sum), &Pool);
-  vtkSMPTools::For(0,
-    nb,
-    1,
-    [&](vtkIdType bb, vtkIdType be)
+  forEachBlockTriangle(
+    [&](Idx* pos, const Idx* w, Idx t)
     {
-      for (vtkIdType blk = bb; blk < be; ++blk)
-      {
-        Idx t0, t1;
-        blockRange(int(blk), t0, t1);
-        Idx* pos = &counts[size_t(blk) * nv];
-        for (Idx t = t0; t < t1; ++t)
-        {
-          if (TriFlags[size_t(t)] & kExcluded)
-          {
-            continue;
-          }
-          const Idx* w = &TriWeld[3 * size_t(t)];
-          Fan[size_t(pos[w[0]]++)] = 3 * t;
-          Fan[size_t(pos[w[1]]++)] = 3 * t + 1;
-          Fan[size_t(pos[w[2]]++)] = 3 * t + 2;
-        }
-      }
+      Fan[size_t(pos[w[0]]++)] = 3 * t;
+      Fan[size_t(pos[w[1]]++)] = 3 * t + 1;
+      Fan[size_t(pos[w[2]]++)] = 3 * t + 2;
     });
 }
 

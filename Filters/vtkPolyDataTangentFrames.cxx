@@ -526,19 +526,11 @@ void Finish(Execution& ex,
           if (ex.Splitting)
           {
             side = 0;
-            glm::dvec3 mirrored;
-            if (!OrthonormalizeTangent(n, a.Tangent[1], mirrored))
-            {
-              mirrored = FallbackTangent(n);
-            }
+            const glm::dvec3 mirrored = PerpendicularTangent(n, a.Tangent[1]);
             splitLists.Local().push_back({ p, n, mirrored });
           }
         }
-        glm::dvec3 t;
-        if (!OrthonormalizeTangent(n, a.Tangent[side], t))
-        {
-          t = FallbackTangent(n);
-        }
+        const glm::dvec3 t = PerpendicularTangent(n, a.Tangent[side]);
         WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
       }
     });
@@ -595,11 +587,7 @@ bool FillFallbacks(Execution& ex,
       {
         const vtkIdType p = fallbacks[i];
         const glm::dvec3 n = view.Normals ? view.Normal(p) : glm::dvec3(0.0);
-        glm::dvec3 t;
-        if (!OrthonormalizeTangent(n, acc[p].Tangent[0], t))
-        {
-          t = FallbackTangent(n);
-        }
+        const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent[0]);
         WriteFrame(p, n, t, acc[p].Weight[1] < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
       }
     });
@@ -721,11 +709,7 @@ void ComputeCellTangentArray(const Execution& ex,
                   n += f.Area * SafeNormalize(f.Normal);
                 });
               n = SafeNormalize(n);
-              glm::dvec3 unit;
-              if (!OrthonormalizeTangent(n, t, unit))
-              {
-                unit = FallbackTangent(n);
-              }
+              const glm::dvec3 unit = PerpendicularTangent(n, t);
               for (int k = 0; k < 3; ++k)
               {
                 out[3 * (first + c) + k] = static_cast<OutT>(unit[k]);

@@ -787,11 +787,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
             }
           }
           n = SafeNormalize(n);
-          glm::dvec3 unit;
-          if (!OrthonormalizeTangent(n, t, unit))
-          {
-            unit = FallbackTangent(n);
-          }
+          const glm::dvec3 unit = PerpendicularTangent(n, t);
           for (int k = 0; k < 3; ++k)
           {
             cOut[3 * (firstSurface + cell) + k] = static_cast<OutT>(unit[k]);

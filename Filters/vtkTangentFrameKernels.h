@@ -386,6 +386,14 @@ inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm:
   return true;
 }
 
+/// The unit tangent perpendicular to n that t points along, or FallbackTangent(n) where t has
+/// no usable perpendicular part (see OrthonormalizeTangent).
+inline glm::dvec3 PerpendicularTangent(const glm::dvec3& n, const glm::dvec3& t)
+{
+  glm::dvec3 out;
+  return OrthonormalizeTangent(n, t, out) ? out : FallbackTangent(n);
+}
+
 } // namespace vtkNormalMapping
 
 #endif
