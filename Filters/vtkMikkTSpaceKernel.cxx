@@ -735,6 +735,28 @@ struct Kernel
   }
   Idx SlotOf(Idx corner) const { return IdentitySlots ? corner : TriSlot[size_t(corner)]; }
 
+  /// Whether face offsets [b, e) are usable: inside the connectivity and in order.
+  bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
+  /// Whether a face gives triangles (e - b - 2 of them): in range, with at least 3 corners.
+  bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
+  /// Calls visit(b, e, t) for each face of chunk c that gives triangles, in order: [b, e) are
+  /// its offsets and t its first triangle (triangles are numbered in face order).
+  template<typename Visit>
+  void ForEachTriangulatedFace(long long c, Visit&& visit) const
+  {
+    Idx t = ChunkTriBase[size_t(c)];
+    const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
+    for (long long f = c * kFaceChunk; f < fe; ++f)
+    {
+      const long long b = Off[f], e = Off[f + 1];
+      if (this->FaceHasTriangles(b, e))
+      {
+        visit(b, e, t);
+        t += Idx(e - b - 2);
+      }
+    }
+  }
+
   void Weld();
   void BuildTriangles();
   void SetupTriangle(Idx t, const Idx slots[3], const Idx pts[3], float& det);
@@ -957,7 +979,6 @@ void Kernel::BuildTriangles()
   const long long nf = In.NumberOfFaces;
   NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
   ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
-  const long long ns = NumSlots;
   std::vector<uint8_t> chunkIdentity(size_t(NumFaceChunks), 1),
     chunkMulti(size_t(NumFaceChunks), 0);
   vtkSMPTools::For(0,
@@ -974,7 +995,7 @@ void Kernel::BuildTriangles()
         {
           const long long b = Off[f], e = Off[f + 1];
           identity = identity && b == 3 * f && e == b + 3;
-          if (b < 0 || e < b || e > ns || e - b < 3)
+          if (!this->FaceHasTriangles(b, e))
           {
             continue;
           }
@@ -1026,7 +1047,7 @@ void Kernel::BuildTriangles()
         for (long long f = c * kFaceChunk; f < fe; ++f)
         {
           const long long b = Off[f], e = Off[f + 1];
-          if (b < 0 || e < b || e > ns)
+          if (!this->FaceInRange(b, e))
           {
             ++st.Invalid;
             continue;
@@ -2008,8 +2029,6 @@ void Kernel::ProcessVertices()
 // group creation order (then triangle order); the sign is that of the last group.
 void Kernel::MergeMultiWriters()
 {
-  const long long nf = In.NumberOfFaces;
-  const long long ns = NumSlots;
   vtkSMPTools::For(0,
     NumFaceChunks,
     1,
@@ -2022,61 +2041,53 @@ void Kernel::MergeMultiWriters()
       std::vector<Contribution> list;
       for (vtkIdType c = cb; c < ce; ++c)
       {
-        Idx t = ChunkTriBase[size_t(c)];
-        const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-        for (long long f = c * kFaceChunk; f < fe; ++f)
-        {
-          const long long b = Off[f], e = Off[f + 1];
-          if (b < 0 || e < b || e > ns || e - b < 3)
+        this->ForEachTriangulatedFace(c,
+          [&](long long b, long long e, Idx t)
           {
-            continue;
-          }
-          const Idx nTri = Idx(e - b - 2);
-          if (nTri == 1 || (TriFlags[size_t(t)] & kDead))
-          {
-            t += nTri;
-            continue;
-          }
-          list.clear();
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            for (int i = 0; i < 3; ++i)
+            const Idx nTri = Idx(e - b - 2);
+            if (nTri == 1 || (TriFlags[size_t(t)] & kDead))
             {
-              const Idx corner = 3 * u + i;
-              if ((TriFlags[size_t(u)] & (kMulti0 << i)) && Side[size_t(corner)].Key >= 0)
+              return;
+            }
+            list.clear();
+            for (Idx u = t; u < t + nTri; ++u)
+            {
+              for (int i = 0; i < 3; ++i)
               {
-                list.push_back({ SlotOf(corner), Side[size_t(corner)].Key, corner });
+                const Idx corner = 3 * u + i;
+                if ((TriFlags[size_t(u)] & (kMulti0 << i)) && Side[size_t(corner)].Key >= 0)
+                {
+                  list.push_back({ SlotOf(corner), Side[size_t(corner)].Key, corner });
+                }
               }
             }
-          }
-          std::sort(list.begin(),
-            list.end(),
-            [](const Contribution& x, const Contribution& y)
+            std::sort(list.begin(),
+              list.end(),
+              [](const Contribution& x, const Contribution& y)
+              {
+                return x.Slot < y.Slot ||
+                  (x.Slot == y.Slot && (x.Key < y.Key || (x.Key == y.Key && x.Corner < y.Corner)));
+              });
+            for (size_t r0 = 0; r0 < list.size();)
             {
-              return x.Slot < y.Slot ||
-                (x.Slot == y.Slot && (x.Key < y.Key || (x.Key == y.Key && x.Corner < y.Corner)));
-            });
-          for (size_t r0 = 0; r0 < list.size();)
-          {
-            size_t r1 = r0 + 1;
-            Frame fr = Side[size_t(list[r0].Corner)].F;
-            uint8_t orient = Side[size_t(list[r0].Corner)].Orient;
-            while (r1 < list.size() && list[r1].Slot == list[r0].Slot)
-            {
-              const SideFrame& sf = Side[size_t(list[r1].Corner)];
-              fr = AvgFrame(fr, sf.F);
-              orient = sf.Orient;
-              ++r1;
+              size_t r1 = r0 + 1;
+              Frame fr = Side[size_t(list[r0].Corner)].F;
+              uint8_t orient = Side[size_t(list[r0].Corner)].Orient;
+              while (r1 < list.size() && list[r1].Slot == list[r0].Slot)
+              {
+                const SideFrame& sf = Side[size_t(list[r1].Corner)];
+                fr = AvgFrame(fr, sf.F);
+                orient = sf.Orient;
+                ++r1;
+              }
+              CornerFrame& o = Out[size_t(list[r0].Slot)];
+              o.Tangent[0] = fr.S.x;
+              o.Tangent[1] = fr.S.y;
+              o.Tangent[2] = fr.S.z;
+              o.Sign = orient ? 1.0f : -1.0f;
+              r0 = r1;
             }
-            CornerFrame& o = Out[size_t(list[r0].Slot)];
-            o.Tangent[0] = fr.S.x;
-            o.Tangent[1] = fr.S.y;
-            o.Tangent[2] = fr.S.z;
-            o.Sign = orient ? 1.0f : -1.0f;
-            r0 = r1;
-          }
-          t += nTri;
-        }
+          });
       }
     });
 }
@@ -2088,8 +2099,6 @@ void Kernel::MergeMultiWriters()
 // triangles, which this pass never writes.
 void Kernel::CopyDegenerates()
 {
-  const long long nf = In.NumberOfFaces;
-  const long long ns = NumSlots;
   vtkSMPTools::For(0,
     NumFaceChunks,
     1,
@@ -2098,85 +2107,76 @@ void Kernel::CopyDegenerates()
       std::vector<uint8_t> covered;
       for (vtkIdType c = cb; c < ce; ++c)
       {
-        Idx t = ChunkTriBase[size_t(c)];
-        const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-        for (long long f = c * kFaceChunk; f < fe; ++f)
-        {
-          const long long b = Off[f], e = Off[f + 1];
-          if (b < 0 || e < b || e > ns || e - b < 3)
+        this->ForEachTriangulatedFace(c,
+          [&](long long b, long long e, Idx t)
           {
-            continue;
-          }
-          const long long n = e - b;
-          const Idx nTri = Idx(n - 2);
-          bool anyDegenerate = false;
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            anyDegenerate = anyDegenerate || (TriFlags[size_t(u)] & kDegenerate);
-          }
-          if (!anyDegenerate || (TriFlags[size_t(t)] & kDead))
-          {
-            t += nTri;
-            continue;
-          }
-          if (n == 4 && (TriFlags[size_t(t)] & kOneDegenQuad))
-          {
-            const Idx good = (TriFlags[size_t(t)] & kDegenerate) ? t + 1 : t;
-            const Idx gs[3] = { SlotOf(3 * good), SlotOf(3 * good + 1), SlotOf(3 * good + 2) };
-            Idx missing = Idx(b);
-            while (missing == gs[0] || missing == gs[1] || missing == gs[2])
+            const long long n = e - b;
+            const Idx nTri = Idx(n - 2);
+            bool anyDegenerate = false;
+            for (Idx u = t; u < t + nTri; ++u)
             {
-              ++missing;
+              anyDegenerate = anyDegenerate || (TriFlags[size_t(u)] & kDegenerate);
             }
-            const V3 dst = Pos(Idx(Conn[missing]));
-            for (int i = 0; i < 3; ++i)
+            if (!anyDegenerate || (TriFlags[size_t(t)] & kDead))
             {
-              if (Veq(Pos(Idx(Conn[gs[i]])), dst))
+              return;
+            }
+            if (n == 4 && (TriFlags[size_t(t)] & kOneDegenQuad))
+            {
+              const Idx good = (TriFlags[size_t(t)] & kDegenerate) ? t + 1 : t;
+              const Idx gs[3] = { SlotOf(3 * good), SlotOf(3 * good + 1), SlotOf(3 * good + 2) };
+              Idx missing = Idx(b);
+              while (missing == gs[0] || missing == gs[1] || missing == gs[2])
               {
-                Out[size_t(missing)] = Out[size_t(gs[i])];
-                break;
+                ++missing;
+              }
+              const V3 dst = Pos(Idx(Conn[missing]));
+              for (int i = 0; i < 3; ++i)
+              {
+                if (Veq(Pos(Idx(Conn[gs[i]])), dst))
+                {
+                  Out[size_t(missing)] = Out[size_t(gs[i])];
+                  break;
+                }
+              }
+              return;
+            }
+            if (n > 4)
+            {
+              covered.assign(size_t(n), 0);
+              for (Idx u = t; u < t + nTri; ++u)
+              {
+                if (!(TriFlags[size_t(u)] & kDegenerate))
+                {
+                  for (int i = 0; i < 3; ++i)
+                  {
+                    covered[size_t(SlotOf(3 * u + i) - b)] = 1;
+                  }
+                }
               }
             }
-            t += nTri;
-            continue;
-          }
-          if (n > 4)
-          {
-            covered.assign(size_t(n), 0);
             for (Idx u = t; u < t + nTri; ++u)
             {
               if (!(TriFlags[size_t(u)] & kDegenerate))
               {
-                for (int i = 0; i < 3; ++i)
+                continue;
+              }
+              for (int i = 0; i < 3; ++i)
+              {
+                const Idx slot = SlotOf(3 * u + i);
+                if (n > 4 && covered[size_t(slot - b)])
                 {
-                  covered[size_t(SlotOf(3 * u + i) - b)] = 1;
+                  continue;
+                }
+                const Idx w = TriWeld[3 * size_t(u) + i];
+                if (FanStart[size_t(w) + 1] > FanStart[size_t(w)])
+                {
+                  const Idx src = SlotOf(Fan[size_t(FanStart[size_t(w)])]);
+                  Out[size_t(slot)] = Out[size_t(src)];
                 }
               }
             }
-          }
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            if (!(TriFlags[size_t(u)] & kDegenerate))
-            {
-              continue;
-            }
-            for (int i = 0; i < 3; ++i)
-            {
-              const Idx slot = SlotOf(3 * u + i);
-              if (n > 4 && covered[size_t(slot - b)])
-              {
-                continue;
-              }
-              const Idx w = TriWeld[3 * size_t(u) + i];
-              if (FanStart[size_t(w) + 1] > FanStart[size_t(w)])
-              {
-                const Idx src = SlotOf(Fan[size_t(FanStart[size_t(w)])]);
-                Out[size_t(slot)] = Out[size_t(src)];
-              }
-            }
-          }
-          t += nTri;
-        }
+          });
       }
     });
 }
