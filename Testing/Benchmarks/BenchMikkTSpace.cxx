@@ -11,6 +11,7 @@
 // shared/docs/MIKKTSPACE.md; 0.56 M/s on the degenerate-pole sphere). Measured side-by-side
 // ratios are in docs/mikktspace.md.
 
+#include "MikkTSpaceKernelMesh.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkPolyDataTangentFrames.h"
 
@@ -33,30 +34,14 @@ namespace
 {
 namespace mikk = vtkNormalMapping::mikk;
 
-struct BenchMesh
+struct BenchMesh : NormalMappingTesting::KernelMesh
 {
-  std::vector<long long> Offsets{ 0 };
-  std::vector<long long> Conn;
-  std::vector<float> P, N, U;
   long long NumberOfTriangles = 0;
   double ReferenceTrianglesPerSecond = 0.91e6; // documented reference figure
 
-  mikk::MeshInput Input() const
-  {
-    mikk::MeshInput in;
-    in.NumberOfFaces = static_cast<long long>(Offsets.size()) - 1;
-    in.FaceOffsets = Offsets.data();
-    in.FaceConnectivity = Conn.data();
-    in.NumberOfPoints = static_cast<long long>(P.size() / 3);
-    in.Positions = P.data();
-    in.Normals = N.data();
-    in.TCoords = U.data();
-    return in;
-  }
   void Triangle(long long a, long long b, long long c)
   {
-    Conn.insert(Conn.end(), { a, b, c });
-    Offsets.push_back(static_cast<long long>(Conn.size()));
+    this->AddFace({ a, b, c });
     ++NumberOfTriangles;
   }
 };

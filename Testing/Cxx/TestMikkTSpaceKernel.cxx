@@ -5,6 +5,7 @@
 //
 // Shared data location: see NormalMappingTestData.h.
 
+#include "MikkTSpaceKernelMesh.h"
 #include "NormalMappingTestData.h"
 #include "vtkMikkTSpaceKernel.h"
 
@@ -37,38 +38,7 @@ using namespace NormalMappingTestData;
 namespace
 {
 //------------------------------------------------------------------------------
-// A mesh in the kernel's input layout
-struct Mesh
-{
-  std::vector<long long> Offsets{ 0 };
-  std::vector<long long> Conn;
-  std::vector<float> P, N, U;
-
-  long long AddPoint(std::array<float, 3> p, std::array<float, 3> n, std::array<float, 2> uv)
-  {
-    P.insert(P.end(), p.begin(), p.end());
-    N.insert(N.end(), n.begin(), n.end());
-    U.insert(U.end(), uv.begin(), uv.end());
-    return static_cast<long long>(P.size() / 3 - 1);
-  }
-  void AddFace(std::initializer_list<long long> ids)
-  {
-    Conn.insert(Conn.end(), ids.begin(), ids.end());
-    Offsets.push_back(static_cast<long long>(Conn.size()));
-  }
-  mikk::MeshInput Input() const
-  {
-    mikk::MeshInput in;
-    in.NumberOfFaces = static_cast<long long>(Offsets.size()) - 1;
-    in.FaceOffsets = Offsets.data();
-    in.FaceConnectivity = Conn.data();
-    in.NumberOfPoints = static_cast<long long>(P.size() / 3);
-    in.Positions = P.data();
-    in.Normals = N.data();
-    in.TCoords = U.data();
-    return in;
-  }
-};
+using Mesh = NormalMappingTesting::KernelMesh;
 
 mikk::Result RunKernel(const Mesh& m, int threads = 0)
 {
