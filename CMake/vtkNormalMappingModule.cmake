@@ -3,7 +3,9 @@
 find_package(glm REQUIRED)
 
 set(_nm_classes
-  Filters/vtkPolyDataTangentFrames)
+  Filters/vtkPolyDataTangentFrames
+  Rendering/vtkNormalMapObjectFactory
+  Rendering/vtkNormalMapPolyDataMapper)
 set(_nm_headers
   Filters/vtkMikkTSpaceKernel.h
   Filters/vtkTangentFrameKernels.h
@@ -21,6 +23,21 @@ list(TRANSFORM _nm_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_private_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 
+# The mapper's GLSL lives in Rendering/glsl and is embedded as C strings at build time.
+if(NOT COMMAND vtk_encode_string) # inside a VTK source tree it is loaded already
+  include("${VTK_DIR}/vtkEncodeString.cmake")
+endif()
+foreach(_nm_shader IN ITEMS vtkNormalMapVS vtkNormalMapGS vtkNormalMapFS)
+  vtk_encode_string(
+    INPUT "${NORMALMAPPING_SOURCE_DIR}/Rendering/glsl/${_nm_shader}.glsl"
+    EXPORT_SYMBOL "VTKNORMALMAPPING_NO_EXPORT"
+    EXPORT_HEADER "vtkNormalMappingModule.h"
+    HEADER_OUTPUT _nm_shader_header
+    SOURCE_OUTPUT _nm_shader_source)
+  list(APPEND _nm_sources "${_nm_shader_source}")
+  list(APPEND _nm_private_headers "${_nm_shader_header}")
+endforeach()
+
 vtk_module_add_module(VTK::NormalMapping
   CLASSES ${_nm_classes}
   HEADERS ${_nm_headers}
@@ -28,7 +45,8 @@ vtk_module_add_module(VTK::NormalMapping
   PRIVATE_HEADERS ${_nm_private_headers})
 vtk_module_include(VTK::NormalMapping
   PUBLIC
-    "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>")
+    "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>"
+    "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Rendering>")
 # The kernels header (installed, callable from tests and users) is written with GLM.
 vtk_module_link(VTK::NormalMapping PUBLIC glm::glm)
 vtk_module_compile_features(VTK::NormalMapping PUBLIC cxx_std_17)

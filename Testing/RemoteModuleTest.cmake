@@ -12,7 +12,8 @@ cmake_minimum_required(VERSION 3.12)
 project(VTK C CXX)
 set(CMAKE_CXX_STANDARD 17)
 include(GNUInstallDirs)
-find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel CommonExecutionModel)
+find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel CommonExecutionModel CommonMath
+  RenderingCore RenderingOpenGL2)
 vtk_module_scan(MODULE_FILES "${CMAKE_SOURCE_DIR}/Remote/NormalMapping/vtk.module"
   REQUEST_MODULES VTK::NormalMapping PROVIDES_MODULES modules ENABLE_TESTS OFF)
 vtk_module_build(MODULES ${modules} INSTALL_EXPORT RemoteTest ENABLE_WRAPPING OFF

@@ -1,0 +1,144 @@
+// Fragment-shader pieces of vtkNormalMapPolyDataMapper. Each block between "//NM::Begin <name>"
+// and "//NM::End" is inserted at one of VTK's shader tags when the scene needs it.
+//
+// The perturbed normal is built in model coordinates (MC) and then transformed like every
+// normal, by the inverse transpose of the model-view matrix (nmNormalMatrix). A normal-mapped
+// surface is a stand-in for displaced geometry, whose normals transform that way, so this is
+// right under non-uniform and mirroring transforms too. The frame (tangent, bitangent, normal)
+// is re-orthogonalized per fragment in model coordinates.
+
+//NM::Begin Dec
+// Inverse transpose of the model-view matrix's linear part, and its inverse.
+uniform mat3 nmNormalMatrix;
+uniform mat3 nmNormalMatrixInverse;
+// vtkProperty::NormalScale: scales the map's x and y (glTF's normalTexture.scale).
+uniform float nmNormalScale;
+// +1 when the map's green channel points along +bitangent (OpenGL), -1 when it points along
+// -bitangent (DirectX).
+uniform float nmGreenSign;
+//NM::End
+
+//NM::Begin TexelLinear
+vec4 nmStoredTexel(vec4 texel) { return texel; }
+//NM::End
+
+//NM::Begin TexelSRGB
+// The texture was uploaded as sRGB, so sampling decoded it; encode again to get the stored
+// values back (the map is data, not colour).
+vec4 nmStoredTexel(vec4 texel)
+{
+  vec3 c = clamp(texel.rgb, 0.0, 1.0);
+  vec3 low = c * 12.92;
+  vec3 high = 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055;
+  return vec4(mix(high, low, vec3(lessThanEqual(c, vec3(0.0031308)))), texel.a);
+}
+//NM::End
+
+//NM::Begin DecodeRGB
+// Tangent-space normal from an RGB texel, strength applied (left unnormalized: the final
+// normalize makes its length irrelevant).
+vec3 nmDecode(vec4 texel)
+{
+  vec3 n = texel.rgb * 2.0 - 1.0;
+  return vec3(n.x * nmNormalScale, n.y * nmGreenSign * nmNormalScale, n.z);
+}
+//NM::End
+
+//NM::Begin DecodeTwoChannel
+// Tangent-space normal from the red and green channels; z = sqrt(1 - x^2 - y^2).
+vec3 nmDecode(vec4 texel)
+{
+  vec2 xy = texel.rg * 2.0 - 1.0;
+  float z = sqrt(max(0.0, 1.0 - dot(xy, xy)));
+  return vec3(xy.x * nmNormalScale, xy.y * nmGreenSign * nmNormalScale, z);
+}
+//NM::End
+
+//NM::Begin TangentDec
+in vec4 nmTangentMCVSOutput;
+
+// Frame from the interpolated point tangent: Gram-Schmidt against the normal, bitangent =
+// sign * cross(N, T). A tangent parallel to the normal gives zero T and B columns, which
+// leaves the unperturbed normal.
+mat3 nmFrameMC(vec3 normalMC)
+{
+  vec3 t = nmTangentMCVSOutput.xyz - dot(nmTangentMCVSOutput.xyz, normalMC) * normalMC;
+  float len2 = dot(t, t);
+  if (len2 <= 1e-12 * dot(nmTangentMCVSOutput.xyz, nmTangentMCVSOutput.xyz))
+  {
+    return mat3(vec3(0.0), vec3(0.0), normalMC);
+  }
+  t *= inversesqrt(len2);
+  float s = nmTangentMCVSOutput.w < 0.0 ? -1.0 : 1.0;
+  return mat3(t, s * cross(normalMC, t), normalMC);
+}
+//NM::End
+
+//NM::Begin DerivativeDec
+// Screen-space derivatives of the view-coordinate position and the texture coordinates, taken
+// in uniform control flow.
+vec3 nmDPositionDx;
+vec3 nmDPositionDy;
+vec2 nmDTCoordDx;
+vec2 nmDTCoordDy;
+
+// Frame of the triangle under the fragment: dP/du and dP/dv solved from the derivatives (in
+// model coordinates: the model-view inverse is the transpose of nmNormalMatrix), the tangent
+// is dP/du made perpendicular to the normal, the sign is that of the UV map's orientation
+// against the normal. Same conventions as the point tangents, so both sources agree on flat
+// triangles. Degenerate texture coordinates give zero T and B columns: no perturbation.
+mat3 nmFrameMC(vec3 normalMC)
+{
+  vec3 dpdx = nmDPositionDx * nmNormalMatrix;
+  vec3 dpdy = nmDPositionDy * nmNormalMatrix;
+  float det = nmDTCoordDx.x * nmDTCoordDy.y - nmDTCoordDy.x * nmDTCoordDx.y;
+  // det * dP/du and det * dP/dv
+  vec3 dpdu = dpdx * nmDTCoordDy.y - dpdy * nmDTCoordDx.y;
+  vec3 dpdv = dpdy * nmDTCoordDx.x - dpdx * nmDTCoordDy.x;
+  vec3 t = det < 0.0 ? -dpdu : dpdu;
+  t -= dot(t, normalMC) * normalMC;
+  float len2 = dot(t, t);
+  float scale2 = (dot(dpdx, dpdx) + dot(dpdy, dpdy)) *
+    (dot(nmDTCoordDx, nmDTCoordDx) + dot(nmDTCoordDy, nmDTCoordDy));
+  if (!(len2 > 1e-10 * scale2))
+  {
+    return mat3(vec3(0.0), vec3(0.0), normalMC);
+  }
+  t *= inversesqrt(len2);
+  float s = dot(cross(dpdu, dpdv), normalMC) < 0.0 ? -1.0 : 1.0;
+  return mat3(t, s * cross(normalMC, t), normalMC);
+}
+//NM::End
+
+//NM::Begin DerivativeUniformFlow
+  nmDPositionDx = dFdx(vertexVC.xyz);
+  nmDPositionDy = dFdy(vertexVC.xyz);
+  nmDTCoordDx = dFdx(@TCOORD@VCVSOutput);
+  nmDTCoordDy = dFdy(@TCOORD@VCVSOutput);
+//NM::End
+
+//NM::Begin ImplTangentSpace
+  {
+    // Normal mapping (vtkNormalMapPolyDataMapper). VTK flipped the normal of back faces; undo
+    // that, perturb the front side, then flip the result: the back of a bumpy sheet sees the
+    // mirror of the front's normal.
+    vec3 nmFrontVC = gl_FrontFacing == false ? -normalVCVSOutput : normalVCVSOutput;
+    vec3 nmNormalMC = normalize(nmNormalMatrixInverse * nmFrontVC);
+    vec3 nmMapped = nmDecode(nmStoredTexel(texture(normalTex, @TCOORD@VCVSOutput)));
+    vec3 nmPerturbedVC = normalize(nmNormalMatrix * (nmFrameMC(nmNormalMC) * nmMapped));
+    normalVCVSOutput = gl_FrontFacing == false ? -nmPerturbedVC : nmPerturbedVC;
+  }
+//NM::End
+
+//NM::Begin ImplObjectSpace
+  {
+    // Normal mapping (vtkNormalMapPolyDataMapper), object-space map: the texel is the normal
+    // in model coordinates; NormalScale blends from the surface normal (0) to the map's (1).
+    vec3 nmFrontVC = gl_FrontFacing == false ? -normalVCVSOutput : normalVCVSOutput;
+    vec3 nmNormalMC = normalize(nmNormalMatrixInverse * nmFrontVC);
+    vec3 nmMapMC = nmStoredTexel(texture(normalTex, @TCOORD@VCVSOutput)).rgb * 2.0 - 1.0;
+    vec3 nmBlendMC = mix(nmNormalMC, nmMapMC, nmNormalScale);
+    vec3 nmPerturbedVC = normalize(nmNormalMatrix * nmBlendMC);
+    normalVCVSOutput = gl_FrontFacing == false ? -nmPerturbedVC : nmPerturbedVC;
+  }
+//NM::End

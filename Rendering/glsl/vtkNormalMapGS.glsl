@@ -1,0 +1,11 @@
+// Geometry-shader pieces of vtkNormalMapPolyDataMapper, used when VTK draws through a
+// geometry shader (for example surfaces with edges): the tangent passes through unchanged.
+
+//NM::Begin TangentDec
+in vec4 nmTangentMCVSOutput[];
+out vec4 nmTangentMCGSOutput;
+//NM::End
+
+//NM::Begin TangentImpl
+nmTangentMCGSOutput = nmTangentMCVSOutput[i];
+//NM::End

@@ -1,0 +1,46 @@
+/**
+ * @class   vtkNormalMapObjectFactory
+ * @brief   Makes vtkPolyDataMapper::New() return a vtkNormalMapPolyDataMapper.
+ *
+ * For applications that create their mappers through VTK's object factory (ParaView-like
+ * applications, readers and importers): after Install(), every vtkPolyDataMapper::New()
+ * returns a vtkNormalMapPolyDataMapper, which renders exactly like VTK's mapper where no
+ * normal texture is set. Nothing changes until Install() is called: linking the module does not
+ * override anything. Uninstall() restores VTK's own mapper.
+ *
+ * VTK's OpenGL module registers its own vtkPolyDataMapper override first, and the factory
+ * returns the first enabled override, so Install() disables the others for that class and
+ * Uninstall() enables them again.
+ */
+#ifndef vtkNormalMapObjectFactory_h
+#define vtkNormalMapObjectFactory_h
+
+#include "vtkNormalMappingModule.h" // For export macro
+#include "vtkObjectFactory.h"
+
+class VTKNORMALMAPPING_EXPORT vtkNormalMapObjectFactory : public vtkObjectFactory
+{
+public:
+  static vtkNormalMapObjectFactory* New();
+  vtkTypeMacro(vtkNormalMapObjectFactory, vtkObjectFactory);
+
+  const char* GetVTKSourceVersion() override;
+  const char* GetDescription() override;
+
+  /// Register the factory (once) and make its override the one in effect.
+  static void Install();
+  /// Unregister it; VTK's own overrides of vtkPolyDataMapper are enabled again.
+  static void Uninstall();
+  /// Whether Install() is in effect.
+  static bool IsInstalled();
+
+protected:
+  vtkNormalMapObjectFactory();
+  ~vtkNormalMapObjectFactory() override = default;
+
+private:
+  vtkNormalMapObjectFactory(const vtkNormalMapObjectFactory&) = delete;
+  void operator=(const vtkNormalMapObjectFactory&) = delete;
+};
+
+#endif

@@ -1,0 +1,414 @@
+#include "NormalMapTestScenes.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkNormalMapPolyDataMapper.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataTangentFrames.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRenderingOpenGLConfigure.h" // VTK_OPENGL_HAS_OSMESA
+#include "vtkTexture.h"
+#include "vtkTexturedSphereSource.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+namespace nmtest
+{
+namespace
+{
+const double Pi = 3.14159265358979323846;
+
+/// Height gradient (dh/du, dh/dv) of a pattern, periodic on the unit square.
+glm::dvec2 Gradient(Pattern pattern, double u, double v)
+{
+  u -= std::floor(u);
+  v -= std::floor(v);
+  switch (pattern)
+  {
+    case Pattern::SineBump:
+    {
+      // h = a sin(2 pi f u) sin(2 pi f v); slopes up to a 2 pi f = 0.57.
+      const double a = 0.03, w = 2.0 * Pi * 3.0;
+      return { a * w * std::cos(w * u) * std::sin(w * v),
+        a * w * std::sin(w * u) * std::cos(w * v) };
+    }
+    case Pattern::Bricks:
+    {
+      // 4 rows of 2 bricks, odd rows offset by half a brick; within `bevel` of a brick's edge
+      // the height falls linearly (slope 0.8) towards the mortar line.
+      const double rows = 4.0, columns = 2.0, bevel = 0.025, slope = 0.8;
+      const double rowF = v * rows;
+      const double row = std::floor(rowF);
+      double colF = u * columns + (std::fmod(row, 2.0) == 1.0 ? 0.5 : 0.0);
+      colF -= std::floor(colF);
+      const double du = colF / columns;              // distance from the brick's left edge
+      const double dr = (1.0 - colF) / columns;      // from the right edge
+      const double dv = (rowF - row) / rows;         // from the bottom edge
+      const double dt = (1.0 - (rowF - row)) / rows; // from the top edge
+      const double d = std::min(std::min(du, dr), std::min(dv, dt));
+      if (d >= bevel)
+      {
+        return { 0.0, 0.0 };
+      }
+      // The height rises away from the nearest edge.
+      if (d == du)
+        return { slope, 0.0 };
+      if (d == dr)
+        return { -slope, 0.0 };
+      if (d == dv)
+        return { 0.0, slope };
+      return { 0.0, -slope };
+    }
+    case Pattern::Rivets:
+    {
+      // 4 x 4 domes of radius 0.3 cell, h = H cos^2(pi d / (2 r)).
+      const double cells = 4.0, r = 0.3 / cells, height = 0.02;
+      const double cu = (std::floor(u * cells) + 0.5) / cells;
+      const double cv = (std::floor(v * cells) + 0.5) / cells;
+      const double x = u - cu, y = v - cv, d = std::sqrt(x * x + y * y);
+      if (d >= r || d == 0.0)
+      {
+        return { 0.0, 0.0 };
+      }
+      const double dhdd = -height * Pi / (2.0 * r) * std::sin(Pi * d / r);
+      return { dhdd * x / d, dhdd * y / d };
+    }
+  }
+  return { 0.0, 0.0 };
+}
+}
+
+//------------------------------------------------------------------------------
+glm::dvec3 PatternNormal(Pattern pattern, double u, double v)
+{
+  const glm::dvec2 g = Gradient(pattern, u, v);
+  return glm::normalize(glm::dvec3(-g.x, -g.y, 1.0));
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Storage storage)
+{
+  const int components =
+    storage == Storage::TwoChannel ? 2 : (storage == Storage::OneChannel ? 1 : 3);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(size, size, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, components);
+  auto* texels = static_cast<unsigned char*>(image->GetScalarPointer());
+  auto encode = [](double x)
+  { return static_cast<unsigned char>(std::lround((x * 0.5 + 0.5) * 255.0)); };
+  for (int j = 0; j < size; ++j)
+  {
+    for (int i = 0; i < size; ++i)
+    {
+      const glm::dvec3 n = PatternNormal(pattern, (i + 0.5) / size, (j + 0.5) / size);
+      unsigned char* t = texels + (static_cast<size_t>(j) * size + i) * components;
+      switch (storage)
+      {
+        case Storage::OpenGL:
+          t[0] = encode(n.x), t[1] = encode(n.y), t[2] = encode(n.z);
+          break;
+        case Storage::DirectX:
+          t[0] = encode(n.x), t[1] = encode(-n.y), t[2] = encode(n.z);
+          break;
+        case Storage::TwoChannel:
+          t[0] = encode(n.x), t[1] = encode(n.y);
+          break;
+        case Storage::OneChannel:
+          t[0] = encode(n.z * 2.0 - 1.0);
+          break;
+      }
+    }
+  }
+  return image;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkTexture> MakeNormalTexture(vtkImageData* image)
+{
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  texture->RepeatOn();
+  return texture;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> MakeQuad(int resolution, bool mirrorU)
+{
+  const int n = resolution + 1;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TCoords");
+  tcoords->SetNumberOfComponents(2);
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const double s = static_cast<double>(i) / resolution, t = static_cast<double>(j) / resolution;
+      points->InsertNextPoint(2.0 * s - 1.0, 2.0 * t - 1.0, 0.0);
+      normals->InsertNextTuple3(0.0, 0.0, 1.0);
+      tcoords->InsertNextTuple2(mirrorU ? 1.0 - s : s, t);
+    }
+  }
+  vtkNew<vtkCellArray> triangles;
+  for (int j = 0; j < resolution; ++j)
+  {
+    for (int i = 0; i < resolution; ++i)
+    {
+      const vtkIdType a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+      const vtkIdType first[3] = { a, b, c }, second[3] = { a, c, d };
+      triangles->InsertNextCell(3, first);
+      triangles->InsertNextCell(3, second);
+    }
+  }
+  auto quad = vtkSmartPointer<vtkPolyData>::New();
+  quad->SetPoints(points);
+  quad->SetPolys(triangles);
+  quad->GetPointData()->SetNormals(normals);
+  quad->GetPointData()->SetTCoords(tcoords);
+  return quad;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> MakeSphere(int resolution)
+{
+  vtkNew<vtkTexturedSphereSource> sphere;
+  sphere->SetThetaResolution(2 * resolution);
+  sphere->SetPhiResolution(resolution);
+  sphere->Update();
+  return sphere->GetOutput();
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> WithTangents(vtkPolyData* mesh)
+{
+  vtkNew<vtkPolyDataTangentFrames> frames;
+  frames->SetInputData(mesh);
+  frames->Update();
+  return frames->GetOutput();
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetSize(width, height);
+  window->SetOffScreenRendering(1);
+  // No multisampling: pixels are then single samples of the shading, comparable to the CPU.
+  window->SetMultiSamples(0);
+  return window;
+}
+
+//------------------------------------------------------------------------------
+void ReportRenderPath(vtkRenderWindow* window)
+{
+  static bool reported = false;
+  if (reported)
+  {
+    return;
+  }
+  reported = true;
+  std::istringstream capabilities(window->ReportCapabilities());
+  std::string line;
+  std::string renderer = "unknown";
+  while (std::getline(capabilities, line))
+  {
+    if (line.find("OpenGL renderer string") != std::string::npos)
+    {
+      renderer = line.substr(line.find(':') + 1);
+    }
+  }
+#ifdef VTK_OPENGL_HAS_OSMESA
+  const char* path = "OSMesa (no X server)";
+#else
+  const char* path = std::getenv("NORMALMAPPING_HEADLESS_PATH")
+    ? std::getenv("NORMALMAPPING_HEADLESS_PATH")
+    : "X display";
+#endif
+  std::cout << "Rendering path: " << path << "; " << window->GetClassName() << ";" << renderer
+            << std::endl;
+}
+
+//------------------------------------------------------------------------------
+std::vector<unsigned char> ReadPixels(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkDataArray* scalars = grab->GetOutput()->GetPointData()->GetScalars();
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(scalars);
+  return std::vector<unsigned char>(
+    rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
+}
+
+//------------------------------------------------------------------------------
+int CompareWithBaseline(vtkRenderWindow* window, int argc, char* argv[])
+{
+  // VTK 9.1's image test: per pixel, the best match within a +-2 pixel shift; channel
+  // differences up to 105 levels count as nothing, the excess is summed over the image in
+  // units of a fully wrong pixel. The default threshold, 0.15, allows a fraction of one wrong
+  // pixel: an image test only says "unchanged"; the numeric tests say "right".
+  const int result = vtkRegressionTestImage(window);
+  return result == vtkTesting::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+//------------------------------------------------------------------------------
+void Checks::operator()(bool ok, const std::string& what)
+{
+  std::cout << (ok ? "  ok:   " : "  FAIL: ") << what << std::endl;
+  this->Failures += ok ? 0 : 1;
+}
+
+int Checks::Result() const
+{
+  return this->Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
+
+//------------------------------------------------------------------------------
+std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<FlatActor>& actors)
+{
+  auto window = MakeWindow(setup.Width, setup.Height);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  renderer->SetTwoSidedLighting(true);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(setup.LightPosition.x, setup.LightPosition.y, setup.LightPosition.z);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->AddLight(light);
+  for (const FlatActor& a : actors)
+  {
+    vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
+    if (a.StockMapper)
+    {
+      mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
+    }
+    else
+    {
+      auto ours = vtkSmartPointer<vtkNormalMapPolyDataMapper>::New();
+      ours->SetMapEncoding(a.Encoding);
+      ours->SetFrameSource(a.FrameSource);
+      mapper = ours;
+    }
+    mapper->SetInputData(a.Mesh);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->SetScale(a.Scale[0], a.Scale[1], a.Scale[2]);
+    vtkProperty* property = actor->GetProperty();
+    property->SetInterpolation(a.Interpolation);
+    property->SetColor(setup.Color.x, setup.Color.y, setup.Color.z);
+    property->SetAmbient(setup.Ambient);
+    property->SetDiffuse(setup.Diffuse);
+    property->SetSpecular(setup.Specular);
+    property->SetSpecularPower(setup.SpecularPower);
+    property->SetSpecularColor(1.0, 1.0, 1.0);
+    property->SetBackfaceCulling(!a.TwoSided);
+    if (a.NormalTexture)
+    {
+      property->SetNormalTexture(a.NormalTexture);
+      property->SetNormalScale(a.NormalScale);
+    }
+    renderer->AddActor(actor);
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 0.0, setup.CameraDistance);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetViewAngle(setup.ViewAngle);
+  renderer->ResetCameraClippingRange();
+  window->AddRenderer(renderer);
+  window->Render();
+  ReportRenderPath(window);
+  return ReadPixels(window);
+}
+
+//------------------------------------------------------------------------------
+glm::dvec3 PixelOnPlane(const FlatSetup& setup, int px, int py)
+{
+  const double halfHeight = std::tan(setup.ViewAngle * Pi / 360.0);
+  const double aspect = static_cast<double>(setup.Width) / setup.Height;
+  const double x = ((px + 0.5) / setup.Width * 2.0 - 1.0) * halfHeight * aspect;
+  const double y = ((py + 0.5) / setup.Height * 2.0 - 1.0) * halfHeight;
+  return { x * setup.CameraDistance, y * setup.CameraDistance, 0.0 };
+}
+
+//------------------------------------------------------------------------------
+glm::dvec3 ReferenceShade(const FlatSetup& setup, int px, int py, const glm::dvec3& n)
+{
+  // View coordinates: the camera looks down -z from (0, 0, d), so only a translation.
+  const glm::dvec3 p = PixelOnPlane(setup, px, py) - glm::dvec3(0.0, 0.0, setup.CameraDistance);
+  const glm::dvec3 lightDirection = glm::normalize(-setup.LightPosition);
+  const double df = std::max(0.0, glm::dot(n, -lightDirection));
+  const glm::dvec3 reflected = lightDirection - 2.0 * glm::dot(n, lightDirection) * n;
+  const double sf = (df > 0.0 ? 1.0 : 0.0) *
+    std::pow(std::max(0.0, glm::dot(reflected, glm::normalize(-p))), setup.SpecularPower);
+  const glm::dvec3 color = setup.Ambient * setup.Color + setup.Diffuse * df * setup.Color +
+    setup.Specular * sf * glm::dvec3(1.0);
+  return glm::clamp(color, 0.0, 1.0) * 255.0;
+}
+
+//------------------------------------------------------------------------------
+Difference Compare(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b,
+  const std::vector<bool>& mask,
+  int bound)
+{
+  Difference d;
+  int within = 0;
+  for (size_t p = 0; p < mask.size(); ++p)
+  {
+    if (!mask[p])
+    {
+      continue;
+    }
+    int m = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      m = std::max(m, std::abs(int(a[3 * p + c]) - int(b[3 * p + c])));
+    }
+    ++d.Compared;
+    d.MaxChannel = std::max(d.MaxChannel, m);
+    within += m <= bound ? 1 : 0;
+  }
+  d.WithinFraction = d.Compared ? static_cast<double>(within) / d.Compared : 0.0;
+  return d;
+}
+
+//------------------------------------------------------------------------------
+std::vector<bool> CoveredPixels(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b)
+{
+  std::vector<bool> mask(a.size() / 3);
+  for (size_t p = 0; p < mask.size(); ++p)
+  {
+    mask[p] = a[3 * p] || a[3 * p + 1] || a[3 * p + 2] || b[3 * p] || b[3 * p + 1] || b[3 * p + 2];
+  }
+  return mask;
+}
+}

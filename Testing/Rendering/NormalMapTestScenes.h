@@ -1,0 +1,145 @@
+/**
+ * Scenes for the mapper's tests: procedural normal maps with analytic normals, meshes with
+ * tangent frames, a headless render window, pixel read-back and a small check recorder.
+ */
+#ifndef NormalMapTestScenes_h
+#define NormalMapTestScenes_h
+
+#include "vtkImageData.h"    // For vtkSmartPointer<vtkImageData>
+#include "vtkPolyData.h"     // For vtkSmartPointer<vtkPolyData>
+#include "vtkRenderWindow.h" // For vtkSmartPointer<vtkRenderWindow>
+#include "vtkSmartPointer.h"
+#include "vtkTexture.h" // For vtkSmartPointer<vtkTexture>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkImageData;
+class vtkPolyData;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkTexture;
+
+namespace nmtest
+{
+/// Height fields whose normal maps the tests render; h and its gradient are analytic.
+enum class Pattern
+{
+  SineBump, // a smooth egg-crate bump, 3 periods each way
+  Bricks,   // bricks with bevelled mortar grooves
+  Rivets    // hemispherical domes on a grid
+};
+
+/// How the generated texture stores the normal.
+enum class Storage
+{
+  OpenGL,     // RGB, green = +v
+  DirectX,    // RGB, green = -v
+  TwoChannel, // RG (2 components), green = +v
+  OneChannel  // the height only (not a normal map: for bad-input tests)
+};
+
+/// Unit tangent-space normal of a pattern at (u, v) in [0, 1]^2 (x along +u, y along +v).
+glm::dvec3 PatternNormal(Pattern pattern, double u, double v);
+
+/// A size x size texture image of the pattern (texel centres at (i + 0.5) / size).
+vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Storage storage);
+
+/// A texture for a normal map: repeat, linear interpolation (mipmaps follow from the mapper).
+vtkSmartPointer<vtkTexture> MakeNormalTexture(vtkImageData* image);
+
+/// A flat quad in the z = 0 plane, [-1, 1]^2, u along +x and v along +y (or -x when
+/// mirrored), with normals +z, split into resolution^2 quads of two triangles.
+vtkSmartPointer<vtkPolyData> MakeQuad(int resolution, bool mirrorU = false);
+
+/// A UV sphere (u around, v from pole to pole) with normals.
+vtkSmartPointer<vtkPolyData> MakeSphere(int resolution);
+
+/// Adds point Tangents and TangentSigns with vtkPolyDataTangentFrames (angle-weighted).
+vtkSmartPointer<vtkPolyData> WithTangents(vtkPolyData* mesh);
+
+/// An offscreen render window of the given size, ready for a renderer.
+vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height);
+
+/// Prints once which headless path rendering took (OSMesa or X/Xvfb, and the GL renderer).
+void ReportRenderPath(vtkRenderWindow* window);
+
+/// The window's RGB pixels, bottom row first.
+std::vector<unsigned char> ReadPixels(vtkRenderWindow* window);
+
+/// Keeps checking after a failure and reports every failed check.
+class Checks
+{
+public:
+  void operator()(bool ok, const std::string& what);
+  int Result() const; // EXIT_SUCCESS or EXIT_FAILURE
+private:
+  int Failures = 0;
+};
+
+/// Pixel statistics of two equally sized RGB images over the pixels where mask is true.
+struct Difference
+{
+  int Compared = 0;
+  int MaxChannel = 0;        // largest channel difference, 0..255
+  double WithinFraction = 0; // share of compared pixels whose max channel difference <= bound
+};
+Difference Compare(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b,
+  const std::vector<bool>& mask,
+  int bound);
+
+/**
+ * vtkRegressionTestImage against Testing/Data/Baseline/<test>.png with VTK's default
+ * threshold (see the definition for what it allows); EXIT_SUCCESS when it passes.
+ */
+int CompareWithBaseline(vtkRenderWindow* window, int argc, char* argv[]);
+
+/// One actor of a flat scene.
+struct FlatActor
+{
+  vtkPolyData* Mesh = nullptr;
+  vtkTexture* NormalTexture = nullptr; // none: no normal map
+  double NormalScale = 1.0;
+  int Encoding = 0;         // vtkNormalMapPolyDataMapper::MapEncodings
+  int FrameSource = 0;      // vtkNormalMapPolyDataMapper::FrameSources
+  bool StockMapper = false; // VTK's vtkOpenGLPolyDataMapper instead of ours
+  int Interpolation = 2;    // VTK_PHONG
+  bool TwoSided = true;
+  double Scale[3] = { 1.0, 1.0, 1.0 };
+};
+
+/// The fixed camera and light of the flat scenes, shared with the CPU reference.
+struct FlatSetup
+{
+  int Width = 256;
+  int Height = 256;
+  double CameraDistance = 5.0;                // camera at (0, 0, d) looking at the origin, y up
+  double ViewAngle = 30.0;                    // vertical, degrees
+  glm::dvec3 LightPosition{ -1.0, 1.5, 2.0 }; // a directional scene light towards the origin
+  double Ambient = 0.1, Diffuse = 0.7, Specular = 0.3, SpecularPower = 20.0;
+  glm::dvec3 Color{ 1.0, 0.8, 0.6 };
+};
+
+/// Renders the actors with the setup and returns the pixels (black background).
+std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<FlatActor>& actors);
+
+/**
+ * VTK's Phong shading (its non-PBR fragment code for directional scene lights), in double
+ * precision, of a surface point seen at pixel (px, py) with world normal n: 0..255 per channel.
+ */
+glm::dvec3 ReferenceShade(const FlatSetup& setup, int px, int py, const glm::dvec3& n);
+
+/// Where the pixel centre's view ray meets the plane z = 0.
+glm::dvec3 PixelOnPlane(const FlatSetup& setup, int px, int py);
+
+/// Pixels that differ from the background colour (0 0 0) in either image.
+std::vector<bool> CoveredPixels(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b);
+}
+
+#endif
