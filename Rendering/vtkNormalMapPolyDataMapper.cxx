@@ -9,7 +9,6 @@
 #include "vtkOpenGLActor.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLTexture.h"
 #include "vtkOpenGLVertexBufferObjectCache.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPointData.h"
@@ -18,7 +17,6 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
-#include "vtkTextureObject.h"
 
 #include "vtkNormalMapFS.h"
 #include "vtkNormalMapGS.h"
@@ -57,16 +55,10 @@ bool InsertBefore(std::string& source, const std::string& tag, const std::string
   return vtkShaderProgram::Substitute(source, tag, code + tag, false);
 }
 
-/// Number of colour channels of a normal texture (0 when it has no image yet).
+/// Number of components of a normal texture's image (0 when it has none). VTK uploads images
+/// of 1 or 2 components as RGBA (luminance, luminance-alpha), so the texture object cannot tell.
 int TextureChannels(vtkTexture* texture)
 {
-  if (auto* gl = vtkOpenGLTexture::SafeDownCast(texture))
-  {
-    if (gl->GetTextureObject() && gl->GetTextureObject()->GetComponents() > 0)
-    {
-      return gl->GetTextureObject()->GetComponents();
-    }
-  }
   vtkImageData* image = texture->GetInput();
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   return scalars ? scalars->GetNumberOfComponents() : 0;
@@ -323,6 +315,7 @@ struct ShaderPlan
   int Frame = vtkNormalMapPolyDataMapper::NOT_APPLIED;
   bool SeparateSigns = false;
   bool TwoChannel = false;
+  bool LuminanceAlpha = false; // a 2-component image: x in red, y in alpha
   bool SRGB = false;
   std::string TCoordName;
 };
@@ -422,6 +415,7 @@ void vtkNormalMapPolyDataMapper::ReplaceShaderNormal(std::map<vtkShader::Type, v
         "; decoding it as a two-channel map (z reconstructed).");
     plan.TwoChannel = true;
   }
+  plan.LuminanceAlpha = channels == 2;
   if (channels == 2 && !IsTangentSpace(this->MapEncoding))
   {
     this->Internal->Warn(this,
@@ -527,7 +521,9 @@ void vtkNormalMapPolyDataMapper::ReplaceShaderNormal(std::map<vtkShader::Type, v
   }
   else
   {
-    declarations += Block(vtkNormalMapFS, plan.TwoChannel ? "DecodeTwoChannel" : "DecodeRGB");
+    std::string decode = Block(vtkNormalMapFS, plan.TwoChannel ? "DecodeTwoChannel" : "DecodeRGB");
+    vtkShaderProgram::Substitute(decode, "@XY@", plan.LuminanceAlpha ? "ra" : "rg");
+    declarations += decode;
     declarations += Block(vtkNormalMapFS, pointTangents ? "TangentDec" : "DerivativeDec");
     code = Block(vtkNormalMapFS, "ImplTangentSpace");
     if (!pointTangents)

@@ -45,10 +45,11 @@ vec3 nmDecode(vec4 texel)
 //NM::End
 
 //NM::Begin DecodeTwoChannel
-// Tangent-space normal from the red and green channels; z = sqrt(1 - x^2 - y^2).
+// Tangent-space normal from two channels; z = sqrt(1 - x^2 - y^2). @XY@ is "rg", or "ra" for a
+// 2-component image, which VTK uploads as luminance-alpha (x, x, x, y).
 vec3 nmDecode(vec4 texel)
 {
-  vec2 xy = texel.rg * 2.0 - 1.0;
+  vec2 xy = texel.@XY@ * 2.0 - 1.0;
   float z = sqrt(max(0.0, 1.0 - dot(xy, xy)));
   return vec3(xy.x * nmNormalScale, xy.y * nmGreenSign * nmNormalScale, z);
 }

@@ -1,6 +1,7 @@
 #include "NormalMapTestScenes.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
@@ -19,6 +20,8 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRenderingOpenGLConfigure.h" // VTK_OPENGL_HAS_OSMESA
+#include "vtkShader.h"
+#include "vtkShaderProgram.h"
 #include "vtkTexture.h"
 #include "vtkTexturedSphereSource.h"
 #include "vtkUnsignedCharArray.h"
@@ -127,8 +130,8 @@ vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Stor
         case Storage::OpenGL:
           t[0] = encode(n.x), t[1] = encode(n.y), t[2] = encode(n.z);
           break;
-        case Storage::DirectX:
-          t[0] = encode(n.x), t[1] = encode(-n.y), t[2] = encode(n.z);
+        case Storage::DirectX: // the OpenGL map converted: green inverted
+          t[0] = encode(n.x), t[1] = 255 - encode(n.y), t[2] = encode(n.z);
           break;
         case Storage::TwoChannel:
           t[0] = encode(n.x), t[1] = encode(n.y);
@@ -317,6 +320,20 @@ std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<
       mapper = ours;
     }
     mapper->SetInputData(a.Mesh);
+    if (a.Shaders)
+    {
+      vtkNew<vtkCallbackCommand> capture;
+      capture->SetClientData(a.Shaders);
+      capture->SetCallback(
+        [](vtkObject*, unsigned long, void* clientData, void* callData)
+        {
+          auto* program = static_cast<vtkShaderProgram*>(callData);
+          *static_cast<std::string*>(clientData) =
+            std::string(program->GetVertexShader()->GetSource()) + "\n" +
+            program->GetFragmentShader()->GetSource();
+        });
+      mapper->AddObserver(vtkCommand::UpdateShaderEvent, capture);
+    }
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     actor->SetScale(a.Scale[0], a.Scale[1], a.Scale[2]);
@@ -345,6 +362,16 @@ std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<
   window->AddRenderer(renderer);
   window->Render();
   ReportRenderPath(window);
+  vtkActorCollection* rendered = renderer->GetActors();
+  rendered->InitTraversal();
+  for (const FlatActor& a : actors)
+  {
+    auto* ours = vtkNormalMapPolyDataMapper::SafeDownCast(rendered->GetNextActor()->GetMapper());
+    if (a.AppliedFrame && ours)
+    {
+      *a.AppliedFrame = ours->GetLastAppliedFrame();
+    }
+  }
   return ReadPixels(window);
 }
 

@@ -111,6 +111,8 @@ struct FlatActor
   int Interpolation = 2;    // VTK_PHONG
   bool TwoSided = true;
   double Scale[3] = { 1.0, 1.0, 1.0 };
+  std::string* Shaders = nullptr; // when set: receives the vertex + fragment shader source
+  int* AppliedFrame = nullptr;    // when set (our mapper): receives GetLastAppliedFrame()
 };
 
 /// The fixed camera and light of the flat scenes, shared with the CPU reference.

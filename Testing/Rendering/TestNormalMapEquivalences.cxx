@@ -1,0 +1,152 @@
+// Encodings, frame sources and strength that describe the same surface must render the same
+// image, and the shader must hold only what each scene needs.
+#include "NormalMapTestScenes.h"
+
+#include "vtkNormalMapPolyDataMapper.h"
+
+#include <iostream>
+
+namespace
+{
+using Mapper = vtkNormalMapPolyDataMapper;
+
+nmtest::Difference Between(const std::vector<unsigned char>& a,
+  const std::vector<unsigned char>& b,
+  int bound)
+{
+  return nmtest::Compare(a, b, nmtest::CoveredPixels(a, b), bound);
+}
+
+void Report(const char* what, const nmtest::Difference& d, int bound)
+{
+  std::cout << what << ": " << d.Compared << " pixels, " << 100.0 * d.WithinFraction << "% within "
+            << bound << " levels, max difference " << d.MaxChannel << std::endl;
+}
+}
+
+int TestNormalMapEquivalences(int, char*[])
+{
+  nmtest::Checks check;
+  nmtest::FlatSetup setup;
+  const auto pattern = nmtest::Pattern::Rivets;
+  auto image = [&](nmtest::Storage storage)
+  { return nmtest::MakeNormalTexture(nmtest::MakeNormalMapImage(pattern, 128, storage)); };
+  auto openGL = image(nmtest::Storage::OpenGL);
+  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
+
+  auto render = [&](vtkTexture* texture,
+                  int encoding,
+                  int frame,
+                  double scale = 1.0,
+                  bool stock = false,
+                  std::string* shaders = nullptr,
+                  int* applied = nullptr)
+  {
+    nmtest::FlatActor a;
+    a.Mesh = quad;
+    a.NormalTexture = texture;
+    a.Encoding = encoding;
+    a.FrameSource = frame;
+    a.NormalScale = scale;
+    a.StockMapper = stock;
+    a.Shaders = shaders;
+    a.AppliedFrame = applied;
+    return nmtest::RenderFlat(setup, { a });
+  };
+  std::string shaders;
+  int applied = -1;
+  const auto reference =
+    render(openGL, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 1.0, false, &shaders, &applied);
+  check(applied == Mapper::APPLIED_POINT_TANGENTS, "automatic frame with tangents: point tangents");
+  check(shaders.find("nmTangentMC") != std::string::npos, "the tangent attribute is in the shader");
+
+  // DirectX map (green stored negated) read as DirectX equals the OpenGL map read as OpenGL:
+  // the decoded values are equal up to float rounding and the texels up to 8-bit rounding of
+  // ties, so at most 1 level anywhere.
+  {
+    const auto directX =
+      render(image(nmtest::Storage::DirectX), Mapper::TANGENT_SPACE_DIRECTX, Mapper::AUTOMATIC);
+    const auto d = Between(reference, directX, 1);
+    Report("DirectX map as DirectX vs OpenGL map as OpenGL", d, 1);
+    check(d.WithinFraction == 1.0, "DirectX and OpenGL conventions agree");
+  }
+  // Two channels: z is rebuilt from 8-bit x and y instead of stored, which moves the normal by
+  // up to ~half a level's worth of angle more: 2 levels, everywhere.
+  {
+    const auto twoChannel =
+      render(image(nmtest::Storage::TwoChannel), Mapper::TWO_CHANNEL_OPENGL, Mapper::AUTOMATIC);
+    const auto d = Between(reference, twoChannel, 2);
+    Report("two-channel map vs RGB map", d, 2);
+    check(d.WithinFraction == 1.0, "two-channel and RGB encodings agree");
+  }
+  // Object space: on this quad the tangent frame is the model's x, y, z, so the object-space
+  // map holds the same texels; identical arithmetic up to float rounding: 1 level.
+  {
+    std::string objectShaders;
+    int objectApplied = -1;
+    const auto objectSpace = render(
+      openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 1.0, false, &objectShaders, &objectApplied);
+    const auto d = Between(reference, objectSpace, 1);
+    Report("object-space vs tangent-space map", d, 1);
+    check(d.WithinFraction == 1.0, "object-space and tangent-space encodings agree");
+    check(objectApplied == Mapper::APPLIED_OBJECT_SPACE, "object-space path taken");
+    check(objectShaders.find("nmTangentMC") == std::string::npos &&
+        objectShaders.find("dFdx(tcoord") == std::string::npos,
+      "object space: no tangent attribute, no derivative frame");
+  }
+  // Screen-space derivatives: the same frame up to the derivatives' float precision; 2 levels
+  // on 99.9% of the pixels (2x2 quads at the rivets' rims see the steepest slopes).
+  {
+    std::string derivativeShaders;
+    int derivativeApplied = -1;
+    const auto derivatives = render(openGL,
+      Mapper::TANGENT_SPACE_OPENGL,
+      Mapper::SCREEN_DERIVATIVES,
+      1.0,
+      false,
+      &derivativeShaders,
+      &derivativeApplied);
+    const auto d = Between(reference, derivatives, 2);
+    Report("derivative frame vs point tangents", d, 2);
+    check(d.WithinFraction >= 0.999, "derivative frame and point tangents agree");
+    check(derivativeApplied == Mapper::APPLIED_DERIVATIVES, "derivative path taken");
+    check(derivativeShaders.find("nmTangentMC") == std::string::npos,
+      "derivative frame: no tangent attribute or varying");
+  }
+  // Without tangents the automatic source is the derivative frame.
+  {
+    int noTangentsApplied = -1;
+    nmtest::FlatActor a;
+    auto bare = nmtest::MakeQuad(2);
+    a.Mesh = bare;
+    a.NormalTexture = openGL;
+    a.AppliedFrame = &noTangentsApplied;
+    nmtest::RenderFlat(setup, { a });
+    check(noTangentsApplied == Mapper::APPLIED_DERIVATIVES, "no tangents: derivative frame");
+  }
+  // Strength 0 is exactly the unmapped image, ours and VTK's; strength 0.5 lies in between.
+  {
+    std::string zeroShaders;
+    const auto zero =
+      render(openGL, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 0.0, false, &zeroShaders);
+    std::string plainShaders;
+    const auto plain =
+      render(nullptr, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 1.0, false, &plainShaders);
+    const auto stockPlain = render(nullptr, 0, 0, 1.0, true);
+    check(Between(zero, plain, 0).WithinFraction == 1.0 && Between(zero, plain, 0).MaxChannel == 0,
+      "strength 0 renders exactly the image without a normal map");
+    check(Between(plain, stockPlain, 0).MaxChannel == 0,
+      "without a normal map ours renders exactly what VTK's mapper renders");
+    check(zeroShaders.find("nmNormal") == std::string::npos &&
+        plainShaders.find("nm") == std::string::npos,
+      "no normal-map code at strength 0 or without a normal texture");
+    const auto half = render(openGL, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 0.5);
+    const auto toHalf = Between(reference, half, 0), toPlain = Between(plain, half, 0);
+    std::cout << "strength 0.5: max difference to strength 1: " << toHalf.MaxChannel
+              << ", to strength 0: " << toPlain.MaxChannel << std::endl;
+    check(toHalf.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
+        toPlain.MaxChannel < Between(plain, reference, 0).MaxChannel,
+      "strength 0.5 perturbs less than strength 1");
+  }
+  return check.Result();
+}
