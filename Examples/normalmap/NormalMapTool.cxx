@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// normalmap: tangent frames for normal mapping from the command line.
+//
+//   normalmap <command> [options]    (normalmap --help, normalmap <command> --help)
+#include "NormalMapTool.h"
+
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <new>
+
+namespace
+{
+// One row per subcommand.
+const NormalMapTool::Command Commands[] = {
+  { "tangents",
+    "compute tangent frames of a mesh and write .vtp, .gltf or .glb",
+    &NormalMapTool::TangentsCommand },
+};
+
+void PrintUsage(std::ostream& os)
+{
+  os << "usage: normalmap <command> [options]\n\ncommands:\n";
+  for (const auto& command : Commands)
+  {
+    os << "  " << command.Name << std::string(12 - std::strlen(command.Name), ' ')
+       << command.Summary << "\n";
+  }
+  os << "\n'normalmap <command> --help' describes a command.\n";
+}
+}
+
+int NormalMapTool::Fail(const char* command, const std::string& message, int code)
+{
+  std::cerr << "normalmap" << (command ? " " : "") << (command ? command : "")
+            << ": error: " << message << std::endl;
+  return code;
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+  {
+    PrintUsage(std::cerr);
+    return NormalMapTool::Usage;
+  }
+  const std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help")
+  {
+    PrintUsage(std::cout);
+    return NormalMapTool::Success;
+  }
+  for (const auto& command : Commands)
+  {
+    if (name == command.Name)
+    {
+      try
+      {
+        return command.Run(argc - 1, argv + 1);
+      }
+      catch (const std::bad_alloc&)
+      {
+        return NormalMapTool::Fail(command.Name, "out of memory");
+      }
+      catch (const std::exception& e)
+      {
+        return NormalMapTool::Fail(command.Name, e.what());
+      }
+    }
+  }
+  return NormalMapTool::Fail(
+    nullptr, "unknown command '" + name + "' (see normalmap --help)", NormalMapTool::Usage);
+}

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The normalmap command-line tool: one function per subcommand, each in its own file
+// (<Name>Command.cxx), listed in the table in NormalMapTool.cxx.
+#ifndef NormalMapTool_h
+#define NormalMapTool_h
+
+#include <string>
+
+namespace NormalMapTool
+{
+/// A subcommand: `argv[0]` is its name; returns the process exit code.
+using CommandFunction = int (*)(int argc, char* argv[]);
+
+struct Command
+{
+  const char* Name;
+  const char* Summary;
+  CommandFunction Run;
+};
+
+/// Exit codes shared by the subcommands.
+enum ExitCode
+{
+  Success = 0,
+  Failure = 1, // the input could not be read or processed, or the output written
+  Usage = 2,   // the command line is wrong
+};
+
+/// Prints "normalmap <command>: error: <message>" as one line on stderr and returns `code`.
+int Fail(const char* command, const std::string& message, int code = Failure);
+
+int TangentsCommand(int argc, char* argv[]);
+}
+
+#endif

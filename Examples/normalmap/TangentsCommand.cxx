@@ -1,0 +1,403 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// normalmap tangents: reads a mesh, computes its tangent frames with vtkPolyDataTangentFrames
+// and writes them (see Usage below).
+#include "NormalMapFiles.h"
+#include "NormalMapGLTF.h"
+#include "NormalMapTangents.h"
+#include "NormalMapTool.h"
+
+#include <vtkAppendPolyData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace
+{
+constexpr const char* Name = "tangents";
+
+const char* UsageText =
+  R"(usage: normalmap tangents IN -o OUT [options]
+
+Computes tangent frames (unit tangents and handedness signs) for normal mapping.
+
+  IN   .vtp, .vtk, .ply, .obj, .stl (has no UVs: always an error), .gltf or .glb
+  OUT  .vtp (point arrays Tangents and TangentSigns), or .gltf / .glb (TANGENT, vec4)
+
+options:
+  -o, --output OUT   the output file (written whole or not at all)
+  --method M         unweighted | area | angle | mikktspace (default: mikktspace, the
+                     tangents glTF viewers and bakers use)
+  --split            duplicate points whose corners need different frames (default)
+  --no-split         keep the point count; conflicting points take one frame
+  --uv NAME          the point array of texture coordinates (default: the active ones; for
+                     glTF, TEXCOORD_<n> of the material's normal texture, else TEXCOORD_0)
+  --gltf-sign        the UVs have v pointing down, as glTF's do (automatic for glTF input):
+                     signs then follow glTF's TANGENT.w
+  -h, --help         this text
+
+glTF input: every triangle primitive with the texture coordinates is computed on its own and
+written back into the file, which otherwise stays as it was (materials, textures, nodes, other
+primitives). Written to .vtp, several primitives are appended into one mesh.
+)";
+
+struct Arguments
+{
+  std::string Input;
+  std::string Output;
+  NormalMapTangents::Options Tangents;
+  bool Help = false;
+};
+
+bool ParseMethod(const std::string& text, int& method)
+{
+  struct Entry
+  {
+    const char* Name;
+    int Method;
+  };
+  const Entry entries[] = { { "unweighted", vtkPolyDataTangentFrames::UNWEIGHTED },
+    { "area", vtkPolyDataTangentFrames::AREA_WEIGHTED },
+    { "angle", vtkPolyDataTangentFrames::ANGLE_WEIGHTED },
+    { "mikktspace", vtkPolyDataTangentFrames::MIKKTSPACE } };
+  for (const Entry& e : entries)
+  {
+    if (text == e.Name)
+    {
+      method = e.Method;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Returns an empty string on success, else the usage error.
+std::string Parse(int argc, char* argv[], Arguments& args)
+{
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (arg == "-h" || arg == "--help")
+    {
+      args.Help = true;
+    }
+    else if (arg == "-o" || arg == "--output" || arg == "--method" || arg == "--uv")
+    {
+      if (!hasValue)
+      {
+        return arg + " needs a value";
+      }
+      const std::string value = argv[++i];
+      if (arg == "--method")
+      {
+        if (!ParseMethod(value, args.Tangents.Method))
+        {
+          return "unknown method '" + value + "' (unweighted, area, angle, mikktspace)";
+        }
+      }
+      else if (arg == "--uv")
+      {
+        args.Tangents.TCoordsName = value;
+      }
+      else
+      {
+        args.Output = value;
+      }
+    }
+    else if (arg == "--split" || arg == "--no-split")
+    {
+      args.Tangents.Splitting = arg == "--split";
+    }
+    else if (arg == "--gltf-sign")
+    {
+      args.Tangents.VDown = true;
+    }
+    else if (arg.size() > 1 && arg[0] == '-')
+    {
+      return "unknown option '" + arg + "'";
+    }
+    else
+    {
+      positional.push_back(arg);
+    }
+  }
+  if (args.Help)
+  {
+    return std::string();
+  }
+  if (positional.size() != 1)
+  {
+    return positional.empty() ? "no input file" : "more than one input file";
+  }
+  args.Input = positional.front();
+  if (args.Output.empty())
+  {
+    return "no output file (-o OUT)";
+  }
+  const std::string in = NormalMapFiles::Extension(args.Input);
+  const std::string out = NormalMapFiles::Extension(args.Output);
+  if (in != ".vtp" && in != ".vtk" && in != ".ply" && in != ".obj" && in != ".stl" &&
+    in != ".gltf" && in != ".glb")
+  {
+    return "'" + args.Input + "': unknown input format (.vtp .vtk .ply .obj .stl .gltf .glb)";
+  }
+  if (out != ".vtp" && out != ".gltf" && out != ".glb")
+  {
+    return "'" + args.Output + "': unknown output format (.vtp .gltf .glb)";
+  }
+  return std::string();
+}
+
+// Progress on stderr once the work has taken half a second: one updating line on a terminal,
+// a line every 10% otherwise.
+class ProgressPrinter
+{
+public:
+  void Start(int part, int parts)
+  {
+    this->Part = part;
+    this->Parts = parts;
+    this->LastTenth = -1;
+  }
+  void Report(double fraction)
+  {
+    const double elapsed = std::chrono::duration<double>(Clock::now() - this->Begin).count();
+    const int tenth = static_cast<int>(fraction * 10.0);
+    if (elapsed < 0.5 || (!this->Terminal && tenth == this->LastTenth))
+    {
+      return;
+    }
+    this->LastTenth = tenth;
+    std::fprintf(stderr, "%scomputing tangents", this->Terminal ? "\r" : "");
+    if (this->Parts > 1)
+    {
+      std::fprintf(stderr, " (primitive %d of %d)", this->Part + 1, this->Parts);
+    }
+    std::fprintf(stderr, ": %3.0f%%%s", 100.0 * fraction, this->Terminal ? "" : "\n");
+    this->Shown = true;
+  }
+  void Finish()
+  {
+    if (this->Shown && this->Terminal)
+    {
+      std::fprintf(stderr, "\n");
+    }
+    this->Shown = false;
+  }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point Begin = Clock::now();
+  bool Terminal = isatty(fileno(stderr)) != 0;
+  bool Shown = false;
+  int Part = 0;
+  int Parts = 1;
+  int LastTenth = -1;
+};
+
+double Milliseconds(std::chrono::steady_clock::time_point since)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+    .count();
+}
+
+void PrintWarnings(const std::vector<std::string>& warnings)
+{
+  for (const std::string& w : warnings)
+  {
+    std::cerr << "normalmap " << Name << ": warning: " << w << "\n";
+  }
+}
+}
+
+int NormalMapTool::TangentsCommand(int argc, char* argv[])
+{
+  Arguments args;
+  const std::string usageError = Parse(argc, argv, args);
+  if (args.Help)
+  {
+    std::cout << UsageText;
+    return Success;
+  }
+  if (!usageError.empty())
+  {
+    return Fail(Name, usageError + " (see normalmap tangents --help)", NormalMapTool::Usage);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::string error;
+
+  // The output first: an unwritable folder fails before any work is done.
+  NormalMapFiles::OutputTransaction output;
+  if (!output.Begin(args.Output, error))
+  {
+    return Fail(Name, error);
+  }
+
+  // Read: one mesh, or one mesh per glTF triangle primitive.
+  const std::string inExt = NormalMapFiles::Extension(args.Input);
+  const bool gltfIn = inExt == ".gltf" || inExt == ".glb";
+  NormalMapGLTF::Document doc;
+  std::vector<NormalMapGLTF::PrimitiveId> primitives;
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+  std::vector<std::string> uvNames;
+  std::vector<std::string> warnings;
+  if (gltfIn)
+  {
+    if (!NormalMapGLTF::ReadDocument(args.Input, doc, error))
+    {
+      return Fail(Name, error);
+    }
+    for (const auto& id : NormalMapGLTF::TrianglePrimitives(doc))
+    {
+      vtkSmartPointer<vtkPolyData> mesh = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
+      if (!mesh)
+      {
+        return Fail(Name, "'" + args.Input + "': " + error);
+      }
+      const std::string uv = args.Tangents.TCoordsName.empty()
+        ? NormalMapGLTF::NormalTextureTexCoordName(doc, id)
+        : args.Tangents.TCoordsName;
+      if (!NormalMapTangents::FindTCoords(mesh, uv))
+      {
+        warnings.push_back("mesh " + std::to_string(id.Mesh) + " primitive " +
+          std::to_string(id.Primitive) + " has no " + uv + "; left unchanged");
+        continue;
+      }
+      primitives.push_back(id);
+      meshes.push_back(mesh);
+      uvNames.push_back(uv);
+    }
+    if (meshes.empty())
+    {
+      return Fail(Name,
+        "'" + args.Input + "' has no triangle primitive with texture coordinates" +
+          (args.Tangents.TCoordsName.empty() ? "" : " '" + args.Tangents.TCoordsName + "'"));
+    }
+  }
+  else
+  {
+    vtkSmartPointer<vtkPolyData> mesh = NormalMapFiles::ReadVTKMesh(args.Input, error);
+    if (!mesh)
+    {
+      return Fail(Name, error);
+    }
+    if (!NormalMapTangents::FindTCoords(mesh, args.Tangents.TCoordsName))
+    {
+      if (inExt == ".stl")
+      {
+        return Fail(Name,
+          "'" + args.Input +
+            "': STL files have no texture coordinates, which tangent frames need (use .obj, "
+            ".ply, .vtp, .vtk or glTF)");
+      }
+      return Fail(Name,
+        "'" + args.Input + "' has no texture coordinates" +
+          (args.Tangents.TCoordsName.empty() ? std::string()
+                                             : " named '" + args.Tangents.TCoordsName + "'"));
+    }
+    meshes.push_back(mesh);
+    uvNames.push_back(args.Tangents.TCoordsName);
+  }
+  const double readMs = Milliseconds(start);
+
+  // Compute.
+  const auto computeStart = std::chrono::steady_clock::now();
+  NormalMapTangents::Counts total;
+  ProgressPrinter progress;
+  std::vector<vtkSmartPointer<vtkPolyData>> framed;
+  for (size_t i = 0; i < meshes.size(); ++i)
+  {
+    NormalMapTangents::Options options = args.Tangents;
+    options.TCoordsName = uvNames[i];
+    NormalMapTangents::Counts counts;
+    progress.Start(static_cast<int>(i), static_cast<int>(meshes.size()));
+    vtkSmartPointer<vtkPolyData> result = NormalMapTangents::Compute(
+      meshes[i], options, counts, warnings, error, [&progress](double f) { progress.Report(f); });
+    progress.Finish();
+    if (!result)
+    {
+      return Fail(Name, "'" + args.Input + "': " + error);
+    }
+    total.Add(counts);
+    framed.push_back(result);
+  }
+  const double computeMs = Milliseconds(computeStart);
+
+  // Write.
+  const auto writeStart = std::chrono::steady_clock::now();
+  const std::string outExt = NormalMapFiles::Extension(args.Output);
+  if (outExt == ".vtp")
+  {
+    vtkSmartPointer<vtkPolyData> result = framed.front();
+    if (framed.size() > 1)
+    {
+      vtkNew<vtkAppendPolyData> append;
+      for (const auto& mesh : framed)
+      {
+        append->AddInputData(mesh);
+      }
+      append->Update();
+      result = append->GetOutput();
+    }
+    if (!NormalMapFiles::WriteVTP(result, output.MainPath(), error))
+    {
+      return Fail(Name, error);
+    }
+  }
+  else
+  {
+    bool ok = true;
+    if (gltfIn)
+    {
+      for (size_t i = 0; i < framed.size() && ok; ++i)
+      {
+        ok = NormalMapGLTF::UpdatePrimitive(doc, primitives[i], framed[i], error);
+      }
+    }
+    else
+    {
+      ok = NormalMapGLTF::DocumentFromPolyData(framed.front(), uvNames.front(), doc, error);
+    }
+    if (!ok || !NormalMapGLTF::WriteDocument(doc, output, error))
+    {
+      return Fail(Name, error);
+    }
+  }
+  if (!output.Commit(error))
+  {
+    return Fail(Name, error);
+  }
+  const double writeMs = Milliseconds(writeStart);
+
+  PrintWarnings(warnings);
+  const bool vDown = args.Tangents.VDown || gltfIn || NormalMapTangents::IsVDown(meshes.front());
+  std::cout << std::fixed << std::setprecision(1) << "normalmap tangents: " << args.Input << " -> "
+            << args.Output << "\n"
+            << "  method                "
+            << vtkPolyDataTangentFrames::GetMethodName(args.Tangents.Method)
+            << (vDown ? " (UVs v-down, glTF signs)" : " (UVs v-up)") << "\n";
+  if (gltfIn)
+  {
+    std::cout << "  primitives            " << meshes.size() << " computed\n";
+  }
+  std::cout << "  points                " << total.InputPoints << " in, " << total.OutputPoints
+            << " out\n"
+            << "  triangles             " << total.Triangles << "\n"
+            << "  points split          " << total.SplitPoints
+            << (args.Tangents.Splitting ? "" : " (splitting off)") << "\n"
+            << "  degenerate triangles  " << total.DegenerateTriangles << "\n"
+            << "  fallback points       " << total.FallbackPoints << "\n"
+            << "  time                  " << Milliseconds(start) << " ms (read " << readMs
+            << ", tangents " << computeMs << ", write " << writeMs << ")\n";
+  return Success;
+}

@@ -1,0 +1,96 @@
+# Runs the normalmap tool once and checks how it ends. Inputs:
+#   TOOL       the normalmap executable
+#   WORK_DIR   a folder of this test's own (emptied first)
+#   ARGS       the arguments, separated by '|'; @WORK@ stands for WORK_DIR
+#   EXPECT     ok: exit code 0 and OUT written; fail: non-zero exit, exactly one line on
+#              stderr starting with "normalmap", and nothing written (neither OUT nor a
+#              temporary folder beside it)
+#   OUT        optional: the output path (with @WORK@)
+#   STDOUT     optional: a regular expression the standard output must match
+#   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
+#              prints "SKIPPED: ..." and ctest reports it skipped (SKIP_REGULAR_EXPRESSION)
+#   CASE       optional: writes @WORK@/case.gltf from SOURCE (a .gltf) broken one way:
+#              truncated | garbage | bad-accessor | bad-bufferview | bad-indices; or
+#              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
+#              ply-truncated | ply-no-xyz | ply-bad-face;
+#              also @WORK@/not-a-folder (a file, to write "into")
+if(REQUIRES AND NOT EXISTS "${REQUIRES}")
+  message("SKIPPED: shared test data not found at ${REQUIRES}")
+  return()
+endif()
+file(REMOVE_RECURSE "${WORK_DIR}")
+file(MAKE_DIRECTORY "${WORK_DIR}")
+file(WRITE "${WORK_DIR}/not-a-folder" "a file, not a folder\n")
+
+set(ply_header "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n")
+if(CASE STREQUAL "ply-truncated")
+  file(WRITE "${WORK_DIR}/case.ply" "${ply_header}property float z\nelement face 1\n"
+    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n")
+elseif(CASE STREQUAL "ply-no-xyz")
+  file(WRITE "${WORK_DIR}/case.ply" "${ply_header}end_header\n0 0\n1 0\n0 1\n")
+elseif(CASE STREQUAL "ply-bad-face")
+  file(WRITE "${WORK_DIR}/case.ply" "${ply_header}property float z\nelement face 1\n"
+    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+elseif(CASE)
+  file(READ "${SOURCE}" text)
+  if(CASE STREQUAL "truncated")
+    string(LENGTH "${text}" length)
+    math(EXPR half "${length} / 2")
+    string(SUBSTRING "${text}" 0 ${half} broken)
+  elseif(CASE STREQUAL "garbage")
+    set(broken "this is { not [ JSON")
+  elseif(CASE STREQUAL "bad-accessor")
+    string(REPLACE "\"POSITION\": 1" "\"POSITION\": 42" broken "${text}")
+  elseif(CASE STREQUAL "bad-bufferview")
+    string(REPLACE "\"byteOffset\": 108, \"byteLength\": 32" "\"byteOffset\": 4000, \"byteLength\": 32"
+      broken "${text}")
+  elseif(CASE STREQUAL "bad-indices")
+    # The 6 ushort indices read as 3 uints: (1 << 16) | 0 and the like, far out of range.
+    string(REPLACE "\"componentType\": 5123, \"count\": 6" "\"componentType\": 5125, \"count\": 3"
+      broken "${text}")
+  else()
+    message(FATAL_ERROR "unknown CASE ${CASE}")
+  endif()
+  if(broken STREQUAL text)
+    message(FATAL_ERROR "CASE ${CASE}: the replacement did not apply to ${SOURCE}")
+  endif()
+  file(WRITE "${WORK_DIR}/case.gltf" "${broken}")
+endif()
+
+string(REPLACE "@WORK@" "${WORK_DIR}" ARGS "${ARGS}")
+string(REPLACE "|" ";" ARGS "${ARGS}")
+string(REPLACE "@WORK@" "${WORK_DIR}" OUT "${OUT}")
+execute_process(COMMAND "${TOOL}" ${ARGS}
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(report "command: ${TOOL} ${ARGS}\nexit: ${rc}\nstdout:\n${out}\nstderr:\n${err}")
+
+if(EXPECT STREQUAL "ok")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "expected success\n${report}")
+  endif()
+  if(OUT AND NOT EXISTS "${OUT}")
+    message(FATAL_ERROR "expected ${OUT} to be written\n${report}")
+  endif()
+elseif(EXPECT STREQUAL "fail")
+  if(rc EQUAL 0 OR NOT rc MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "expected a non-zero exit code (not a crash)\n${report}")
+  endif()
+  string(REGEX REPLACE "\n$" "" trimmed "${err}")
+  if(NOT trimmed MATCHES "^normalmap[^\n]*error: [^\n]+$")
+    message(FATAL_ERROR "expected one line 'normalmap ...: error: ...' on stderr\n${report}")
+  endif()
+  if(OUT)
+    get_filename_component(out_dir "${OUT}" DIRECTORY)
+    get_filename_component(out_name "${OUT}" NAME)
+    file(GLOB leftovers "${out_dir}/.${out_name}.tmp-*")
+    if(EXISTS "${OUT}" OR leftovers)
+      message(FATAL_ERROR "the failed run left ${OUT} ${leftovers}\n${report}")
+    endif()
+  endif()
+else()
+  message(FATAL_ERROR "EXPECT must be ok or fail")
+endif()
+if(STDOUT AND NOT out MATCHES "${STDOUT}")
+  message(FATAL_ERROR "stdout does not match '${STDOUT}'\n${report}")
+endif()
+message("${report}")
