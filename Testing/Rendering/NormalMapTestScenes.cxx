@@ -358,6 +358,11 @@ std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<
   camera->SetFocalPoint(0.0, 0.0, 0.0);
   camera->SetViewUp(0.0, 1.0, 0.0);
   camera->SetViewAngle(setup.ViewAngle);
+  if (setup.Parallel)
+  {
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(setup.CameraDistance * std::tan(setup.ViewAngle * Pi / 360.0));
+  }
   renderer->ResetCameraClippingRange();
   window->AddRenderer(renderer);
   window->Render();

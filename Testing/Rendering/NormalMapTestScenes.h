@@ -122,6 +122,7 @@ struct FlatSetup
   int Height = 256;
   double CameraDistance = 5.0;                // camera at (0, 0, d) looking at the origin, y up
   double ViewAngle = 30.0;                    // vertical, degrees
+  bool Parallel = false;                      // parallel projection with the same framing at z = 0
   glm::dvec3 LightPosition{ -1.0, 1.5, 2.0 }; // a directional scene light towards the origin
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.3, SpecularPower = 20.0;
   glm::dvec3 Color{ 1.0, 0.8, 0.6 };
