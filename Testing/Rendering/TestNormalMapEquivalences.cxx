@@ -3,6 +3,7 @@
 #include "NormalMapTestScenes.h"
 
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkProperty.h" // VTK_FLAT, VTK_GOURAUD, VTK_PBR
 
 #include <iostream>
 
@@ -147,6 +148,26 @@ int TestNormalMapEquivalences(int, char*[])
     check(toHalf.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
         toPlain.MaxChannel < Between(plain, reference, 0).MaxChannel,
       "strength 0.5 perturbs less than strength 1");
+  }
+  // Every lighting model shows the map: with it the image differs from without it, by more
+  // than rounding (Flat: the face normal from derivatives is perturbed; Gouraud is lit per
+  // fragment in VTK's OpenGL2 backend like Phong; PBR).
+  for (int interpolation : { VTK_FLAT, VTK_GOURAUD, VTK_PBR })
+  {
+    nmtest::FlatActor withMap, withoutMap;
+    withMap.Mesh = withoutMap.Mesh = quad;
+    withMap.NormalTexture = openGL;
+    withMap.Interpolation = withoutMap.Interpolation = interpolation;
+    int appliedFrame = -1;
+    withMap.AppliedFrame = &appliedFrame;
+    const auto a = nmtest::RenderFlat(setup, { withMap });
+    const auto b = nmtest::RenderFlat(setup, { withoutMap });
+    const auto d = Between(a, b, 2);
+    std::cout << "interpolation " << interpolation << ": " << 100.0 * (1.0 - d.WithinFraction)
+              << "% of pixels changed by the map, max " << d.MaxChannel << std::endl;
+    check(appliedFrame == Mapper::APPLIED_POINT_TANGENTS && d.MaxChannel > 20 &&
+        d.WithinFraction < 0.95,
+      std::string("the map shows with interpolation ") + std::to_string(interpolation));
   }
   return check.Result();
 }
