@@ -17,3 +17,4 @@ run("${CMAKE_COMMAND}" --build "${WORK_DIR}/examples")
 run("${WORK_DIR}/examples/TangentFramesDemo" --triangles 20000)
 run("${WORK_DIR}/examples/normalmap/normalmap" tangents
   "${SOURCE_DIR}/Examples/normalmap/Testing/Data/quad.gltf" -o "${WORK_DIR}/quad.glb")
+run("${WORK_DIR}/examples/normalmap/normalmap" render --help)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up a fresh Debian (bookworm) machine, build, and run one job:
-#   bash scripts/bootstrap.sh demo   # build and run the built-in demo
+#   bash scripts/bootstrap.sh demo   # build and run `normalmap demo`: renders normalmap-demo.png
+#                                    # in the current folder
 #   bash scripts/bootstrap.sh test   # build and run every test (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmarks
 # Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
@@ -31,7 +32,14 @@ cmake --build "$build" -j "$(nproc)" >/dev/null
 
 case "$job" in
   demo)
-    "$build/bin/TangentFramesDemo"
+    # Debian's VTK renders through X only (no OSMesa): the demo gets a private Xvfb server, as
+    # the rendering tests do. A VTK with OSMesa renders with no X server at all.
+    mode=xvfb
+    if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
+      mode=osmesa
+    fi
+    "$root/Testing/Rendering/RunHeadless.sh" "$mode" "$build/bin/normalmap" demo
+    echo "== the picture is $(pwd)/normalmap-demo.png"
     ;;
   test)
     cd "$build"

@@ -4,6 +4,8 @@
 //   normalmap <command> [options]    (normalmap --help, normalmap <command> --help)
 #include "NormalMapTool.h"
 
+#include "NormalMapFiles.h"
+
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -16,6 +18,12 @@ const NormalMapTool::Command Commands[] = {
   { "tangents",
     "compute tangent frames of a mesh and write .vtp, .gltf or .glb",
     &NormalMapTool::TangentsCommand },
+  { "render",
+    "draw a mesh with its normal map offscreen and write a PNG",
+    &NormalMapTool::RenderCommand },
+  { "demo",
+    "render the built-in scene (mirrored UVs, procedural map) and print measurements",
+    &NormalMapTool::DemoCommand },
 };
 
 void PrintUsage(std::ostream& os)
@@ -35,6 +43,40 @@ int NormalMapTool::Fail(const char* command, const std::string& message, int cod
   std::cerr << "normalmap" << (command ? " " : "") << (command ? command : "")
             << ": error: " << message << std::endl;
   return code;
+}
+
+bool NormalMapTool::IsMeshFile(const std::string& path)
+{
+  const std::string ext = NormalMapFiles::Extension(path);
+  for (const char* known : { ".vtp", ".vtk", ".ply", ".obj", ".stl", ".gltf", ".glb" })
+  {
+    if (ext == known)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string NormalMapTool::CheckInputAndOutput(const std::vector<std::string>& positional,
+  const std::string& output,
+  const char* outputHint,
+  std::string& input)
+{
+  if (positional.size() != 1)
+  {
+    return positional.empty() ? "no input file" : "more than one input file";
+  }
+  input = positional.front();
+  if (output.empty())
+  {
+    return std::string("no output file (-o ") + outputHint + ")";
+  }
+  if (!IsMeshFile(input))
+  {
+    return "'" + input + "': unknown input format (.vtp .vtk .ply .obj .stl .gltf .glb)";
+  }
+  return std::string();
 }
 
 int main(int argc, char* argv[])

@@ -5,6 +5,7 @@
 #define NormalMapTool_h
 
 #include <string>
+#include <vector>
 
 namespace NormalMapTool
 {
@@ -29,7 +30,22 @@ enum ExitCode
 /// Prints "normalmap <command>: error: <message>" as one line on stderr and returns `code`.
 int Fail(const char* command, const std::string& message, int code = Failure);
 
+/// Whether `path` names a mesh format the tool reads (.vtp .vtk .ply .obj .stl .gltf .glb).
+bool IsMeshFile(const std::string& path);
+
+/**
+ * The command-line checks shared by commands that read one mesh and write one output: exactly
+ * one positional argument (stored in `input`), an output given (`outputHint` names it in the
+ * message) and a readable mesh format. Returns an empty string or the usage error.
+ */
+std::string CheckInputAndOutput(const std::vector<std::string>& positional,
+  const std::string& output,
+  const char* outputHint,
+  std::string& input);
+
 int TangentsCommand(int argc, char* argv[]);
+int RenderCommand(int argc, char* argv[]);
+int DemoCommand(int argc, char* argv[]);
 }
 
 #endif

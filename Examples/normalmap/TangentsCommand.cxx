@@ -135,22 +135,13 @@ std::string Parse(int argc, char* argv[], Arguments& args)
   {
     return std::string();
   }
-  if (positional.size() != 1)
+  const std::string error =
+    NormalMapTool::CheckInputAndOutput(positional, args.Output, "OUT", args.Input);
+  if (!error.empty())
   {
-    return positional.empty() ? "no input file" : "more than one input file";
+    return error;
   }
-  args.Input = positional.front();
-  if (args.Output.empty())
-  {
-    return "no output file (-o OUT)";
-  }
-  const std::string in = NormalMapFiles::Extension(args.Input);
   const std::string out = NormalMapFiles::Extension(args.Output);
-  if (in != ".vtp" && in != ".vtk" && in != ".ply" && in != ".obj" && in != ".stl" &&
-    in != ".gltf" && in != ".glb")
-  {
-    return "'" + args.Input + "': unknown input format (.vtp .vtk .ply .obj .stl .gltf .glb)";
-  }
   if (out != ".vtp" && out != ".gltf" && out != ".glb")
   {
     return "'" + args.Output + "': unknown output format (.vtp .gltf .glb)";

@@ -7,6 +7,8 @@
 #              temporary folder beside it)
 #   OUT        optional: the output path (with @WORK@)
 #   STDOUT     optional: a regular expression the standard output must match
+#   CHECK      optional, with EXPECT ok: a command ('|'-separated, @WORK@ expanded) run after
+#              the tool, which must exit 0 (e.g. the picture checker)
 #   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
 #              prints "SKIPPED: ..." and ctest reports it skipped (SKIP_REGULAR_EXPRESSION)
 #   CASE       optional: writes @WORK@/case.gltf from SOURCE (a .gltf) broken one way:
@@ -60,7 +62,7 @@ endif()
 string(REPLACE "@WORK@" "${WORK_DIR}" ARGS "${ARGS}")
 string(REPLACE "|" ";" ARGS "${ARGS}")
 string(REPLACE "@WORK@" "${WORK_DIR}" OUT "${OUT}")
-execute_process(COMMAND "${TOOL}" ${ARGS}
+execute_process(COMMAND "${TOOL}" ${ARGS} WORKING_DIRECTORY "${WORK_DIR}"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(report "command: ${TOOL} ${ARGS}\nexit: ${rc}\nstdout:\n${out}\nstderr:\n${err}")
 
@@ -70,6 +72,16 @@ if(EXPECT STREQUAL "ok")
   endif()
   if(OUT AND NOT EXISTS "${OUT}")
     message(FATAL_ERROR "expected ${OUT} to be written\n${report}")
+  endif()
+  if(CHECK)
+    string(REPLACE "@WORK@" "${WORK_DIR}" CHECK "${CHECK}")
+    string(REPLACE "|" ";" CHECK "${CHECK}")
+    execute_process(COMMAND ${CHECK} RESULT_VARIABLE check_rc OUTPUT_VARIABLE check_out
+      ERROR_VARIABLE check_out)
+    string(APPEND report "check: ${CHECK}\n${check_out}")
+    if(NOT check_rc EQUAL 0)
+      message(FATAL_ERROR "the check failed\n${report}")
+    endif()
   endif()
 elseif(EXPECT STREQUAL "fail")
   if(rc EQUAL 0 OR NOT rc MATCHES "^[0-9]+$")

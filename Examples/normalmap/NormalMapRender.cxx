@@ -1,0 +1,301 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "NormalMapRender.h"
+
+#include "NormalMapFiles.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkImageReader2Factory.h>
+#include <vtkLight.h>
+#include <vtkNew.h>
+#include <vtkNormalMapPolyDataMapper.h>
+#include <vtkPNGWriter.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkRenderingOpenGLConfigure.h> // VTK_USE_X
+#include <vtkTexture.h>
+#include <vtkWindowToImageFilter.h>
+
+#if defined(VTK_USE_X) && defined(NORMALMAP_HAVE_X11)
+#include <X11/Xlib.h>
+#endif
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace NormalMapRender
+{
+namespace
+{
+double MillisecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+    .count();
+}
+
+std::string RendererString(vtkRenderWindow* window)
+{
+  std::istringstream capabilities(window->ReportCapabilities());
+  std::string line;
+  const std::string key = "OpenGL renderer string:";
+  while (std::getline(capabilities, line))
+  {
+    const size_t at = line.find(key);
+    if (at != std::string::npos)
+    {
+      const size_t begin = line.find_first_not_of(' ', at + key.size());
+      return begin == std::string::npos ? std::string() : line.substr(begin);
+    }
+  }
+  return "unknown";
+}
+
+// The X display for VTK's X window, opened here: VTK 9.1 calls abort() when it cannot open one.
+class DisplayConnection
+{
+public:
+  ~DisplayConnection()
+  {
+#if defined(VTK_USE_X) && defined(NORMALMAP_HAVE_X11)
+    if (this->Display)
+    {
+      XCloseDisplay(static_cast<::Display*>(this->Display));
+    }
+#endif
+  }
+  bool Attach(vtkRenderWindow* window, std::string& name, std::string& error)
+  {
+    if (std::strcmp(window->GetClassName(), "vtkXOpenGLRenderWindow") != 0)
+    {
+      name = "no X server";
+      return true;
+    }
+    const char* variable = std::getenv("DISPLAY");
+    name = variable && *variable ? variable : "(DISPLAY not set)";
+#if defined(VTK_USE_X) && defined(NORMALMAP_HAVE_X11)
+    this->Display = XOpenDisplay(nullptr);
+    if (!this->Display)
+    {
+      error = "cannot open the X display " + name +
+        ": this VTK renders through X only, even offscreen (run under Xvfb, e.g. "
+        "xvfb-run -a normalmap ...)";
+      return false;
+    }
+    window->SetDisplayId(this->Display);
+#else
+    if (!variable || !*variable)
+    {
+      error = "DISPLAY is not set: this VTK renders through X only, even offscreen";
+      return false;
+    }
+#endif
+    return true;
+  }
+
+private:
+  void* Display = nullptr;
+};
+}
+
+bool Render(const Scene& scene, Rendered& result, std::string& error)
+{
+  NormalMapFiles::VTKMessageCapture messages;
+  DisplayConnection display;
+  {
+    vtkNew<vtkRenderWindow> window;
+    std::string displayName;
+    if (!display.Attach(window, displayName, error))
+    {
+      return false;
+    }
+    window->SetOffScreenRendering(1);
+    window->SetSize(scene.Width, scene.Height);
+    window->SetMultiSamples(8);
+
+    vtkNew<vtkRenderer> renderer;
+    renderer->SetBackground(Background[0], Background[1], Background[2]);
+    renderer->SetTwoSidedLighting(true);
+    renderer->AutomaticLightCreationOff();
+    vtkNew<vtkLight> light;
+    if (scene.LightInScene)
+    {
+      light->SetLightTypeToSceneLight();
+    }
+    else
+    {
+      light->SetLightTypeToCameraLight();
+    }
+    light->SetPositional(false);
+    light->SetPosition(scene.LightPosition[0], scene.LightPosition[1], scene.LightPosition[2]);
+    light->SetFocalPoint(0.0, 0.0, 0.0);
+    renderer->AddLight(light);
+
+    vtkNew<vtkNormalMapPolyDataMapper> mapper;
+    mapper->SetInputData(scene.Mesh);
+    mapper->SetMapEncoding(scene.Encoding);
+    mapper->SetFrameSource(scene.FrameSource);
+    mapper->ScalarVisibilityOff();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    vtkProperty* property = actor->GetProperty();
+    property->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
+    if (scene.PBR)
+    {
+      property->SetInterpolationToPBR();
+      property->SetMetallic(0.0);
+      property->SetRoughness(0.45);
+    }
+    else
+    {
+      property->SetInterpolationToPhong();
+      property->SetAmbient(0.08);
+      property->SetDiffuse(0.85);
+      property->SetSpecular(0.35);
+      property->SetSpecularPower(30.0);
+    }
+    if (scene.NormalMap)
+    {
+      property->SetNormalTexture(scene.NormalMap);
+      property->SetNormalScale(scene.Strength);
+    }
+    renderer->AddActor(actor);
+
+    vtkCamera* camera = renderer->GetActiveCamera();
+    if (scene.PlaceCamera)
+    {
+      camera->SetPosition(scene.CameraPosition);
+      camera->SetFocalPoint(scene.FocalPoint);
+      camera->SetViewUp(scene.ViewUp);
+      camera->OrthogonalizeViewUp();
+      renderer->ResetCameraClippingRange();
+    }
+    else
+    {
+      renderer->ResetCamera();
+      camera->Azimuth(scene.Azimuth);
+      camera->Elevation(scene.Elevation);
+      camera->OrthogonalizeViewUp();
+      camera->Zoom(scene.Zoom);
+      renderer->ResetCameraClippingRange();
+    }
+    window->AddRenderer(renderer);
+
+    auto start = std::chrono::steady_clock::now();
+    window->Render();
+    result.FirstFrameMs = MillisecondsSince(start);
+    if (!messages.Errors().empty())
+    {
+      error = "rendering failed: " + messages.Errors().front();
+      return false;
+    }
+    start = std::chrono::steady_clock::now();
+    window->Render();
+    result.NextFrameMs = MillisecondsSince(start);
+
+    result.Renderer = RendererString(window);
+    result.Window = std::string(window->GetClassName()) + ", display " + displayName;
+    result.AppliedFrame =
+      vtkNormalMapPolyDataMapper::GetAppliedFrameName(mapper->GetLastAppliedFrame());
+
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(window);
+    grab->SetInputBufferTypeToRGB();
+    grab->ReadFrontBufferOff();
+    grab->Update();
+    result.Image = vtkSmartPointer<vtkImageData>::New();
+    result.Image->DeepCopy(grab->GetOutput());
+    // The window goes before the display connection it uses.
+    window->Finalize();
+  }
+  if (!messages.Errors().empty())
+  {
+    error = "rendering failed: " + messages.Errors().front();
+    return false;
+  }
+  result.Warnings = messages.Warnings();
+  return true;
+}
+
+vtkSmartPointer<vtkTexture> MakeTexture(vtkImageData* image)
+{
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(image);
+  texture->InterpolateOn();
+  texture->RepeatOn();
+  return texture;
+}
+
+vtkSmartPointer<vtkImageData> ReadImage(const std::string& path, std::string& error)
+{
+  NormalMapFiles::VTKMessageCapture messages;
+  if (!std::ifstream(path).good())
+  {
+    error = "cannot open '" + path + "': no such file or not readable";
+    return nullptr;
+  }
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
+  if (!reader)
+  {
+    error = "'" + path + "' is not a PNG or JPEG image";
+    return nullptr;
+  }
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3] = { 0, 0, 0 };
+  image->GetDimensions(dims);
+  if (!messages.Errors().empty() || dims[0] < 1 || dims[1] < 1 ||
+    image->GetNumberOfScalarComponents() < 1)
+  {
+    error = "cannot read the image '" + path + "'" +
+      (messages.Errors().empty() ? std::string() : ": " + messages.Errors().front());
+    return nullptr;
+  }
+  vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
+  copy->DeepCopy(image);
+  return copy;
+}
+
+bool WritePNG(vtkImageData* image, NormalMapFiles::OutputTransaction& output, std::string& error)
+{
+  NormalMapFiles::VTKMessageCapture messages;
+  const std::string path = output.MainPath();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0 || !messages.Errors().empty())
+  {
+    error = "cannot write '" + output.FinalPath() + "'" +
+      (messages.Errors().empty() ? std::string() : ": " + messages.Errors().front());
+    return false;
+  }
+  return true;
+}
+
+bool ParseSize(const std::string& text, int& width, int& height)
+{
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos || x == 0 || x + 1 >= text.size())
+  {
+    return false;
+  }
+  const std::string w = text.substr(0, x), h = text.substr(x + 1);
+  if (w.find_first_not_of("0123456789") != std::string::npos ||
+    h.find_first_not_of("0123456789") != std::string::npos || w.size() > 5 || h.size() > 5)
+  {
+    return false;
+  }
+  width = std::stoi(w);
+  height = std::stoi(h);
+  return width >= 16 && width <= 8192 && height >= 16 && height <= 8192;
+}
+}
