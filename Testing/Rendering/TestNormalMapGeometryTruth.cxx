@@ -3,8 +3,7 @@
 // with the same camera and light; the normal map should light the flat quad like the geometry.
 #include "NormalMapTestScenes.h"
 
-#include "vtkCellArray.h"
-#include "vtkFloatArray.h"
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkPointData.h"
@@ -27,36 +26,19 @@ double Height(double u, double v)
 /// world units here, so slopes match the map's), with the analytic normals.
 vtkSmartPointer<vtkPolyData> DisplacedGrid(int resolution)
 {
-  const int n = resolution + 1;
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  for (int j = 0; j < n; ++j)
+  auto grid = nmtest::MakeQuad(resolution);
+  vtkPoints* points = grid->GetPoints();
+  vtkDataArray* normals = grid->GetPointData()->GetNormals();
+  vtkDataArray* tcoords = grid->GetPointData()->GetTCoords();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
   {
-    for (int i = 0; i < n; ++i)
-    {
-      const double u = static_cast<double>(i) / resolution, v = static_cast<double>(j) / resolution;
-      points->InsertNextPoint(2.0 * u - 1.0, 2.0 * v - 1.0, 2.0 * Height(u, v));
-      const glm::dvec3 normal = nmtest::PatternNormal(nmtest::Pattern::SineBump, u, v);
-      normals->InsertNextTuple3(normal.x, normal.y, normal.z);
-    }
+    const double u = tcoords->GetComponent(i, 0), v = tcoords->GetComponent(i, 1);
+    double p[3];
+    points->GetPoint(i, p);
+    points->SetPoint(i, p[0], p[1], 2.0 * Height(u, v));
+    const glm::dvec3 normal = nmtest::PatternNormal(nmtest::Pattern::SineBump, u, v);
+    normals->SetTuple3(i, normal.x, normal.y, normal.z);
   }
-  vtkNew<vtkCellArray> triangles;
-  for (int j = 0; j < resolution; ++j)
-  {
-    for (int i = 0; i < resolution; ++i)
-    {
-      const vtkIdType a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
-      const vtkIdType first[3] = { a, b, c }, second[3] = { a, c, d };
-      triangles->InsertNextCell(3, first);
-      triangles->InsertNextCell(3, second);
-    }
-  }
-  auto grid = vtkSmartPointer<vtkPolyData>::New();
-  grid->SetPoints(points);
-  grid->SetPolys(triangles);
-  grid->GetPointData()->SetNormals(normals);
   return grid;
 }
 }
