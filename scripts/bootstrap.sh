@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up a fresh Debian (bookworm) machine, build, and run one job:
 #   bash scripts/bootstrap.sh demo   # build and run the built-in demo
-#   bash scripts/bootstrap.sh test   # build and run every test (what CI runs)
+#   bash scripts/bootstrap.sh test   # build and run every test, then the same tests and a
+#                                    # short fuzz run under ASan + UBSan (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmarks
 # Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
 set -euo pipefail
@@ -9,8 +10,9 @@ job="${1:-demo}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
 
+# clang-14 + libclang-rt-14-dev: the sanitizer and libFuzzer build (scripts/sanitize.sh).
 packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth)
+  xvfb xauth clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -34,8 +36,9 @@ case "$job" in
     "$build/bin/TangentFramesDemo"
     ;;
   test)
-    cd "$build"
-    ctest --output-on-failure -j "$(nproc)"
+    (cd "$build" && ctest --output-on-failure -j "$(nproc)")
+    echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
+    bash "$root/scripts/sanitize.sh"
     ;;
   bench)
     "$build/bin/BenchTangentFrames" --markdown "$root/docs/filter-benchmark.md"
