@@ -2272,6 +2272,13 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
     res.NumberOfDefaultCorners = numSlots;
     return res;
   }
+  if (numSlots == 0)
+  {
+    // Only faces without corners: nothing to compute, and their (empty) connectivity may be a
+    // null pointer, which is no reason to call them invalid.
+    res.NumberOfSkippedFaces = in.NumberOfFaces;
+    return res;
+  }
   if (!in.FaceConnectivity || !in.Positions || !in.Normals || !in.TCoords)
   {
     std::fill(res.Corners.begin(), res.Corners.end(), DefaultCornerFrame);

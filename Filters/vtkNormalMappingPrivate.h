@@ -5,7 +5,18 @@
 #ifndef vtkNormalMappingPrivate_h
 #define vtkNormalMappingPrivate_h
 
+#include "vtkAbstractArray.h"
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkIdList.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <vector>
 
 namespace vtkNormalMapping
 {
@@ -23,6 +34,71 @@ void WithCellStorage(vtkCellArray* cells, F&& f)
   else
   {
     f(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
+  }
+}
+
+/**
+ * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple
+ * numIn + i copies tuple source[i] (a point split in two takes all its point data along).
+ * An array shorter than numIn cannot follow the points and is returned as it is.
+ */
+inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* array,
+  vtkIdType numIn,
+  const std::vector<vtkIdType>& source)
+{
+  if (array->GetNumberOfTuples() < numIn)
+  {
+    return array;
+  }
+  const vtkIdType extra = static_cast<vtkIdType>(source.size());
+  vtkNew<vtkIdList> src, dst;
+  src->SetNumberOfIds(extra);
+  dst->SetNumberOfIds(extra);
+  for (vtkIdType i = 0; i < extra; ++i)
+  {
+    src->SetId(i, source[static_cast<size_t>(i)]);
+    dst->SetId(i, numIn + i);
+  }
+  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
+  copy->DeepCopy(array);
+  copy->SetNumberOfTuples(numIn); // appended tuples follow the points, not extra input tuples
+  copy->Resize(numIn + extra);
+  copy->InsertTuples(dst, src, array);
+  return copy;
+}
+
+/**
+ * The output's structure and cell data from the input; its points and point data from the
+ * input's with source.size() points appended (ExtendPointArray), attributes kept. The caller
+ * re-points the cells to the new points.
+ */
+inline void CopyWithAppendedPoints(vtkPolyData* input,
+  vtkPolyData* output,
+  const std::vector<vtkIdType>& source)
+{
+  output->CopyStructure(input);
+  output->GetCellData()->PassData(input->GetCellData());
+  vtkPointData* inPD = input->GetPointData();
+  vtkPointData* outPD = output->GetPointData();
+  if (source.empty())
+  {
+    outPD->PassData(inPD);
+    return;
+  }
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  vtkNew<vtkPoints> points;
+  points->SetData(
+    vtkDataArray::SafeDownCast(ExtendPointArray(input->GetPoints()->GetData(), numIn, source)));
+  output->SetPoints(points);
+  outPD->Initialize();
+  for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
+  {
+    outPD->AddArray(ExtendPointArray(inPD->GetAbstractArray(k), numIn, source));
+    const int attribute = inPD->IsArrayAnAttribute(k);
+    if (attribute >= 0)
+    {
+      outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
+    }
   }
 }
 }

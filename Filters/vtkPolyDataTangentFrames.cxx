@@ -8,7 +8,6 @@
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkIdList.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -47,6 +46,8 @@ vtkStandardNewMacro(vtkPolyDataTangentFrames);
 namespace
 {
 using namespace vtkNormalMapping;
+using vtkNormalMapping::detail::CopyWithAppendedPoints;
+using vtkNormalMapping::detail::ExtendPointArray;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Cells processed between two progress reports / abort checks (on the calling thread).
@@ -83,14 +84,15 @@ struct RealArray
   int Components = 0;
 
   explicit RealArray(vtkDataArray* array)
+    : Array(array)
   {
     if (array && array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
     {
+      // Held by this->Array: the copy must outlive the constructor.
       auto copy = vtkSmartPointer<vtkDoubleArray>::New();
       copy->DeepCopy(array);
-      array = copy;
+      this->Array = copy;
     }
-    this->Array = array;
     this->Components = array ? array->GetNumberOfComponents() : 0;
   }
   bool IsDouble() const { return this->Array->GetDataType() == VTK_DOUBLE; }
@@ -720,16 +722,6 @@ void ComputeCellTangentArray(const Execution& ex,
   }
 }
 
-/// A copy of `array` with `extra` more tuples, tuple numPoints + i copied from ids[i].
-vtkSmartPointer<vtkAbstractArray> Extend(vtkAbstractArray* array, vtkIdList* src, vtkIdList* dst)
-{
-  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
-  copy->DeepCopy(array);
-  copy->Resize(array->GetNumberOfTuples() + src->GetNumberOfIds());
-  copy->InsertTuples(dst, src, array);
-  return copy;
-}
-
 /// Checks a numeric point array: exists, numeric, long enough.
 vtkDataArray* NumericPointArray(vtkPolyData* input,
   const char* name,
@@ -1137,42 +1129,18 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   // 3. Split points: copies appended after the input points, cells re-pointed.
   const vtkIdType numSplits = ex.Splitting ? static_cast<vtkIdType>(splits.size()) : 0;
   self->NumberOfSplitPoints = numSplits;
-  output->CopyStructure(input);
-  output->GetCellData()->PassData(input->GetCellData());
-  if (numSplits == 0)
+  std::vector<vtkIdType> splitSource(static_cast<size_t>(numSplits));
+  for (vtkIdType i = 0; i < numSplits; ++i)
   {
-    output->GetPointData()->PassData(input->GetPointData());
+    splitSource[i] = splits[i].Id;
   }
-  else
+  CopyWithAppendedPoints(input, output, splitSource);
+  if (numSplits > 0)
   {
-    vtkNew<vtkIdList> splitSource, splitTarget;
-    splitSource->SetNumberOfIds(numSplits);
-    splitTarget->SetNumberOfIds(numSplits);
-    for (vtkIdType i = 0; i < numSplits; ++i)
-    {
-      splitSource->SetId(i, splits[i].Id);
-      splitTarget->SetId(i, numPoints + i);
-    }
-    vtkNew<vtkPoints> newPoints;
-    newPoints->SetData(
-      vtkDataArray::SafeDownCast(Extend(input->GetPoints()->GetData(), splitSource, splitTarget)));
-    output->SetPoints(newPoints);
-    vtkPointData* inPD = input->GetPointData();
-    vtkPointData* outPD = output->GetPointData();
-    outPD->Initialize();
-    for (int a = 0; a < inPD->GetNumberOfArrays(); ++a)
-    {
-      outPD->AddArray(Extend(inPD->GetAbstractArray(a), splitSource, splitTarget));
-      const int attribute = inPD->IsArrayAnAttribute(a);
-      if (attribute >= 0)
-      {
-        outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
-      }
-    }
     if (computedNormals)
     {
-      computedNormals =
-        OutArray::SafeDownCast(Extend(computedNormals, splitSource, splitTarget).GetPointer());
+      computedNormals = OutArray::SafeDownCast(
+        ExtendPointArray(computedNormals, numPoints, splitSource).GetPointer());
     }
     for (OutArray* array : { tangents.Get(), signs.Get(), bitangents.Get() })
     {

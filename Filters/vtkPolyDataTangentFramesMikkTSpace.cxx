@@ -33,7 +33,6 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -47,6 +46,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <string>
 #include <type_traits>
 #include <unordered_map>
 #include <utility>
@@ -144,31 +144,6 @@ struct GatherTriples
   }
 };
 
-/// A copy of `array` with source.size() more tuples, tuple numIn + i copied from source[i].
-vtkSmartPointer<vtkAbstractArray> Extend(vtkAbstractArray* array,
-  vtkIdType numIn,
-  const std::vector<vtkIdType>& source)
-{
-  const vtkIdType extra = static_cast<vtkIdType>(source.size());
-  vtkNew<vtkIdList> src, dst;
-  src->SetNumberOfIds(extra);
-  dst->SetNumberOfIds(extra);
-  for (vtkIdType i = 0; i < extra; ++i)
-  {
-    src->SetId(i, source[static_cast<size_t>(i)]);
-    dst->SetId(i, numIn + i);
-  }
-  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
-  copy->DeepCopy(array);
-  if (array->GetNumberOfTuples() > numIn)
-  {
-    copy->SetNumberOfTuples(numIn); // appended tuples follow the points, not extra input tuples
-  }
-  copy->Resize(numIn + extra);
-  copy->InsertTuples(dst, src, array);
-  return copy;
-}
-
 /// The kernel's faces built from the polygons and strips, and the map from output corners
 /// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
 struct Surface
@@ -214,9 +189,29 @@ int PositionInStripTriangle(long long i, long long j)
   return i == j + 1 ? 0 : (i == j ? 1 : 2);
 }
 
-/// Fills `s`; returns false with `problem` set when a cell array is malformed.
-bool BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s, std::string& problem)
+/// True when every id of cells [begin, end) of a cell array's storage is in [0, numPoints).
+template<typename IdT>
+bool IdsInRange(const IdT* conn, long long begin, long long end, vtkIdType numPoints)
 {
+  bool ok = true;
+  for (long long i = begin; i < end; ++i)
+  {
+    ok &= conn[i] >= 0 && static_cast<vtkIdType>(conn[i]) < numPoints;
+  }
+  return ok;
+}
+
+/// Fills `s`; returns false with `problem` set when a cell array is malformed or a polygon or
+/// strip with fewer than 3 points has an id outside [0, numPoints) (the kernel checks the
+/// others, and skips these without looking at their ids).
+bool BuildSurface(vtkCellArray* polys,
+  vtkCellArray* strips,
+  vtkIdType numPoints,
+  Surface& s,
+  std::string& problem)
+{
+  const std::string badIds =
+    "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
   s.NumPolys = polys ? polys->GetNumberOfCells() : 0;
   s.NumStrips = strips ? strips->GetNumberOfCells() : 0;
   s.PolyCorners = s.NumPolys > 0 ? polys->GetNumberOfConnectivityIds() : 0;
@@ -227,30 +222,31 @@ bool BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s, std::st
   s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
   if (s.NumStrips > 0)
   {
-    bool ok = true;
+    bool ok = true, inRange = true;
     WithCellStorage(strips,
-      [&](auto* off, auto*)
+      [&](auto* off, auto* conn)
       {
         ok = off[0] == 0 && off[s.NumStrips] == s.StripCorners;
         for (vtkIdType k = 0; ok && k < s.NumStrips; ++k)
         {
           const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
           ok = n >= 0;
+          inRange &= n >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
           s.StripCornerStart[k + 1] = off[k + 1];
           s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
         }
       });
-    if (!ok)
+    if (!ok || !inRange)
     {
-      problem = "the triangle strip cell array has inconsistent offsets";
+      problem = ok ? badIds : "the triangle strip cell array has inconsistent offsets";
       return false;
     }
   }
   if (s.NumPolys > 0)
   {
-    bool ok = true;
+    bool ok = true, inRange = true;
     WithCellStorage(polys,
-      [&](auto* off, auto*)
+      [&](auto* off, auto* conn)
       {
         ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
         if (!ok)
@@ -295,6 +291,7 @@ bool BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s, std::st
           const long long b = off[k], e = off[k + 1];
           if (e - b < 3)
           {
+            inRange &= IdsInRange(conn, b, e, numPoints);
             for (long long c = std::max(0LL, b); c < std::min<long long>(e, s.PolyCorners); ++c)
             {
               s.PolyFrameless[static_cast<size_t>(c)] = 1;
@@ -302,9 +299,9 @@ bool BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s, std::st
           }
         }
       });
-    if (!ok)
+    if (!ok || !inRange)
     {
-      problem = "the polygon cell array has inconsistent offsets";
+      problem = ok ? badIds : "the polygon cell array has inconsistent offsets";
       return false;
     }
   }
@@ -614,33 +611,10 @@ void WriteOutput(const MikkTSpaceRequest& request,
   const float signFactor = request.GLTFSign ? -1.0f : 1.0f;
 
   // Structure, cell data, point data (extended with copies for the new points).
-  output->CopyStructure(input);
-  output->GetCellData()->PassData(input->GetCellData());
-  vtkPointData* inPD = input->GetPointData();
+  CopyWithAppendedPoints(input, output, a.SplitSource);
   vtkPointData* outPD = output->GetPointData();
-  if (numSplits == 0)
+  if (numSplits > 0)
   {
-    outPD->PassData(inPD);
-  }
-  else
-  {
-    vtkNew<vtkPoints> points;
-    points->SetData(
-      vtkDataArray::SafeDownCast(Extend(input->GetPoints()->GetData(), numIn, a.SplitSource)));
-    output->SetPoints(points);
-    outPD->Initialize();
-    for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
-    {
-      vtkAbstractArray* array = inPD->GetAbstractArray(k);
-      // An array shorter than the points cannot be extended consistently: passed as it is.
-      outPD->AddArray(
-        array->GetNumberOfTuples() < numIn ? array : Extend(array, numIn, a.SplitSource).Get());
-      const int attribute = inPD->IsArrayAnAttribute(k);
-      if (attribute >= 0)
-      {
-        outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
-      }
-    }
     const vtkIdType maxId = numOut - 1;
     if (s.PolyCorners > 0)
     {
@@ -768,6 +742,10 @@ void WriteOutput(const MikkTSpaceRequest& request,
           for (long long f = fb; f < fe; ++f)
           {
             const long long cb = s.FaceOffsets[f], ce = s.FaceOffsets[f + 1];
+            if (ce - cb < 3)
+            {
+              continue; // no frame (and an empty polygon has no first corner to read)
+            }
             for (long long c = cb; c < ce; ++c)
             {
               const CornerFrame& cf = frames[static_cast<size_t>(c)];
@@ -823,7 +801,7 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
 
   Surface surface;
   std::string problem;
-  if (!BuildSurface(input->GetPolys(), input->GetStrips(), surface, problem))
+  if (!BuildSurface(input->GetPolys(), input->GetStrips(), numPoints, surface, problem))
   {
     vtkErrorWithObjectMacro(
       filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");

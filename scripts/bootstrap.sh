@@ -2,7 +2,8 @@
 # Set up a fresh Debian (bookworm) machine, build, and run one job:
 #   bash scripts/bootstrap.sh demo   # build and run `normalmap demo`: renders normalmap-demo.png
 #                                    # in the current folder
-#   bash scripts/bootstrap.sh test   # build and run every test (what CI runs)
+#   bash scripts/bootstrap.sh test   # build and run every test, then the same tests and a
+#                                    # short fuzz run under ASan + UBSan (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmarks
 # Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
 set -euo pipefail
@@ -10,8 +11,9 @@ job="${1:-demo}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
 
+# clang-14 + libclang-rt-14-dev: the sanitizer and libFuzzer build (scripts/sanitize.sh).
 packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  libtinygltf-dev xvfb xauth)
+  libtinygltf-dev xvfb xauth clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -42,8 +44,9 @@ case "$job" in
     echo "== the picture is $(pwd)/normalmap-demo.png"
     ;;
   test)
-    cd "$build"
-    ctest --output-on-failure -j "$(nproc)"
+    (cd "$build" && ctest --output-on-failure -j "$(nproc)")
+    echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
+    bash "$root/scripts/sanitize.sh"
     ;;
   bench)
     "$build/bin/BenchTangentFrames" --markdown "$root/docs/filter-benchmark.md"

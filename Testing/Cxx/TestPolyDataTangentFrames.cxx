@@ -10,6 +10,7 @@
 #include "vtkCylinderSource.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkParametricTorus.h"
 #include "vtkPlaneSource.h"
@@ -19,6 +20,7 @@
 #include "vtkPolyDataNormals.h"
 #include "vtkPolyDataTangents.h"
 #include "vtkSMPTools.h"
+#include "vtkShortArray.h"
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
 #include "vtkTextureMapToCylinder.h"
@@ -718,6 +720,317 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsAreAnErrorAndPassThrough)
   EXPECT_TRUE(messages.Has(messages.Errors, "point id outside")) << messages.Errors.size();
   EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPolys(), 1);
+}
+
+namespace
+{
+const int EveryMethod[] = { vtkPolyDataTangentFrames::UNWEIGHTED,
+  vtkPolyDataTangentFrames::AREA_WEIGHTED,
+  vtkPolyDataTangentFrames::ANGLE_WEIGHTED,
+  vtkPolyDataTangentFrames::MIKKTSPACE };
+
+/// Two triangles in z = 0 sharing the edge 0-2, the second with mirrored texture coordinates:
+/// points 0 and 2 are on a mirror seam, so splitting adds two points.
+vtkSmartPointer<vtkPolyData> MirroredPair()
+{
+  return MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 }, { 1, 0 } },
+    { { 0, 1, 2 }, { 0, 2, 3 } },
+    std::vector<Vec>(4, Vec{ 0, 0, 1 }));
+}
+
+/// A copy of mesh with one more polygon (strip = false) or strip.
+vtkSmartPointer<vtkPolyData> WithCell(vtkPolyData* mesh, std::vector<vtkIdType> ids, bool strip)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(mesh);
+  vtkCellArray* cells = strip ? copy->GetStrips() : copy->GetPolys();
+  if (!cells)
+  {
+    copy->SetStrips(vtkNew<vtkCellArray>());
+    cells = copy->GetStrips();
+  }
+  cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  return copy;
+}
+}
+
+TEST(PolyDataTangentFrames, OutOfRangeIdsInAnyCellAreAnErrorForEveryMethod)
+{
+  // Polygons and strips of every size, with an id just past the end or negative: the same
+  // error and a pass-through from every method. Cells with fewer than 3 points give no frames,
+  // but a bad id in them is still an error (MikkTSpace read out of bounds here before).
+  auto mesh = MirroredPair();
+  const std::vector<std::pair<std::vector<vtkIdType>, bool>> cells = { { { 0, 1, 4 }, false },
+    { { -1, 1, 2, 3 }, false },
+    { { 0, 4 }, false },
+    { { -1 }, false },
+    { { 0, 1, 2, 4 }, true },
+    { { 2, -1 }, true },
+    { { 9 }, true } };
+  for (const auto& [ids, strip] : cells)
+  {
+    auto bad = WithCell(mesh, ids, strip);
+    for (int method : EveryMethod)
+    {
+      SCOPED_TRACE(std::string(strip ? "strip" : "polygon") + " of " + std::to_string(ids.size()) +
+        " " + vtkPolyDataTangentFrames::GetMethodName(method));
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      filter->SetInputData(bad);
+      filter->SetMethod(method);
+      filter->Update();
+      vtkPolyData* out = filter->GetOutput();
+      ASSERT_EQ(messages.Errors.size(), 1u);
+      EXPECT_TRUE(messages.Has(messages.Errors, "outside [0, 4)")) << messages.Errors[0];
+      EXPECT_EQ(out->GetPoints(), bad->GetPoints()); // passed through, not copied
+      EXPECT_EQ(out->GetPolys(), bad->GetPolys());
+      EXPECT_EQ(out->GetStrips(), bad->GetStrips());
+      EXPECT_EQ(out->GetPointData()->GetTangents(), nullptr);
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, CellsWithFewerThanThreePointsPassThrough)
+{
+  // Polygons with 0, 1 and 2 points and strips of 0, 1 and 2 points beside a mirrored pair:
+  // a warning, the cells unchanged (even where their point is split), the other frames as
+  // without them.
+  auto mesh = MirroredPair();
+  auto input = mesh;
+  for (const auto& ids : std::vector<std::vector<vtkIdType>>{ {}, { 0 }, { 0, 2 } })
+  {
+    input = WithCell(WithCell(input, ids, false), ids, true);
+  }
+  for (int method : EveryMethod)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    const auto configure = [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); };
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(input);
+    configure(filter);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    EXPECT_TRUE(messages.Errors.empty());
+    EXPECT_TRUE(messages.Has(messages.Warnings, "6 polygon or strip cells have fewer than 3"));
+    ExpectValidFrames(out);
+    auto reference = RunFrames(mesh, configure);
+    ASSERT_EQ(out->GetNumberOfPoints(), reference->GetNumberOfPoints());
+    EXPECT_EQ(out->GetNumberOfPoints(), 6); // the two seam points split
+    for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+    {
+      EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), p),
+        Get3(reference->GetPointData()->GetTangents(), p))
+        << "point " << p;
+    }
+    for (vtkCellArray* cells : { out->GetPolys(), out->GetStrips() })
+    {
+      vtkCellArray* in = cells == out->GetPolys() ? input->GetPolys() : input->GetStrips();
+      ASSERT_EQ(cells->GetNumberOfCells(), in->GetNumberOfCells());
+      const vtkIdType first = cells == out->GetPolys() ? 2 : 0; // the short cells
+      for (vtkIdType c = first; c < cells->GetNumberOfCells(); ++c)
+      {
+        vtkNew<vtkIdList> a, b;
+        in->GetCellAtId(c, a);
+        cells->GetCellAtId(c, b);
+        ASSERT_EQ(a->GetNumberOfIds(), b->GetNumberOfIds());
+        for (vtkIdType k = 0; k < a->GetNumberOfIds(); ++k)
+        {
+          EXPECT_EQ(a->GetId(k), b->GetId(k));
+        }
+      }
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, OnlyEmptyPolygonsAndStrips)
+{
+  // Points, but every polygon and strip without points: a warning and a pass-through of the
+  // cells, no error (MikkTSpace called them out-of-range ids before, and its cell tangents read
+  // the first corner of an empty polygon).
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(MirroredPair());
+  mesh->SetPolys(vtkNew<vtkCellArray>());
+  auto input = WithCell(WithCell(mesh, {}, false), {}, true);
+  for (int method : EveryMethod)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(input);
+    filter->SetMethod(method);
+    filter->ComputeCellTangentsOn();
+    filter->Update();
+    EXPECT_TRUE(messages.Errors.empty()) << messages.Errors.front();
+    EXPECT_TRUE(messages.Has(messages.Warnings, "2 polygon or strip cells have fewer than 3"));
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfPolys(), 1);
+    EXPECT_EQ(filter->GetOutput()->GetNumberOfStrips(), 1);
+    ExpectValidFrames(filter->GetOutput()); // every point a fallback point
+    vtkDataArray* cellTangents = filter->GetOutput()->GetCellData()->GetTangents();
+    ASSERT_NE(cellTangents, nullptr);
+    for (vtkIdType c = 0; c < 2; ++c)
+    {
+      // No triangle: the fixed rule's tangent for a zero normal.
+      EXPECT_EQ(Get3(cellTangents, c), (Vec{ 1, 0, 0 })) << "cell " << c;
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, PolygonsWithRepeatedIds)
+{
+  // A quad (0, 1, 1, 2) fans into (0, 1, 1), degenerate, and (0, 1, 2); a triangle (2, 2, 2) and
+  // a strip (0, 1, 0, 1) are degenerate throughout. The good triangle gives the frames.
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
+    { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    { { 0, 1, 1, 2 }, { 2, 2, 2 } },
+    std::vector<Vec>(3, Vec{ 0, 0, 1 }));
+  mesh = WithCell(mesh, { 0, 1, 0, 1 }, true);
+  for (int method : EveryMethod)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    Messages messages(filter);
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->Update();
+    EXPECT_TRUE(messages.Errors.empty());
+    ExpectValidFrames(filter->GetOutput());
+    for (vtkIdType p = 0; p < 3; ++p)
+    {
+      EXPECT_LT(AngleDeg(Get3(filter->GetOutput()->GetPointData()->GetTangents(), p), { 1, 0, 0 }),
+        1e-5); // float output rounding, as above
+    }
+    if (method != vtkPolyDataTangentFrames::MIKKTSPACE) // it counts by its own rules
+    {
+      EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 4); // (0,1,1), (2,2,2), 2 in the strip
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, PointArraysShorterOrLongerThanThePoints)
+{
+  auto mesh = MirroredPair();
+  for (int method : EveryMethod)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    const auto run = [&](vtkPolyDataTangentFrames* filter, vtkPolyData* input)
+    {
+      filter->SetInputData(input);
+      filter->SetMethod(method);
+      filter->SetTCoordsArrayName(input->GetPointData()->GetArray("UV2") ? "UV2" : "");
+      filter->Update();
+      return filter->GetOutput();
+    };
+    // Texture coordinates, active or named, one tuple short: an error and a pass-through.
+    for (bool named : { false, true })
+    {
+      vtkNew<vtkPolyData> shortUV;
+      shortUV->DeepCopy(mesh);
+      vtkDataArray* uv = shortUV->GetPointData()->GetTCoords();
+      uv->SetNumberOfTuples(3);
+      if (named)
+      {
+        uv->SetName("UV2");
+        shortUV->GetPointData()->SetActiveTCoords(nullptr);
+      }
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      vtkPolyData* out = run(filter, shortUV);
+      EXPECT_TRUE(messages.Has(messages.Errors, "has 3 tuples for 4 points"));
+      EXPECT_EQ(out->GetPoints(), shortUV->GetPoints());
+      EXPECT_EQ(out->GetPointData()->GetTangents(), nullptr);
+    }
+    // Point normals one short: ignored with a warning and computed instead.
+    {
+      vtkNew<vtkPolyData> shortNormals;
+      shortNormals->DeepCopy(mesh);
+      shortNormals->GetPointData()->GetNormals()->SetNumberOfTuples(3);
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      vtkPolyData* out = run(filter, shortNormals);
+      EXPECT_TRUE(messages.Errors.empty());
+      EXPECT_TRUE(messages.Has(messages.Warnings, "has 3 tuples for 4 points"));
+      vtkDataArray* n = out->GetPointData()->GetNormals();
+      ASSERT_EQ(n->GetNumberOfTuples(), out->GetNumberOfPoints());
+      EXPECT_EQ(Get3(n, 3), (Vec{ 0, 0, 1 })); // computed
+      ExpectValidFrames(out);
+    }
+    // Cell normals one short (and no point normals): not used; normals computed.
+    {
+      vtkNew<vtkPolyData> shortCellNormals;
+      shortCellNormals->DeepCopy(mesh);
+      shortCellNormals->GetPointData()->SetNormals(nullptr);
+      vtkNew<vtkFloatArray> cn;
+      cn->SetNumberOfComponents(3);
+      cn->InsertNextTuple3(0, 0, 1);
+      shortCellNormals->GetCellData()->SetNormals(cn);
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      vtkPolyData* out = run(filter, shortCellNormals);
+      EXPECT_TRUE(messages.Errors.empty());
+      EXPECT_TRUE(messages.Has(messages.Warnings, "no point normals; computing"));
+      ExpectValidFrames(out);
+    }
+    // Unrelated point arrays shorter and longer than the points, with points split: the short
+    // one passes as it is; the long one gets one tuple per output point, the copies' tuples
+    // from their sources (the weighted methods read past the short one's end before).
+    {
+      vtkNew<vtkPolyData> extra;
+      extra->DeepCopy(mesh);
+      vtkNew<vtkDoubleArray> shorter, longer;
+      shorter->SetName("Shorter");
+      longer->SetName("Longer");
+      for (int i = 0; i < 8; ++i)
+      {
+        longer->InsertNextValue(10 + i);
+        if (i < 2)
+        {
+          shorter->InsertNextValue(i);
+        }
+      }
+      extra->GetPointData()->AddArray(shorter);
+      extra->GetPointData()->AddArray(longer);
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      vtkPolyData* out = run(filter, extra);
+      EXPECT_TRUE(messages.Errors.empty());
+      ASSERT_EQ(out->GetNumberOfPoints(), 6); // points 0 and 2 split, copies 4 and 5
+      EXPECT_EQ(out->GetPointData()->GetArray("Shorter")->GetNumberOfTuples(), 2);
+      vtkDataArray* l = out->GetPointData()->GetArray("Longer");
+      ASSERT_EQ(l->GetNumberOfTuples(), 6);
+      for (vtkIdType p = 0; p < 4; ++p)
+      {
+        EXPECT_EQ(l->GetComponent(p, 0), 10 + p);
+      }
+      EXPECT_EQ(l->GetComponent(4, 0), 10); // copy of point 0
+      EXPECT_EQ(l->GetComponent(5, 0), 12); // copy of point 2
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, IntegerTextureCoordinatesAreConverted)
+{
+  // Texture coordinates stored as short integers are read through a double copy (which a
+  // pointer outlived before: a use after free). The frames equal those from float storage.
+  auto mesh = MirroredPair();
+  vtkNew<vtkPolyData> integers;
+  integers->DeepCopy(mesh);
+  vtkNew<vtkShortArray> uv;
+  uv->DeepCopy(mesh->GetPointData()->GetTCoords());
+  integers->GetPointData()->SetTCoords(uv);
+  for (int method : EveryMethod)
+  {
+    const auto configure = [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); };
+    auto expected = RunFrames(mesh, configure);
+    auto out = RunFrames(integers, configure);
+    ASSERT_EQ(out->GetNumberOfPoints(), expected->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+    {
+      EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), p),
+        Get3(expected->GetPointData()->GetTangents(), p));
+    }
+  }
 }
 
 TEST(PolyDataTangentFrames, MissingAndBadTextureCoordinates)

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Builds the project with clang, AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer,
+# part of ASan) and the libFuzzer targets in ./build-asan (ASAN_BUILD_DIR overrides), then
+#   bash scripts/sanitize.sh              # runs every ctest test there, the fuzz smoke included
+#   bash scripts/sanitize.sh fuzz SECONDS # fuzzes FuzzTangentFrames for SECONDS (local use)
+# Any sanitizer report fails the run. Needs the Debian packages clang-14 and libclang-rt-14-dev
+# (scripts/bootstrap.sh installs them). `bash scripts/bootstrap.sh test` runs the first form
+# after the normal build and tests.
+set -euo pipefail
+job="${1:-test}"
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${ASAN_BUILD_DIR:-$root/build-asan}"
+jobs="$(nproc)"
+[ "$jobs" -le 2 ] || jobs=2
+
+# halt_on_error + -fno-sanitize-recover=all: the first report ends the process with an error.
+# VTK, TBB and Mesa are uninstrumented shared libraries: ASan still sees their heap (malloc is
+# intercepted) and LeakSanitizer their leaks. Mesa's unloaded driver is kept mapped (see
+# sanitizer/keep-modules-loaded.c) so its allocations stay attributable; the one suppression,
+# a leak inside libpng when VTK's glTF reader loads images, is explained in sanitizer/lsan.supp.
+export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$root/scripts/sanitizer/lsan.supp:print_suppressions=0"
+
+flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+echo "== configuring and building with ASan + UBSan in $build"
+CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DNORMALMAPPING_BUILD_BENCHMARKS=OFF -DNORMALMAPPING_BUILD_FUZZERS=ON >/dev/null
+cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
+cmake --build "$build" -j "$jobs" >/dev/null
+
+if [ "$job" = fuzz ]; then
+  # New inputs go to build-asan/fuzz-corpus (kept between runs), crashes to
+  # build-asan/fuzz-artifacts; the checked-in corpus is only read.
+  mkdir -p "$build/fuzz-corpus" "$build/fuzz-artifacts"
+  exec "$build/bin/FuzzTangentFrames" -max_total_time="${2:-600}" -max_len=4096 \
+    -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/" \
+    "$build/fuzz-corpus" "$root/Testing/Fuzz/corpus"
+fi
+
+clang-14 -shared -fPIC -O2 -o "$build/libkeep-modules-loaded.so" \
+  "$root/scripts/sanitizer/keep-modules-loaded.c"
+
+cd "$build"
+# Every test, also those added later (rendering tests that run under xvfb-run included),
+# except the packaging tests: they configure and compile the sources again in nested projects
+# with their own (unsanitized) flags, so they check the CMake packaging, not memory safety,
+# and would add minutes for nothing here (the normal build's ctest runs them).
+LD_PRELOAD="$build/libkeep-modules-loaded.so" \
+  ctest --output-on-failure -j "$jobs" -E '^(InstalledPackageExample|RemoteModuleBuild)$'
