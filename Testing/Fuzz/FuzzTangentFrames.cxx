@@ -547,8 +547,15 @@ void CheckFrames(vtkPolyData* in,
     t->GetTuple(p, tv);
     n->GetTuple(p, nv);
     char values[256];
-    std::snprintf(values, sizeof(values), " T (%.9g, %.9g, %.9g) N (%.9g, %.9g, %.9g)", tv[0],
-      tv[1], tv[2], nv[0], nv[1], nv[2]);
+    std::snprintf(values,
+      sizeof(values),
+      " T (%.9g, %.9g, %.9g) N (%.9g, %.9g, %.9g)",
+      tv[0],
+      tv[1],
+      tv[2],
+      nv[0],
+      nv[1],
+      nv[2]);
     const std::string at = context + " point " + std::to_string(p) + values;
     Require(std::isfinite(tv[0]) && std::isfinite(tv[1]) && std::isfinite(tv[2]),
       at + ": tangent not finite");
