@@ -6,7 +6,10 @@ set(_nm_classes
   Filters/vtkPolyDataTangentFrames
   Rendering/vtkNormalMapObjectFactory
   Rendering/vtkNormalMapPolyDataMapper)
-set(_nm_headers
+# Installed, but not wrapped for Python: VTK 9.1's wrappers wrap only classes, and only enums and
+# constants of namespaces, so these free functions over GLM vectors and plain structs would give
+# nothing usable (and the kernels header would make the wrapper parse GLM).
+set(_nm_nowrap_headers
   Filters/vtkMikkTSpaceKernel.h
   Filters/vtkTangentFrameKernels.h
   Filters/vtkNormalMappingMeshes.h)
@@ -19,7 +22,7 @@ set(_nm_private_headers
   Filters/vtkPolyDataTangentFramesMikkTSpace.h)
 
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
-list(TRANSFORM _nm_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+list(TRANSFORM _nm_nowrap_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_private_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 
@@ -40,7 +43,7 @@ endforeach()
 
 vtk_module_add_module(VTK::NormalMapping
   CLASSES ${_nm_classes}
-  HEADERS ${_nm_headers}
+  NOWRAP_HEADERS ${_nm_nowrap_headers}
   SOURCES ${_nm_sources}
   PRIVATE_HEADERS ${_nm_private_headers})
 vtk_module_include(VTK::NormalMapping

@@ -1568,4 +1568,48 @@ bool WriteDocument(Document& doc, const std::string& path, std::string& error)
   NormalMapFiles::OutputTransaction output;
   return output.Begin(path, error) && WriteDocument(doc, output, error) && output.Commit(error);
 }
+
+bool EmbeddedImage(const Document& doc,
+  int index,
+  std::vector<unsigned char>& bytes,
+  std::string& mimeType,
+  std::string& error)
+{
+  bytes.clear();
+  const tinygltf::Model& model = doc.Model;
+  if (index < 0 || static_cast<size_t>(index) >= model.images.size())
+  {
+    error = Where("image", index) + " does not exist";
+    return false;
+  }
+  const tinygltf::Image& image = model.images[static_cast<size_t>(index)];
+  mimeType = image.mimeType;
+  if (image.bufferView >= 0)
+  {
+    // tinygltf 2.7.0 checks only that the view and its buffer exist: check the byte range too.
+    const unsigned char* first = nullptr;
+    if (!CheckView(model, image.bufferView, 0, 1, 0, 0, first, Where("image", index), error))
+    {
+      return false;
+    }
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(image.bufferView)];
+    bytes.assign(first, first + view.byteLength);
+  }
+  else if (image.uri.empty() && !image.image.empty())
+  {
+    bytes = image.image; // a data: URI, decoded by tinygltf and kept by KeepImageBytes
+  }
+  else
+  {
+    error = Where("image", index) +
+      (image.uri.empty() ? " has no data" : " is not embedded (uri '" + image.uri + "')");
+    return false;
+  }
+  if (bytes.empty())
+  {
+    error = Where("image", index) + " is empty";
+    return false;
+  }
+  return true;
+}
 }

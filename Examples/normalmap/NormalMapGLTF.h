@@ -84,6 +84,16 @@ std::vector<PrimitiveId> TrianglePrimitives(const Document& doc);
 /// TEXCOORD_0 when its material has no normal texture.
 std::string NormalTextureTexCoordName(const Document& doc, PrimitiveId id);
 
+/// The encoded bytes of image `index` when the file holds them (a data: URI, or a buffer view,
+/// whose byte range is checked against its buffer) and its declared mimeType (may be empty);
+/// false with `error` (one line) when the image does not exist, is an external file, is empty
+/// or its buffer view lies outside its buffer.
+bool EmbeddedImage(const Document& doc,
+  int index,
+  std::vector<unsigned char>& bytes,
+  std::string& mimeType,
+  std::string& error);
+
 /// One primitive as polydata (see above); nullptr with `error` set when it is corrupt.
 vtkSmartPointer<vtkPolyData> PrimitiveToPolyData(const Document& doc,
   PrimitiveId id,

@@ -2,12 +2,11 @@
 #include "NormalMapRender.h"
 
 #include "NormalMapFiles.h"
+#include "NormalMapImages.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkImageData.h>
-#include <vtkImageReader2.h>
-#include <vtkImageReader2Factory.h>
 #include <vtkLight.h>
 #include <vtkNew.h>
 #include <vtkNormalMapPolyDataMapper.h>
@@ -28,7 +27,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <vector>
 
 namespace NormalMapRender
 {
@@ -234,34 +235,27 @@ vtkSmartPointer<vtkTexture> MakeTexture(vtkImageData* image)
 
 vtkSmartPointer<vtkImageData> ReadImage(const std::string& path, std::string& error)
 {
-  NormalMapFiles::VTKMessageCapture messages;
-  if (!std::ifstream(path).good())
+  std::ifstream file(path, std::ios::binary);
+  if (!file)
   {
     error = "cannot open '" + path + "': no such file or not readable";
     return nullptr;
   }
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
-  if (!reader)
+  const std::vector<unsigned char> bytes(
+    (std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (file.bad())
   {
-    error = "'" + path + "' is not a PNG or JPEG image";
+    error = "cannot read '" + path + "'";
     return nullptr;
   }
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  int dims[3] = { 0, 0, 0 };
-  image->GetDimensions(dims);
-  if (!messages.Errors().empty() || dims[0] < 1 || dims[1] < 1 ||
-    image->GetNumberOfScalarComponents() < 1)
+  // Not vtkPNGReader / vtkJPEGReader: VTK 9.1's PNG reader crashes on a corrupt file (see
+  // NormalMapImages.h).
+  vtkSmartPointer<vtkImageData> image = NormalMapImages::Decode(bytes.data(), bytes.size(), error);
+  if (!image)
   {
-    error = "cannot read the image '" + path + "'" +
-      (messages.Errors().empty() ? std::string() : ": " + messages.Errors().front());
-    return nullptr;
+    error = "cannot read the image '" + path + "': " + error;
   }
-  vtkSmartPointer<vtkImageData> copy = vtkSmartPointer<vtkImageData>::New();
-  copy->DeepCopy(image);
-  return copy;
+  return image;
 }
 
 bool WritePNG(vtkImageData* image, NormalMapFiles::OutputTransaction& output, std::string& error)

@@ -72,7 +72,8 @@ bool Render(const Scene& scene, Rendered& result, std::string& error);
 /// A repeating, interpolated texture for a normal map image.
 vtkSmartPointer<vtkTexture> MakeTexture(vtkImageData* image);
 
-/// Reads a PNG or JPEG image; nullptr with `error` (one line) when it cannot.
+/// Reads a PNG or JPEG image (NormalMapImages: safe on corrupt files); nullptr with `error`
+/// (one line) when it cannot.
 vtkSmartPointer<vtkImageData> ReadImage(const std::string& path, std::string& error);
 
 /// Writes `image` as PNG into the transaction's folder (Commit() publishes it).

@@ -3,6 +3,7 @@
 // (see UsageText below).
 #include "NormalMapFiles.h"
 #include "NormalMapGLTF.h"
+#include "NormalMapImages.h"
 #include "NormalMapPatterns.h"
 #include "NormalMapRender.h"
 #include "NormalMapTangents.h"
@@ -44,7 +45,8 @@ Draws IN offscreen with vtkNormalMapPolyDataMapper and writes the picture as PNG
 options:
   -o, --output OUT.png      the picture (written whole or not at all)
   --normal-map PNG          the normal map (PNG or JPEG); default: the glTF material's normal
-                            texture, else a built-in procedural map (bricks with rivets)
+                            texture (a file, or PNG or JPEG embedded in the glTF), else a
+                            built-in procedural map (bricks with rivets)
   --encoding E              opengl (default; +Y green) | directx (-Y green) | rg (two
                             channels) | object (object-space normals; needs --normal-map)
   --strength S              normal map strength (default 1, or the glTF normalTexture.scale)
@@ -256,8 +258,38 @@ struct Input
   vtkSmartPointer<vtkPolyData> Mesh;
   std::string NormalTextureFile; // from the glTF material
   double NormalTextureScale = 1.0;
+  vtkSmartPointer<vtkImageData> EmbeddedTexture; // the glTF material's, decoded from the file
+  std::string EmbeddedTextureText;               // what it is, for the report
   std::vector<std::string> Warnings;
 };
+
+// The normal texture image embedded in the glTF file (a data: URI or a buffer view), decoded;
+// when it cannot be, a warning and the built-in map.
+void DecodeEmbeddedTexture(const NormalMapGLTF::Document& doc, int image, Input& input)
+{
+  std::vector<unsigned char> bytes;
+  std::string mimeType, error;
+  if (NormalMapGLTF::EmbeddedImage(doc, image, bytes, mimeType, error))
+  {
+    input.EmbeddedTexture = NormalMapImages::Decode(bytes.data(), bytes.size(), error);
+    if (!input.EmbeddedTexture && NormalMapImages::Format(bytes.data(), bytes.size()).empty() &&
+      !mimeType.empty())
+    {
+      error += " (its mimeType says " + mimeType + ")";
+    }
+  }
+  if (!input.EmbeddedTexture)
+  {
+    input.Warnings.push_back(
+      "cannot use the file's normal texture: " + error + "; using the built-in map");
+    return;
+  }
+  int dims[3];
+  input.EmbeddedTexture->GetDimensions(dims);
+  input.EmbeddedTextureText = "embedded image " + std::to_string(image) + " (" +
+    NormalMapImages::Format(bytes.data(), bytes.size()) + ", " + std::to_string(dims[0]) + "x" +
+    std::to_string(dims[1]) + ")";
+}
 
 bool ReadGLTF(const std::string& path, Input& input, std::string& error)
 {
@@ -268,7 +300,7 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
   }
   vtkNew<vtkAppendPolyData> append;
   int kept = 0;
-  bool embeddedTexture = false;
+  int embeddedImage = -1;
   for (const auto& id : NormalMapGLTF::TrianglePrimitives(doc))
   {
     vtkSmartPointer<vtkPolyData> mesh = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
@@ -291,7 +323,10 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
     {
       input.NormalTextureFile = FieldString(mesh, "NormalTextureFile");
       input.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
-      embeddedTexture = input.NormalTextureFile.empty();
+      if (input.NormalTextureFile.empty())
+      {
+        embeddedImage = static_cast<int>(FieldNumber(mesh, "NormalTextureImage", -1));
+      }
     }
     append->AddInputData(mesh);
     ++kept;
@@ -301,11 +336,9 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
     error = "'" + path + "' has no triangle primitive with texture coordinates";
     return false;
   }
-  if (embeddedTexture)
+  if (embeddedImage >= 0)
   {
-    input.Warnings.push_back(
-      "the normal texture is embedded in the file, which this command does not read; using the "
-      "built-in map (give it with --normal-map)");
+    DecodeEmbeddedTexture(doc, embeddedImage, input);
   }
   append->Update();
   input.Mesh = append->GetOutput();
@@ -415,6 +448,11 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
     int dims[3];
     image->GetDimensions(dims);
     mapText = mapFile + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
+  }
+  else if (input.EmbeddedTexture)
+  {
+    image = input.EmbeddedTexture;
+    mapText = input.EmbeddedTextureText;
   }
   else if (args.Encoding == vtkNormalMapPolyDataMapper::OBJECT_SPACE)
   {

@@ -7,6 +7,9 @@
 #              temporary folder beside it)
 #   OUT        optional: the output path (with @WORK@)
 #   STDOUT     optional: a regular expression the standard output must match
+#   STDERR     optional: a regular expression the standard error must match (e.g. one warning)
+#   BEFORE     optional: the arguments ('|'-separated, @WORK@ expanded) of a run made first,
+#              which must succeed (e.g. a reference picture for CHECK to compare with)
 #   CHECK      optional, with EXPECT ok: a command ('|'-separated, @WORK@ expanded) run after
 #              the tool, which must exit 0 (e.g. the picture checker)
 #   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
@@ -59,6 +62,17 @@ elseif(CASE)
   file(WRITE "${WORK_DIR}/case.gltf" "${broken}")
 endif()
 
+if(BEFORE)
+  string(REPLACE "@WORK@" "${WORK_DIR}" BEFORE "${BEFORE}")
+  string(REPLACE "|" ";" BEFORE "${BEFORE}")
+  execute_process(COMMAND "${TOOL}" ${BEFORE} WORKING_DIRECTORY "${WORK_DIR}"
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the first run failed\ncommand: ${TOOL} ${BEFORE}\nexit: ${rc}\n"
+      "stdout:\n${out}\nstderr:\n${err}")
+  endif()
+  message("first run: ${TOOL} ${BEFORE}\n${out}")
+endif()
 string(REPLACE "@WORK@" "${WORK_DIR}" ARGS "${ARGS}")
 string(REPLACE "|" ";" ARGS "${ARGS}")
 string(REPLACE "@WORK@" "${WORK_DIR}" OUT "${OUT}")
@@ -104,5 +118,8 @@ else()
 endif()
 if(STDOUT AND NOT out MATCHES "${STDOUT}")
   message(FATAL_ERROR "stdout does not match '${STDOUT}'\n${report}")
+endif()
+if(STDERR AND NOT err MATCHES "${STDERR}")
+  message(FATAL_ERROR "stderr does not match '${STDERR}'\n${report}")
 endif()
 message("${report}")
