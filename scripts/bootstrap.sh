@@ -4,7 +4,8 @@
 #                                    # in the current folder
 #   bash scripts/bootstrap.sh test   # build and run every test, then the same tests and a
 #                                    # short fuzz run under ASan + UBSan (what CI runs)
-#   bash scripts/bootstrap.sh bench  # build and run the benchmarks
+#   bash scripts/bootstrap.sh bench  # build and run the benchmark set (scripts/bench.sh): writes
+#                                    # docs/benchmarks.md and docs/benchmarks.png
 # Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
 set -euo pipefail
 job="${1:-demo}"
@@ -52,7 +53,7 @@ case "$job" in
     bash "$root/scripts/sanitize.sh"
     ;;
   bench)
-    "$build/bin/BenchTangentFrames" --markdown "$root/docs/filter-benchmark.md"
+    bash "$root/scripts/bench.sh" --build "$build"
     ;;
   *)
     echo "usage: $0 demo|test|bench" >&2

@@ -1,215 +1,565 @@
-// Throughput of vtkPolyDataTangentFrames against VTK's vtkPolyDataTangents, in one process on
-// the same meshes. Each method runs with 1 and 2 threads; VTK's filter with 1 thread is the
-// reference every ratio is taken against.
+// Filter throughput and peak memory, in one process on the same meshes: vtkPolyDataTangentFrames
+// with every method, VTK's vtkPolyDataTangents, and a floor (a pass that reads the filters'
+// inputs and writes vtkPolyDataTangentFrames' outputs once, with no tangent math: what memory
+// bandwidth allows); float and double input, 1 and 2 threads, generated tori (plain u and v
+// seams) of 10 thousand to 4 million triangles. Every throughput is also given as a ratio to
+// VTK's filter and to the floor, run with the same input, precision and thread count.
 //
-//   BenchTangentFrames [--markdown FILE] [google benchmark flags]
+//   BenchTangentFrames [--out DIR] [--smoke] [--sizes N,N,...] [--repetitions N]
+//                      [google benchmark flags]
+//
+// Writes DIR/filter.md (the markdown section of docs/benchmarks.md) and DIR/filter.tsv (one
+// tab-separated line per configuration, read by BenchChart). --smoke: one 10,000-triangle size, one
+// short repetition (for the ctest smoke test). scripts/bench.sh runs it.
+//
+// Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
+// configurations (so a burst of load from other processes does not hit one configuration's
+// repetitions only); the median of the repetitions is reported, and its spread.
+// Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
+#include "BenchCommon.h"
+#include "BenchMemory.h"
 #include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
-#include "vtkPolyDataTangentFrames.h"
 
+#include "vtkAOSDataArrayTemplate.h"
+#include "vtkCellArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataTangents.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkVersionMacros.h"
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace
 {
-vtkSmartPointer<vtkPolyData> Torus(int64_t triangles)
+/**
+ * The floor: one pass over the points that reads their coordinates, normals and texture
+ * coordinates and writes `Tangents` (3 components) and `TangentSigns` in the points' precision
+ * (what vtkPolyDataTangentFrames writes by default), and one pass that reads every triangle's
+ * point ids; both on vtkSMPTools threads, in memory order. No tangent is computed: this is the
+ * memory traffic every tangent filter needs at least, plus allocating its outputs.
+ */
+class FloorPass : public vtkPolyDataAlgorithm
 {
-  static std::map<int64_t, vtkSmartPointer<vtkPolyData>> cache;
-  auto& mesh = cache[triangles];
+public:
+  static FloorPass* New() { VTK_STANDARD_NEW_BODY(FloorPass); }
+  vtkTypeMacro(FloorPass, vtkPolyDataAlgorithm);
+  long long Checksum = 0; // the sum of the point ids read, so that the reads are not removed
+
+protected:
+  int RequestData(vtkInformation*,
+    vtkInformationVector** inputs,
+    vtkInformationVector* outputs) override
+  {
+    vtkPolyData* input = vtkPolyData::GetData(inputs[0]);
+    vtkPolyData* output = vtkPolyData::GetData(outputs);
+    output->CopyStructure(input);
+    output->GetPointData()->PassData(input->GetPointData());
+    if (!input->GetPoints())
+    {
+      return 1;
+    }
+    const bool ok = input->GetPoints()->GetDataType() == VTK_DOUBLE
+      ? this->Pass<double>(input, output)
+      : this->Pass<float>(input, output);
+    if (!ok)
+    {
+      vtkErrorMacro("the floor pass needs points, normals and texture coordinates of one type");
+    }
+    return ok ? 1 : 0;
+  }
+
+private:
+  template<typename T>
+  bool Pass(vtkPolyData* input, vtkPolyData* output)
+  {
+    using Array = vtkAOSDataArrayTemplate<T>;
+    auto* points = Array::FastDownCast(input->GetPoints()->GetData());
+    auto* normals = Array::FastDownCast(input->GetPointData()->GetNormals());
+    auto* tcoords = Array::FastDownCast(input->GetPointData()->GetTCoords());
+    if (!points || !normals || !tcoords || tcoords->GetNumberOfComponents() != 2)
+    {
+      return false;
+    }
+    const vtkIdType numPoints = input->GetNumberOfPoints();
+    vtkNew<Array> tangents, signs;
+    tangents->SetName("Tangents");
+    tangents->SetNumberOfComponents(3);
+    tangents->SetNumberOfTuples(numPoints);
+    signs->SetName("TangentSigns");
+    signs->SetNumberOfTuples(numPoints);
+    const T* p = points->GetPointer(0);
+    const T* n = normals->GetPointer(0);
+    const T* uv = tcoords->GetPointer(0);
+    T* t = tangents->GetPointer(0);
+    T* s = signs->GetPointer(0);
+    vtkSMPTools::For(0,
+      numPoints,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            t[3 * i + k] = n[3 * i + k] + p[3 * i + k] * uv[2 * i];
+          }
+          s[i] = uv[2 * i + 1] < 0 ? T(-1) : T(1);
+        }
+      });
+    vtkCellArray* polys = input->GetPolys();
+    this->Checksum = polys->IsStorage64Bit()
+      ? SumIds(polys->GetConnectivityArray64()->GetPointer(0), polys->GetNumberOfConnectivityIds())
+      : SumIds(polys->GetConnectivityArray32()->GetPointer(0), polys->GetNumberOfConnectivityIds());
+    output->GetPointData()->SetTangents(tangents);
+    output->GetPointData()->AddArray(signs);
+    return true;
+  }
+
+  template<typename Id>
+  static long long SumIds(const Id* ids, vtkIdType count)
+  {
+    vtkSMPThreadLocal<long long> sums(0);
+    vtkSMPTools::For(0,
+      count,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        long long& sum = sums.Local();
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          sum += ids[i];
+        }
+      });
+    long long total = 0;
+    for (long long s : sums)
+    {
+      total += s;
+    }
+    return total;
+  }
+};
+
+/// What is timed: one of the tangent filters, or the floor.
+struct Subject
+{
+  std::string Name;
+  int Method = Bench::TangentFilter::VTKFilter;
+  bool Floor = false;
+};
+
+std::vector<Subject> Subjects()
+{
+  std::vector<Subject> subjects;
+  for (const Bench::TangentFilter& f : Bench::TangentFilters())
+  {
+    subjects.push_back({ f.Name, f.Method, false });
+  }
+  subjects.push_back({ "floor", Bench::TangentFilter::VTKFilter, true });
+  return subjects;
+}
+
+vtkSmartPointer<vtkPolyDataAlgorithm> MakeSubject(const Subject& subject)
+{
+  if (subject.Floor)
+  {
+    return vtkSmartPointer<FloorPass>::New();
+  }
+  return Bench::MakeTangentFilter({ subject.Name, subject.Method });
+}
+
+struct Config
+{
+  Subject What;
+  bool Double = false;
+  int Threads = 1;
+  long long Size = 0; // requested triangles; the torus has 4 V^2 of them, the nearest
+  std::string Key() const
+  {
+    return What.Name + "/" + (Double ? "double" : "float") + "/threads:" + std::to_string(Threads) +
+      "/triangles:" + std::to_string(Size);
+  }
+};
+
+/// A torus of U = 2 V columns and V rows of quads: 4 V^2 triangles, the nearest to `size`.
+vtkPolyData* Torus(long long size, bool doublePrecision)
+{
+  static std::map<std::pair<long long, bool>, vtkSmartPointer<vtkPolyData>> cache;
+  auto& mesh = cache[{ size, doublePrecision }];
   if (!mesh)
   {
     vtkNormalMapping::TorusOptions options;
-    options.V = static_cast<int>(std::sqrt(triangles / 4.0));
-    options.U = static_cast<int>(triangles / (2 * options.V));
+    options.V = std::max(3, static_cast<int>(std::lround(std::sqrt(size / 4.0))));
+    options.U = 2 * options.V;
+    options.DoublePrecision = doublePrecision;
     mesh = vtkNormalMapping::MakeTorus(options);
   }
   return mesh;
 }
 
-template<typename Filter, typename Configure>
-void RunFilter(benchmark::State& state, Configure configure)
+struct Measured
 {
-  auto mesh = Torus(state.range(0));
-  NormalMappingTesting::WithThreads(static_cast<int>(state.range(1)),
-    [&]()
-    {
-      vtkNew<Filter> filter;
-      filter->SetInputData(mesh);
-      configure(filter.Get());
-      for (auto _ : state)
-      {
-        filter->Modified();
-        filter->Update();
-        benchmark::DoNotOptimize(filter->GetOutput());
-      }
-    });
-  state.SetItemsProcessed(state.iterations() * mesh->GetNumberOfPolys());
-}
-
-void VTKPolyDataTangents(benchmark::State& state)
-{
-  RunFilter<vtkPolyDataTangents>(state, [](vtkPolyDataTangents*) {});
-}
-
-template<int Method>
-void TangentFrames(benchmark::State& state)
-{
-  RunFilter<vtkPolyDataTangentFrames>(
-    state, [](vtkPolyDataTangentFrames* f) { f->SetMethod(Method); });
-}
-
-void Sizes(benchmark::internal::Benchmark* b, bool twoThreads)
-{
-  for (int64_t n : { 1 << 14, 1 << 20 })
+  std::vector<double> Rates; // triangles per second, one per repetition
+  double PeakBytes = -1.0;   // peak resident memory above the input, -1: not measured
+  double OutputBytes = 0.0;  // the output's arrays that the input does not share
+  long long Triangles = 0;
+  double Median() const
   {
-    b->Args({ n, 1 });
-    if (twoThreads)
+    if (this->Rates.empty())
     {
-      b->Args({ n, 2 });
+      return 0.0;
     }
+    std::vector<double> r = this->Rates;
+    std::sort(r.begin(), r.end());
+    const size_t m = r.size() / 2;
+    return r.size() % 2 ? r[m] : 0.5 * (r[m - 1] + r[m]);
   }
-  b->ArgNames({ "triangles", "threads" })->Unit(benchmark::kMillisecond)->UseRealTime();
-}
+  /// (max - min) / median of the repetitions.
+  double Spread() const
+  {
+    if (this->Rates.size() < 2)
+    {
+      return 0.0;
+    }
+    const auto range = std::minmax_element(this->Rates.begin(), this->Rates.end());
+    return (*range.second - *range.first) / this->Median();
+  }
+};
 
-BENCHMARK(VTKPolyDataTangents)->Apply([](auto* b) { Sizes(b, false); });
-BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::UNWEIGHTED)
-  ->Name("TangentFrames/Unweighted")
-  ->Apply([](auto* b) { Sizes(b, true); });
-BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::AREA_WEIGHTED)
-  ->Name("TangentFrames/AreaWeighted")
-  ->Apply([](auto* b) { Sizes(b, true); });
-BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
-  ->Name("TangentFrames/AngleWeighted")
-  ->Apply([](auto* b) { Sizes(b, true); });
-BENCHMARK_TEMPLATE(TangentFrames, vtkPolyDataTangentFrames::MIKKTSPACE)
-  ->Name("TangentFrames/MikkTSpace")
-  ->Apply([](auto* b) { Sizes(b, true); });
-
-/// Keeps every run so that ratios to the reference can be printed at the end.
+/// Keeps the rate of every repetition of every configuration, and prints as usual.
 class Collector : public benchmark::ConsoleReporter
 {
 public:
-  struct Result
-  {
-    std::string Name;
-    double ItemsPerSecond;
-  };
-  std::vector<Result> Results;
-
+  std::map<std::string, Measured>* Results = nullptr;
   void ReportRuns(const std::vector<Run>& runs) override
   {
     for (const Run& run : runs)
     {
       const auto it = run.counters.find("items_per_second");
-      if (it != run.counters.end() && run.run_type == Run::RT_Iteration)
+      if (run.run_type == Run::RT_Iteration && !run.error_occurred && it != run.counters.end())
       {
-        this->Results.push_back({ run.benchmark_name(), it->second.value });
+        (*this->Results)[run.run_name.function_name].Rates.push_back(it->second.value);
       }
     }
     ConsoleReporter::ReportRuns(runs);
   }
 };
 
-/// CPU model, core count and load, so that a reader can judge the figures.
-std::string MachineDescription()
+/// One Update of the configuration with the resident-set peak reset before it.
+void MeasurePeak(const Config& config, Measured& result, bool& peakAvailable)
 {
-  std::string model = "unknown CPU";
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);)
-  {
-    if (line.rfind("model name", 0) == 0)
+  vtkPolyData* mesh = Torus(config.Size, config.Double);
+  NormalMappingTesting::WithThreads(config.Threads,
+    [&]()
     {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
-  }
-  std::string load = "unknown";
-  std::ifstream loadavg("/proc/loadavg");
-  std::getline(loadavg, load);
-  std::ostringstream os;
-  os << model << ", " << std::thread::hardware_concurrency() << " hardware threads, "
-     << "load average at the end of the run: " << load.substr(0, load.find(' ', 10));
-  return os.str();
+      auto filter = MakeSubject(config.What);
+      filter->SetInputData(mesh);
+      BenchMemory::ReleaseFreedMemory();
+      const double before = BenchMemory::StatusBytes("VmRSS:");
+      peakAvailable = peakAvailable && BenchMemory::ResetPeak();
+      filter->Update();
+      if (peakAvailable)
+      {
+        result.PeakBytes = BenchMemory::StatusBytes("VmHWM:") - before;
+      }
+      result.OutputBytes = BenchMemory::NewOutputBytes(mesh, filter->GetOutput());
+    });
+  BenchMemory::ReleaseFreedMemory();
 }
 
-std::string Field(const std::string& name, const std::string& key)
+std::vector<long long> ParseSizes(const std::string& text)
 {
-  const size_t at = name.find(key + ":");
-  if (at == std::string::npos)
+  std::vector<long long> sizes;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
   {
-    return "";
+    sizes.push_back(std::atoll(item.c_str()));
   }
-  const size_t begin = at + key.size() + 1;
-  return name.substr(begin, name.find('/', begin) - begin);
+  return sizes;
+}
+
+/// "13.2 (0.36 / 0.051)": M triangles/s, ratio to VTK's filter, ratio to the floor.
+std::string RateCell(double rate, double vtk, double floor)
+{
+  return Bench::Format(rate / 1e6) + " (" + Bench::Format(vtk > 0 ? rate / vtk : 0.0, 2) + " / " +
+    Bench::Format(floor > 0 ? rate / floor : 0.0, 2) + ")";
+}
+
+/// The rows of a table with one row per mesh size and subject and one cell per precision and
+/// thread count: cell(configuration).
+template<typename Cell>
+std::string ConfigurationRows(const std::vector<long long>& sizes,
+  std::map<std::string, Measured>& results,
+  Cell cell)
+{
+  std::ostringstream rows;
+  for (long long size : sizes)
+  {
+    for (const Subject& s : Subjects())
+    {
+      rows << "| " << Bench::Count(results[Config{ s, false, 1, size }.Key()].Triangles) << " | "
+           << s.Name;
+      for (bool doublePrecision : { false, true })
+      {
+        for (int threads : { 1, 2 })
+        {
+          rows << " | " << cell(Config{ s, doublePrecision, threads, size });
+        }
+      }
+      rows << " |\n";
+    }
+  }
+  return rows.str();
+}
+
+std::string MemoryCell(const Measured& m)
+{
+  if (m.PeakBytes < 0)
+  {
+    return "not measured";
+  }
+  return Bench::Format(m.PeakBytes / BenchMemory::MiB) + " MiB (" +
+    Bench::Format(m.PeakBytes / static_cast<double>(m.Triangles), 2) + " B/tri)";
 }
 }
 
 int main(int argc, char** argv)
 {
-  std::string markdown;
-  std::vector<char*> args;
-  for (int i = 0; i < argc; ++i)
+  std::string out = ".";
+  bool smoke = false;
+  std::vector<long long> sizes{ 10000, 100000, 1000000, 4000000 };
+  int repetitions = 5;
+  std::vector<char*> args{ argv[0] };
+  std::string interleave = "--benchmark_enable_random_interleaving=true";
+  args.push_back(&interleave[0]);
+  for (int i = 1; i < argc; ++i)
   {
-    if (std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc)
+    const std::string arg = argv[i];
+    if (arg == "--out" && i + 1 < argc)
     {
-      markdown = argv[++i];
+      out = argv[++i];
+    }
+    else if (arg == "--smoke")
+    {
+      smoke = true;
+      sizes = { 10000 };
+      repetitions = 1;
+    }
+    else if (arg == "--sizes" && i + 1 < argc)
+    {
+      sizes = ParseSizes(argv[++i]);
+    }
+    else if (arg == "--repetitions" && i + 1 < argc)
+    {
+      repetitions = std::max(1, std::atoi(argv[++i]));
     }
     else
     {
       args.push_back(argv[i]);
     }
   }
+  std::vector<Config> configs;
+  for (long long size : sizes)
+  {
+    for (bool doublePrecision : { false, true })
+    {
+      for (int threads : { 1, 2 })
+      {
+        for (const Subject& subject : Subjects())
+        {
+          configs.push_back({ subject, doublePrecision, threads, size });
+        }
+      }
+    }
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  std::map<std::string, Measured> results;
+  for (const Config& c : configs)
+  {
+    results[c.Key()].Triangles = Torus(c.Size, c.Double)->GetNumberOfPolys();
+  }
+  const double meshSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "meshes generated in " << meshSeconds << " s" << std::endl;
+
+  for (const Config& c : configs)
+  {
+    benchmark::RegisterBenchmark(c.Key().c_str(),
+      [c](benchmark::State& state)
+      {
+        vtkPolyData* mesh = Torus(c.Size, c.Double);
+        NormalMappingTesting::WithThreads(c.Threads,
+          [&]()
+          {
+            auto filter = MakeSubject(c.What);
+            filter->SetInputData(mesh);
+            for (auto _ : state)
+            {
+              filter->Modified();
+              filter->Update();
+              benchmark::DoNotOptimize(filter->GetOutputDataObject(0));
+            }
+          });
+        state.SetItemsProcessed(state.iterations() * mesh->GetNumberOfPolys());
+      })
+      ->Repetitions(repetitions)
+      ->MinTime(smoke ? 0.01 : 0.1)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  }
   int count = static_cast<int>(args.size());
   benchmark::Initialize(&count, args.data());
   Collector collector;
+  collector.Results = &results;
   benchmark::RunSpecifiedBenchmarks(&collector);
+  benchmark::Shutdown();
 
-  // Ratios against VTK's filter on the same mesh, one thread.
-  std::map<std::string, double> reference;
-  for (const auto& r : collector.Results)
+  // Peak memory, after the timing (whose allocations keep glibc's usual behaviour, as in an
+  // application): large blocks from mmap from now on; each subject runs once on the smallest
+  // mesh first (one-time allocations), then each configuration once with the peak reset.
+  BenchMemory::AllocateLargeBlocksWithMmap();
+  const auto memoryStart = std::chrono::steady_clock::now();
+  for (const Subject& subject : Subjects())
   {
-    if (r.Name.rfind("VTKPolyDataTangents", 0) == 0)
+    auto filter = MakeSubject(subject);
+    filter->SetInputData(Torus(sizes.front(), false));
+    NormalMappingTesting::WithThreads(2, [&]() { filter->Update(); });
+  }
+  bool peakAvailable = true;
+  for (const Config& c : configs)
+  {
+    MeasurePeak(c, results[c.Key()], peakAvailable);
+  }
+  std::cout << "peak memory measured in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - memoryStart).count()
+            << " s" << (peakAvailable ? "" : " (VmHWM cannot be reset here: not measured)")
+            << std::endl;
+
+  // The tables.
+  const auto find = [&](Config c, const std::string& name) -> const Measured&
+  {
+    for (const Subject& s : Subjects())
     {
-      reference[Field(r.Name, "triangles")] = r.ItemsPerSecond;
+      if (s.Name == name)
+      {
+        c.What = s;
+      }
+    }
+    return results[c.Key()];
+  };
+  std::ostringstream md, tsv;
+  tsv << "filter\tprecision\tthreads\ttriangles\tmtri_per_s\tspread\tpeak_bytes\toutput_bytes\n";
+  for (const Config& c : configs)
+  {
+    const Measured& m = results[c.Key()];
+    tsv << c.What.Name << "\t" << (c.Double ? "double" : "float") << "\t" << c.Threads << "\t"
+        << m.Triangles << "\t" << m.Median() / 1e6 << "\t" << m.Spread() << "\t" << m.PeakBytes
+        << "\t" << m.OutputBytes << "\n";
+  }
+
+  // The summary: the size nearest to one million, float input.
+  long long summarySize = sizes.front();
+  for (long long size : sizes)
+  {
+    if (std::abs(std::log(size / 1e6)) < std::abs(std::log(summarySize / 1e6)))
+    {
+      summarySize = size;
     }
   }
-  std::ostringstream table;
-  table << "| filter | triangles | threads | M triangles/s | ratio to vtkPolyDataTangents |\n"
-        << "|---|---:|---:|---:|---:|\n";
-  for (const auto& r : collector.Results)
+  md << "## Filter: throughput and peak memory\n\n"
+     << "Generated tori (`vtkNormalMapping::MakeTorus`: points, normals and texture coordinates "
+        "in the stated precision, u and v seams, no mirroring), "
+     << repetitions << " repetition" << (repetitions > 1 ? "s" : "")
+     << " of each configuration, randomly interleaved (Google Benchmark, wall-clock time, at "
+        "least "
+     << (smoke ? "0.01" : "0.1")
+     << " s per repetition); the median is reported. `vtkPolyDataTangents` is VTK " << VTK_VERSION
+     << "'s filter (float output, no handedness, no orthogonalization); the **floor** reads the "
+        "same inputs and writes `vtkPolyDataTangentFrames`' outputs (`Tangents`, `TangentSigns` "
+        "in the input's precision) once, with no tangent math: what memory bandwidth allows. "
+        "Ratios compare runs with the same mesh, precision and thread count in this process.\n\n";
+  md << "### Summary: " << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
+     << " triangles, float input\n\n"
+     << "| filter | 1 thread: M tri/s | x VTK | x floor | 2 threads: M tri/s | x VTK | x floor "
+        "| peak memory, 1 thread | of which output arrays |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Subject& s : Subjects())
   {
-    const std::string triangles = Field(r.Name, "triangles");
-    const double ref = reference.count(triangles) ? reference[triangles] : 0.0;
-    table << "| " << r.Name.substr(0, r.Name.find('/', r.Name.find('/') + 1)) << " | " << triangles
-          << " | " << Field(r.Name, "threads") << " | " << r.ItemsPerSecond / 1e6 << " | "
-          << (ref > 0 ? r.ItemsPerSecond / ref : 0.0) << " |\n";
+    md << "| " << s.Name;
+    for (int threads : { 1, 2 })
+    {
+      const Config c{ s, false, threads, summarySize };
+      const double rate = results[c.Key()].Median();
+      const double vtk = find(c, "vtkPolyDataTangents").Median();
+      const double floor = find(c, "floor").Median();
+      md << " | " << Bench::Format(rate / 1e6) << " | " << Bench::Format(rate / vtk, 2) << " | "
+         << Bench::Format(rate / floor, 2);
+    }
+    const Measured& m = results[Config{ s, false, 1, summarySize }.Key()];
+    md << " | " << MemoryCell(m) << " | " << Bench::Format(m.OutputBytes / BenchMemory::MiB)
+       << " MiB |\n";
   }
-  std::cout << "\n" << table.str();
-  if (!markdown.empty())
+
+  md << "\n### Throughput, every configuration\n\n"
+     << "Each cell: million triangles per second (ratio to `vtkPolyDataTangents` / ratio to the "
+        "floor, same precision and threads).\n\n"
+     << "| triangles | filter | float, 1 thread | float, 2 threads | double, 1 thread | double, "
+        "2 threads |\n"
+     << "|---:|---|---:|---:|---:|---:|\n";
+  double worstSpread = 0.0;
+  std::string worstKey;
+  std::vector<double> spreads;
+  md << ConfigurationRows(sizes,
+    results,
+    [&](const Config& c)
+    {
+      const Measured& m = results[c.Key()];
+      spreads.push_back(m.Spread());
+      if (m.Spread() > worstSpread)
+      {
+        worstSpread = m.Spread();
+        worstKey = c.Key();
+      }
+      return RateCell(
+        m.Median(), find(c, "vtkPolyDataTangents").Median(), find(c, "floor").Median());
+    });
+  if (repetitions > 1)
   {
-    std::ofstream out(markdown);
-    out << "# vtkPolyDataTangentFrames throughput\n\n"
-        << "Written by `BenchTangentFrames --markdown` (`bash scripts/bootstrap.sh bench`); do not "
-           "edit by hand.\n\n"
-        << "Machine: " << MachineDescription() << "\n\n"
-        << "Meshes: generated tori (float points, normals and texture coordinates). Each ratio "
-           "is against vtkPolyDataTangents (VTK "
-        << VTK_VERSION << ", one thread) on the same mesh in the same run.\n\n"
-        << table.str();
+    std::sort(spreads.begin(), spreads.end());
+    md << "\nSpread of the repetitions ((max - min) / median): median "
+       << Bench::Format(100.0 * spreads[spreads.size() / 2], 2) << "%, largest "
+       << Bench::Format(100.0 * worstSpread, 2) << "% (`" << worstKey << "`).\n";
   }
-  benchmark::Shutdown();
-  return 0;
+
+  md << "\n### Peak memory, every configuration\n\n"
+     << "Each cell: the peak of the process's resident memory during one `Update()` above its "
+        "resident memory just before (VmHWM reset through `/proc/self/clear_refs`; freed heap "
+        "returned to the system first, blocks of 128 KiB and more always from mmap), and that "
+        "per triangle. It counts the output's new arrays (tangents, signs, the copies of split "
+        "points and the re-pointed cells) and the filter's working memory; not the input, which "
+        "is resident before.\n\n"
+     << "| triangles | filter | float, 1 thread | float, 2 threads | double, 1 thread | double, "
+        "2 threads |\n"
+     << "|---:|---|---:|---:|---:|---:|\n";
+  md << ConfigurationRows(
+    sizes, results, [&](const Config& c) { return MemoryCell(results[c.Key()]); });
+  md << "\n";
+  const bool written = Bench::WriteText(out + "/filter.md", md.str()) &&
+    Bench::WriteText(out + "/filter.tsv", tsv.str()) &&
+    Bench::WriteText(out + "/filter.env", std::string("VTK ") + VTK_VERSION + "\n");
+  return written ? 0 : 1;
 }

@@ -4,6 +4,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -19,6 +20,7 @@
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 #include "vtkRenderingOpenGLConfigure.h" // VTK_OPENGL_HAS_OSMESA
 #include "vtkShader.h"
 #include "vtkShaderProgram.h"
@@ -293,7 +295,21 @@ int Checks::Result() const
 }
 
 //------------------------------------------------------------------------------
-std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<FlatActor>& actors)
+void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 0.0, setup.CameraDistance);
+  camera->SetFocalPoint(0.0, 0.0, 0.0);
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetViewAngle(setup.ViewAngle);
+  camera->SetParallelProjection(setup.Parallel);
+  camera->SetParallelScale(setup.CameraDistance * std::tan(setup.ViewAngle * Pi / 360.0));
+  renderer->ResetCameraClippingRange();
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
+  const std::vector<FlatActor>& actors)
 {
   auto window = MakeWindow(setup.Width, setup.Height);
   vtkNew<vtkRenderer> renderer;
@@ -353,21 +369,18 @@ std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<
     }
     renderer->AddActor(actor);
   }
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.0, 0.0, setup.CameraDistance);
-  camera->SetFocalPoint(0.0, 0.0, 0.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
-  camera->SetViewAngle(setup.ViewAngle);
-  if (setup.Parallel)
-  {
-    camera->ParallelProjectionOn();
-    camera->SetParallelScale(setup.CameraDistance * std::tan(setup.ViewAngle * Pi / 360.0));
-  }
-  renderer->ResetCameraClippingRange();
+  SetFlatCamera(renderer, setup);
   window->AddRenderer(renderer);
+  return window;
+}
+
+//------------------------------------------------------------------------------
+std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<FlatActor>& actors)
+{
+  auto window = MakeFlatScene(setup, actors);
   window->Render();
   ReportRenderPath(window);
-  vtkActorCollection* rendered = renderer->GetActors();
+  vtkActorCollection* rendered = window->GetRenderers()->GetFirstRenderer()->GetActors();
   rendered->InitTraversal();
   for (const FlatActor& a : actors)
   {
@@ -406,6 +419,72 @@ glm::dvec3 ReferenceShade(const FlatSetup& setup, int px, int py, const glm::dve
 }
 
 //------------------------------------------------------------------------------
+Difference CompareWithReferenceShading(const FlatSetup& setup,
+  const std::vector<unsigned char>& pixels,
+  Pattern pattern,
+  int bound,
+  glm::dvec2 scale)
+{
+  std::vector<unsigned char> reference(pixels.size(), 0);
+  std::vector<bool> mask(pixels.size() / 3, false);
+  // Two pixels in from the quad's edges, where coverage (not shading) decides the colour.
+  const double margin =
+    2.0 * 2.0 * setup.CameraDistance * std::tan(setup.ViewAngle * Pi / 360.0) / setup.Height;
+  for (int py = 0; py < setup.Height; ++py)
+  {
+    for (int px = 0; px < setup.Width; ++px)
+    {
+      const glm::dvec3 p = PixelOnPlane(setup, px, py);
+      if (std::abs(p.x) > scale.x - margin || std::abs(p.y) > scale.y - margin)
+      {
+        continue;
+      }
+      const size_t index = static_cast<size_t>(py) * setup.Width + px;
+      mask[index] = true;
+      // Texture coordinates of the quad: u = (x + 1) / 2, v = (y + 1) / 2 in its own
+      // coordinates; its frame is the model's x, y, z, so the tangent-space normal is the
+      // model normal. Scaled by diag(sx, sy, 1), the displaced surface's normals transform by
+      // the inverse transpose, diag(1 / sx, 1 / sy, 1): that is the geometric truth.
+      const glm::dvec3 model =
+        PatternNormal(pattern, (p.x / scale.x + 1.0) / 2.0, (p.y / scale.y + 1.0) / 2.0);
+      const glm::dvec3 n =
+        glm::normalize(glm::dvec3(model.x / scale.x, model.y / scale.y, model.z));
+      const glm::dvec3 color = ReferenceShade(setup, px, py, n);
+      for (int c = 0; c < 3; ++c)
+      {
+        reference[3 * index + c] = static_cast<unsigned char>(std::lround(color[c]));
+      }
+    }
+  }
+  return Compare(pixels, reference, mask, bound);
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> MakeDisplacedQuad(int resolution)
+{
+  // The SineBump height field in texture units; its gradient is Gradient(SineBump, u, v).
+  const auto height = [](double u, double v)
+  {
+    const double a = 0.03, w = 2.0 * Pi * 3.0;
+    return a * std::sin(w * u) * std::sin(w * v);
+  };
+  auto grid = MakeQuad(resolution);
+  vtkPoints* points = grid->GetPoints();
+  vtkDataArray* normals = grid->GetPointData()->GetNormals();
+  vtkDataArray* tcoords = grid->GetPointData()->GetTCoords();
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    const double u = tcoords->GetComponent(i, 0), v = tcoords->GetComponent(i, 1);
+    double p[3];
+    points->GetPoint(i, p);
+    points->SetPoint(i, p[0], p[1], 2.0 * height(u, v));
+    const glm::dvec3 normal = PatternNormal(Pattern::SineBump, u, v);
+    normals->SetTuple3(i, normal.x, normal.y, normal.z);
+  }
+  return grid;
+}
+
+//------------------------------------------------------------------------------
 Difference Compare(const std::vector<unsigned char>& a,
   const std::vector<unsigned char>& b,
   const std::vector<bool>& mask,
@@ -413,6 +492,7 @@ Difference Compare(const std::vector<unsigned char>& a,
 {
   Difference d;
   int within = 0;
+  double sum = 0.0;
   for (size_t p = 0; p < mask.size(); ++p)
   {
     if (!mask[p])
@@ -427,8 +507,10 @@ Difference Compare(const std::vector<unsigned char>& a,
     ++d.Compared;
     d.MaxChannel = std::max(d.MaxChannel, m);
     within += m <= bound ? 1 : 0;
+    sum += m;
   }
   d.WithinFraction = d.Compared ? static_cast<double>(within) / d.Compared : 0.0;
+  d.MeanChannel = d.Compared ? sum / d.Compared : 0.0;
   return d;
 }
 

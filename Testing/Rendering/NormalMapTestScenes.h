@@ -87,6 +87,7 @@ struct Difference
   int Compared = 0;
   int MaxChannel = 0;        // largest channel difference, 0..255
   double WithinFraction = 0; // share of compared pixels whose max channel difference <= bound
+  double MeanChannel = 0;    // mean over compared pixels of their largest channel difference
 };
 Difference Compare(const std::vector<unsigned char>& a,
   const std::vector<unsigned char>& b,
@@ -128,6 +129,17 @@ struct FlatSetup
   glm::dvec3 Color{ 1.0, 0.8, 0.6 };
 };
 
+/**
+ * The offscreen window of a flat scene, not rendered yet: one renderer (black background,
+ * two-sided lighting, the setup's scene light and camera) with one actor per FlatActor, in
+ * order. Render it as often as needed (benchmarks time it).
+ */
+vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
+  const std::vector<FlatActor>& actors);
+
+/// Points the renderer's camera as the setup says (perspective, or parallel with the same framing).
+void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup);
+
 /// Renders the actors with the setup and returns the pixels (black background).
 std::vector<unsigned char> RenderFlat(const FlatSetup& setup, const std::vector<FlatActor>& actors);
 
@@ -139,6 +151,24 @@ glm::dvec3 ReferenceShade(const FlatSetup& setup, int px, int py, const glm::dve
 
 /// Where the pixel centre's view ray meets the plane z = 0.
 glm::dvec3 PixelOnPlane(const FlatSetup& setup, int px, int py);
+
+/**
+ * Rendered pixels of the flat quad of MakeQuad (perspective setup, actor scale (sx, sy, 1))
+ * against ReferenceShade of the pattern's analytic normals, over the quad's pixels two pixels
+ * in from its edges (where coverage, not shading, decides the colour).
+ */
+Difference CompareWithReferenceShading(const FlatSetup& setup,
+  const std::vector<unsigned char>& pixels,
+  Pattern pattern,
+  int bound,
+  glm::dvec2 scale = glm::dvec2(1.0));
+
+/**
+ * The quad of MakeQuad(resolution) displaced along z by the SineBump height field (2 h(u, v):
+ * a texture unit is 2 world units, so slopes match the map's), with the field's analytic
+ * normals: the geometry a SineBump normal map stands for.
+ */
+vtkSmartPointer<vtkPolyData> MakeDisplacedQuad(int resolution);
 
 /// Pixels that differ from the background colour (0 0 0) in either image.
 std::vector<bool> CoveredPixels(const std::vector<unsigned char>& a,

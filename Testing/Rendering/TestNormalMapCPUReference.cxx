@@ -4,55 +4,8 @@
 
 #include "vtkNormalMapPolyDataMapper.h"
 
-#include <glm/geometric.hpp>
-
 #include <cmath>
 #include <iostream>
-
-namespace
-{
-/// Share of the quad's pixels (away from its edges) whose every channel is within `bound`
-/// levels of the CPU reference, and the largest channel error.
-nmtest::Difference AgainstReference(const nmtest::FlatSetup& setup,
-  const std::vector<unsigned char>& pixels,
-  nmtest::Pattern pattern,
-  int bound,
-  glm::dvec2 scale = glm::dvec2(1.0))
-{
-  std::vector<unsigned char> reference(pixels.size(), 0);
-  std::vector<bool> mask(pixels.size() / 3, false);
-  // Two pixels in from the quad's edges, where coverage (not shading) decides the colour.
-  const double margin = 2.0 * 2.0 * setup.CameraDistance *
-    std::tan(setup.ViewAngle * 3.14159265358979323846 / 360.0) / setup.Height;
-  for (int py = 0; py < setup.Height; ++py)
-  {
-    for (int px = 0; px < setup.Width; ++px)
-    {
-      const glm::dvec3 p = nmtest::PixelOnPlane(setup, px, py);
-      if (std::abs(p.x) > scale.x - margin || std::abs(p.y) > scale.y - margin)
-      {
-        continue;
-      }
-      const size_t index = static_cast<size_t>(py) * setup.Width + px;
-      mask[index] = true;
-      // Texture coordinates of the quad: u = (x + 1) / 2, v = (y + 1) / 2 in its own
-      // coordinates; its frame is the model's x, y, z, so the tangent-space normal is the
-      // model normal. Scaled by diag(sx, sy, 1), the displaced surface's normals transform by
-      // the inverse transpose, diag(1 / sx, 1 / sy, 1): that is the geometric truth.
-      const glm::dvec3 model =
-        nmtest::PatternNormal(pattern, (p.x / scale.x + 1.0) / 2.0, (p.y / scale.y + 1.0) / 2.0);
-      const glm::dvec3 n =
-        glm::normalize(glm::dvec3(model.x / scale.x, model.y / scale.y, model.z));
-      const glm::dvec3 color = nmtest::ReferenceShade(setup, px, py, n);
-      for (int c = 0; c < 3; ++c)
-      {
-        reference[3 * index + c] = static_cast<unsigned char>(std::lround(color[c]));
-      }
-    }
-  }
-  return nmtest::Compare(pixels, reference, mask, bound);
-}
-}
 
 int TestNormalMapCPUReference(int, char*[])
 {
@@ -92,7 +45,7 @@ int TestNormalMapCPUReference(int, char*[])
     actor.FrameSource = c.FrameSource;
     actor.StockMapper = c.Stock;
     const auto pixels = nmtest::RenderFlat(setup, { actor });
-    const nmtest::Difference d = AgainstReference(setup, pixels, pattern, bound);
+    const nmtest::Difference d = nmtest::CompareWithReferenceShading(setup, pixels, pattern, bound);
     std::cout << c.Name << ": " << d.Compared << " pixels, " << 100.0 * d.WithinFraction
               << "% within " << bound << " levels, max error " << d.MaxChannel << std::endl;
     check(d.Compared > 30000, std::string(c.Name) + ": the quad covers the view");
@@ -113,7 +66,7 @@ int TestNormalMapCPUReference(int, char*[])
     scaled.StockMapper = stock != 0;
     scaled.Scale[0] = 1.6;
     scaled.Scale[1] = 0.7;
-    const nmtest::Difference d = AgainstReference(
+    const nmtest::Difference d = nmtest::CompareWithReferenceShading(
       setup, nmtest::RenderFlat(setup, { scaled }), pattern, bound, glm::dvec2(1.6, 0.7));
     const std::string name =
       stock ? "VTK's stock mapper, scale (1.6, 0.7, 1)" : "ours, scale (1.6, 0.7, 1)";
@@ -136,8 +89,8 @@ int TestNormalMapCPUReference(int, char*[])
     wrong.Mesh = quad;
     wrong.NormalTexture = texture;
     wrong.Encoding = vtkNormalMapPolyDataMapper::TANGENT_SPACE_DIRECTX;
-    const nmtest::Difference d =
-      AgainstReference(setup, nmtest::RenderFlat(setup, { wrong }), pattern, bound);
+    const nmtest::Difference d = nmtest::CompareWithReferenceShading(
+      setup, nmtest::RenderFlat(setup, { wrong }), pattern, bound);
     std::cout << "wrong convention (control): " << 100.0 * d.WithinFraction << "% within " << bound
               << " levels, max error " << d.MaxChannel << std::endl;
     check(d.WithinFraction < 0.8, "a wrong green convention is detected");

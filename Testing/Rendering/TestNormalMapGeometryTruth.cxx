@@ -3,45 +3,7 @@
 // with the same camera and light; the normal map should light the flat quad like the geometry.
 #include "NormalMapTestScenes.h"
 
-#include "vtkDataArray.h"
-#include "vtkNew.h"
-#include "vtkNormalMapPolyDataMapper.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-
-#include <cmath>
 #include <iostream>
-
-namespace
-{
-/// The sine-bump height field of nmtest::Pattern::SineBump in texture units (see its gradient).
-double Height(double u, double v)
-{
-  const double a = 0.03, w = 2.0 * 3.14159265358979323846 * 3.0;
-  return a * std::sin(w * u) * std::sin(w * v);
-}
-
-/// The quad [-1, 1]^2 (u, v in [0, 1]) displaced along z by 2 h(u, v) (2: a texture unit is 2
-/// world units here, so slopes match the map's), with the analytic normals.
-vtkSmartPointer<vtkPolyData> DisplacedGrid(int resolution)
-{
-  auto grid = nmtest::MakeQuad(resolution);
-  vtkPoints* points = grid->GetPoints();
-  vtkDataArray* normals = grid->GetPointData()->GetNormals();
-  vtkDataArray* tcoords = grid->GetPointData()->GetTCoords();
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    const double u = tcoords->GetComponent(i, 0), v = tcoords->GetComponent(i, 1);
-    double p[3];
-    points->GetPoint(i, p);
-    points->SetPoint(i, p[0], p[1], 2.0 * Height(u, v));
-    const glm::dvec3 normal = nmtest::PatternNormal(nmtest::Pattern::SineBump, u, v);
-    normals->SetTuple3(i, normal.x, normal.y, normal.z);
-  }
-  return grid;
-}
-}
 
 int TestNormalMapGeometryTruth(int, char*[])
 {
@@ -53,7 +15,8 @@ int TestNormalMapGeometryTruth(int, char*[])
   setup.Parallel = true;
   // 384 x 384 quads: several per pixel, so the geometry's normals are sampled as finely as
   // the map's texels are.
-  const auto geometry = nmtest::RenderFlat(setup, { nmtest::FlatActor{ DisplacedGrid(384) } });
+  const auto geometry =
+    nmtest::RenderFlat(setup, { nmtest::FlatActor{ nmtest::MakeDisplacedQuad(384) } });
 
   nmtest::FlatActor mapped;
   auto quad = nmtest::WithTangents(nmtest::MakeQuad(1));

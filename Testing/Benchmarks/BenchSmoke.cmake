@@ -1,0 +1,101 @@
+# ctest BenchmarkSmoke: runs scripts/bench.sh --smoke (tiny meshes, few repetitions) into
+# WORK_DIR and checks that it wrote benchmarks.md with every section and every table complete
+# (the expected number of rows, every row as wide as its header, no empty, NaN or infinite
+# cell) and a PNG chart. It checks no timing and no accuracy: the unit tests do that.
+# Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR.
+file(REMOVE_RECURSE "${WORK_DIR}")
+get_filename_component(build "${BIN}" DIRECTORY)
+execute_process(COMMAND bash "${ROOT}/scripts/bench.sh" --smoke --out "${WORK_DIR}"
+    --build "${build}"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
+message("${output}")
+if(rc EQUAL 125)
+  message("SKIPPED: the rendering benchmark cannot run headless here (see above)")
+  return()
+endif()
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "scripts/bench.sh --smoke failed (exit status ${rc})")
+endif()
+
+# The chart: a PNG file of some size.
+set(png "${WORK_DIR}/benchmarks.png")
+if(NOT EXISTS "${png}")
+  message(FATAL_ERROR "no chart: ${png}")
+endif()
+file(READ "${png}" signature LIMIT 8 HEX)
+file(SIZE "${png}" png_size)
+if(NOT signature STREQUAL "89504e470d0a1a0a" OR png_size LESS 10000)
+  message(FATAL_ERROR "${png} is not a chart (signature ${signature}, ${png_size} bytes)")
+endif()
+
+set(md "${WORK_DIR}/benchmarks.md")
+if(NOT EXISTS "${md}")
+  message(FATAL_ERROR "no ${md}")
+endif()
+file(READ "${md}" text)
+foreach(heading
+    "## Filter: throughput and peak memory" "### Summary:" "### Throughput, every configuration"
+    "### Peak memory, every configuration" "## Filter: accuracy"
+    "### Against the analytic tangent" "### Against the MikkTSpace reference tangents"
+    "## Rendering: frame time and image error" "- Load average" "- Machine:")
+  string(FIND "${text}" "${heading}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "benchmarks.md has no \"${heading}\"")
+  endif()
+endforeach()
+
+# The tables, in order, and their data rows: with 5 tangent filters (VTK's and our 4 methods)
+# and the floor, one mesh size in the smoke run: summary, throughput and memory 6 rows each;
+# 3 analytic surfaces of 5 rows; the MikkTSpace reference meshes (5 rows each, then a 5-row
+# total) when the shared data is there; 8 rendering configurations.
+set(expected 6 6 6 5 5 5)
+file(GLOB references "$ENV{NORMALMAPPING_SHARED_DATA}/mikktspace/*.vtp")
+list(LENGTH references reference_count)
+if(reference_count GREATER 0 AND DEFINED ENV{NORMALMAPPING_SHARED_DATA})
+  math(EXPR reference_rows "5 * ${reference_count}")
+  list(APPEND expected ${reference_rows} 5)
+else()
+  string(FIND "${text}" "Skipped: the reference meshes" skipped)
+  if(skipped EQUAL -1)
+    message(FATAL_ERROR "no MikkTSpace reference data, and no note that the table was skipped")
+  endif()
+endif()
+list(APPEND expected 8)
+
+string(REPLACE ";" "," text "${text}") # list syntax: a semicolon would split a line
+string(REPLACE "[" "(" text "${text}") # and unbalanced brackets would join lines
+string(REPLACE "]" ")" text "${text}")
+string(REPLACE "\n" ";" lines "${text}")
+set(found "")
+set(rows -1)
+set(width 0)
+foreach(line IN LISTS lines)
+  if(line MATCHES "^\\|")
+    string(REGEX MATCHALL "\\|" bars "${line}")
+    list(LENGTH bars bar_count)
+    if(rows EQUAL -1) # the header
+      set(width ${bar_count})
+      set(rows 0)
+    elseif(line MATCHES "^\\|[-:|]+\\|$") # the separator
+    else()
+      if(NOT bar_count EQUAL width)
+        message(FATAL_ERROR "a table row has ${bar_count} bars, its header ${width}:\n${line}")
+      endif()
+      if(line MATCHES "\\|[ ]*\\|" OR line MATCHES "(^|[^a-zA-Z])(nan|NaN|inf|-inf)([^a-zA-Z]|$)")
+        message(FATAL_ERROR "a table row has an empty, NaN or infinite cell:\n${line}")
+      endif()
+      math(EXPR rows "${rows} + 1")
+    endif()
+  elseif(NOT rows EQUAL -1)
+    list(APPEND found ${rows})
+    set(rows -1)
+  endif()
+endforeach()
+if(NOT rows EQUAL -1)
+  list(APPEND found ${rows})
+endif()
+if(NOT found STREQUAL expected)
+  message(FATAL_ERROR "table rows: expected ${expected}, found ${found}")
+endif()
+list(LENGTH found tables)
+message("benchmarks.md: ${tables} complete tables (rows ${found}); chart ${png_size} bytes")

@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Runs the benchmark set and writes docs/benchmarks.md and docs/benchmarks.png:
+#   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR]
+# `bash scripts/bootstrap.sh bench` builds the project and runs this. The programs are in
+# BUILD/bin (--build, else $BUILD_DIR, else ./build):
+#   BenchTangentAccuracy     filter accuracy (analytic tangents, MikkTSpace reference meshes)
+#   BenchTangentFrames       filter throughput and peak memory (Google Benchmark)
+#   BenchNormalMapRendering  frame time, image error and vertex memory of the mappers (llvmpipe)
+#   BenchChart               the speed-versus-accuracy chart (VTK charts)
+# Each writes its section (and a tab-separated table) into a work folder (BUILD/bench, or the --out
+# folder with --smoke), with its console output in <name>.log; this script adds the header
+# (machine, load, versions, date, run time) and writes benchmarks.md and benchmarks.png into
+# --out (default: docs/). --smoke: tiny meshes and few repetitions, only to check that
+# everything runs (ctest BenchmarkSmoke); its numbers mean nothing.
+# The rendering programs run headless (Testing/Rendering/RunHeadless.sh): exit status 125 when
+# that is impossible (no Xvfb), 1 when a program fails.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BUILD_DIR:-$root/build}"
+out="$root/docs"
+smoke=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --smoke) smoke=(--smoke) ;;
+    --out) out="$2"; shift ;;
+    --build) build="$2"; shift ;;
+    *) echo "usage: $0 [--smoke] [--out DIR] [--build DIR]" >&2; exit 2 ;;
+  esac
+  shift
+done
+bin="$build/bin"
+for program in BenchTangentAccuracy BenchTangentFrames BenchNormalMapRendering BenchChart; do
+  if [ ! -x "$bin/$program" ]; then
+    echo "$bin/$program is missing: build first (bash scripts/bootstrap.sh bench does)" >&2
+    exit 1
+  fi
+done
+work="$build/bench"
+[ "${#smoke[@]}" -eq 0 ] || work="$out"
+mkdir -p "$work" "$out"
+rm -f "$work"/{filter,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
+
+# Debian's VTK renders through X only: a private Xvfb; a VTK with OSMesa needs no X server.
+mode=xvfb
+if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
+  mode=osmesa
+fi
+
+start=$(date +%s)
+load_start="$(cut -d' ' -f1-3 /proc/loadavg)"
+timings=()
+# run NAME COMMAND...: runs a program with its output in $work/NAME.log, and times it.
+run() {
+  local name="$1" t0 status=0
+  shift
+  t0=$(date +%s)
+  echo "== $name: $*"
+  "$@" >"$work/$name.log" 2>&1 || status=$?
+  if [ "$status" -eq 125 ]; then
+    grep -h "SKIPPED" "$work/$name.log" || true
+    exit 125
+  fi
+  if [ "$status" -ne 0 ]; then
+    echo "$name failed (exit status $status); the end of $work/$name.log:" >&2
+    tail -n 30 "$work/$name.log" >&2
+    exit 1
+  fi
+  timings+=("$name $(($(date +%s) - t0)) s")
+}
+headless="$root/Testing/Rendering/RunHeadless.sh"
+run accuracy "$bin/BenchTangentAccuracy" --out "$work" "${smoke[@]}"
+run filter "$bin/BenchTangentFrames" --out "$work" "${smoke[@]}"
+run rendering "$headless" "$mode" "$bin/BenchNormalMapRendering" --out "$work" "${smoke[@]}"
+run chart "$headless" "$mode" "$bin/BenchChart" --out "$work"
+load_end="$(cut -d' ' -f1-3 /proc/loadavg)"
+seconds=$(($(date +%s) - start))
+
+cpu="$(grep -m1 "model name" /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+memory="$(awk '/MemTotal/ {printf "%.0f", $2 / 1048576}' /proc/meminfo)"
+command="bash scripts/bench.sh${smoke[*]:+ ${smoke[*]}}"
+parts="$(printf '%s, ' "${timings[@]}")"
+{
+  echo "# Benchmarks"
+  echo
+  if [ "${#smoke[@]}" -gt 0 ]; then
+    echo "**Smoke run** (tiny meshes, few repetitions: it only shows that everything runs; the"
+    echo "numbers mean nothing)."
+    echo
+  fi
+  echo "Written by \`$command\` (what \`bash scripts/bootstrap.sh bench\` runs after building);"
+  echo "do not edit by hand. $(date -u '+%Y-%m-%d %H:%M UTC'); the whole run took $seconds s"
+  echo "(${parts%, })."
+  echo
+  echo "- Machine: ${cpu:-unknown CPU}, $(nproc) cores, $memory GiB of memory, $(uname -sr)."
+  echo "- Load average (1, 5, 15 minutes): $load_start at the start, $load_end at the end."
+  echo "  Other work may have been running on the machine: absolute figures move with it; the"
+  echo "  ratios compare runs in the same process, interleaved, and move less."
+  echo "- $(cat "$work/filter.env"); $(cat "$work/rendering.env")."
+  echo
+  echo "![Speed versus accuracy: the tangent filters (left) and the mappers (right), each point"
+  echo "labelled, the Pareto front dashed](benchmarks.png)"
+  echo
+  echo "Left: each tangent filter's throughput (float torus nearest to a million triangles, one"
+  echo "thread) against its mean angle to the analytic tangent on the wavy surface (middle"
+  echo "resolution); the dotted line is the floor. Right: each mapper configuration's time per"
+  echo "frame against its mean error from the displaced geometry. Both axes are logarithmic;"
+  echo "lower is better, and so is further right on the left (faster) and further left on the"
+  echo "right (less time). The dashed lines join the points that no other point beats on both"
+  echo "(on the right, one line per lighting model: their errors have different references)."
+  echo
+  cat "$work/filter.md" "$work/accuracy.md" "$work/rendering.md"
+} >"$work/benchmarks.md.new"
+mv "$work/benchmarks.md.new" "$out/benchmarks.md"
+[ "$work/benchmarks.png" -ef "$out/benchmarks.png" ] || cp "$work/benchmarks.png" "$out/benchmarks.png"
+echo "== wrote $out/benchmarks.md and $out/benchmarks.png in $seconds s (logs in $work)"
