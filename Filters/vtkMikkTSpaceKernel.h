@@ -42,8 +42,10 @@
  * Limits: 3 * (number of face corners) + NumberOfPoints must be below 2^31; larger inputs
  * return Result::TooLarge with default frames.
  *
- * SIMD: the per-corner math runs 8 lanes wide with AVX2 when the CPU has it (run-time check),
- * else 4 lanes with SSE2; all paths use the same IEEE operations and give identical bits.
+ * SIMD (chosen at run time, see InstructionSet): the triangle setup and the per-corner math
+ * run 8 lanes wide with AVX2 when the CPU has it, the corner angles' acos 8 lanes wide in
+ * double with AVX-512, else 4 lanes with SSE2; all paths use the same IEEE operations and
+ * give identical bits.
  *
  * Compile this translation unit without -ffast-math. It disables floating-point contraction
  * itself (FMA would change rounding compared to the reference by up to ~2e-7).
@@ -93,6 +95,19 @@ struct Result
 
 /// Default frame of a corner that no group reached (the reference's initial value).
 constexpr CornerFrame DefaultCornerFrame = { { 1.0f, 0.0f, 0.0f }, -1.0f };
+
+/// Instruction sets the kernel can use, chosen at run time. Every one gives the same bits; the
+/// best one the CPU has is used unless limited with LimitInstructionSet (for tests).
+enum class InstructionSet
+{
+  Baseline = 0, ///< SSE2 on x86-64, plain C++ elsewhere
+  AVX2 = 1,
+  AVX512 = 2 ///< AVX2 and, for the double-precision acos, AVX-512
+};
+
+/// Limits the instruction set of later ComputeMikkTSpace calls in this process (to compare
+/// them); returns the one they will use: `maximum`, or less if the CPU or build lacks it.
+InstructionSet LimitInstructionSet(InstructionSet maximum);
 
 /**
  * Compute MikkTSpace tangents for every face corner.

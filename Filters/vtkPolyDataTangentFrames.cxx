@@ -1008,9 +1008,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
       {
         for (vtkIdType p = 0; p < numPoints; ++p)
         {
-          invalid +=
-            SafeNormalize(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) == glm::dvec3(0.0) ? 1
-                                                                                               : 0;
+          invalid += IsUsableNormal(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) ? 0 : 1;
         }
       });
     self->NumberOfInvalidNormals = invalid;

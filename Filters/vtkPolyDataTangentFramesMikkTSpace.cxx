@@ -43,6 +43,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -65,9 +66,14 @@ static_assert(std::is_same<vtkTypeInt64, long long>::value,
 constexpr long long kNoCorner = std::numeric_limits<long long>::max();
 constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
 
+/// Bitwise equality (two 64-bit compares; a memcmp call was ~10 % of the filter's run time).
 bool SameFrame(const CornerFrame& a, const CornerFrame& b)
 {
-  return std::memcmp(&a, &b, sizeof(CornerFrame)) == 0;
+  static_assert(sizeof(CornerFrame) == 16, "four floats");
+  std::uint64_t x[2], y[2];
+  std::memcpy(x, &a, sizeof(x));
+  std::memcpy(y, &b, sizeof(y));
+  return x[0] == y[0] && x[1] == y[1];
 }
 
 bool IsDefault(const CornerFrame& f)
@@ -105,15 +111,23 @@ struct ToFloat
   }
 };
 
-std::vector<float> ConvertToFloat(vtkDataArray* array, vtkIdType n, int outComps)
+/// The first n tuples of `array` as `outComps` floats each: the array's own storage when it is a
+/// float array with exactly that many components (no copy), else a converted copy kept in
+/// `storage`.
+const float* FloatData(vtkDataArray* array, vtkIdType n, int outComps, std::vector<float>& storage)
 {
-  std::vector<float> out(static_cast<size_t>(n) * outComps);
-  ToFloat worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, out.data()))
+  vtkFloatArray* floats = vtkFloatArray::FastDownCast(array);
+  if (floats && floats->GetNumberOfComponents() == outComps)
   {
-    worker(array, n, outComps, out.data());
+    return floats->GetPointer(0);
   }
-  return out;
+  storage.resize(static_cast<size_t>(n) * outComps);
+  ToFloat worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, storage.data()))
+  {
+    worker(array, n, outComps, storage.data());
+  }
+  return storage.data();
 }
 
 /// Output tuple i (< numIn: tuple i; else tuple source[i - numIn]) of a 3-component array.
@@ -398,20 +412,25 @@ struct Assignment
   vtkIdType StripCornerConflicts = 0;
 };
 
-void Assign(const Surface& s,
+/// Frame of output corner c (the default for corners without a frame).
+const CornerFrame& FrameOf(const Surface& s, const std::vector<CornerFrame>& frames, long long c)
+{
+  const long long slot = s.SlotOf(c);
+  return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
+}
+
+/// Steps 1 and 2 of Assign on several threads: the first corner of every point (atomic
+/// minimum: independent of the scheduling), then the corners whose frame differs from their
+/// point's first corner, in corner order (each fixed-size chunk collects its own list).
+void FirstCornersAndDifferences(const Surface& s,
   const std::vector<CornerFrame>& frames,
   vtkIdType numPoints,
-  bool splitting,
-  Assignment& a)
+  Assignment& a,
+  std::vector<std::vector<long long>>& differing)
 {
   const long long numCorners = s.NumCorners();
-  const auto frameOf = [&](long long c) -> const CornerFrame&
-  {
-    const long long slot = s.SlotOf(c);
-    return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
-  };
-
-  // 1. First corner of every point (atomic minimum: independent of the scheduling).
+  const vtkIdType numChunks = static_cast<vtkIdType>(differing.size());
+  const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
   {
     std::unique_ptr<std::atomic<long long>[]> first(
       new std::atomic<long long>[static_cast<size_t>(numPoints)]);
@@ -453,10 +472,6 @@ void Assign(const Surface& s,
       });
   }
 
-  // 2. Corners whose frame differs from their point's first corner, in corner order (each
-  // fixed-size chunk collects its own list; concatenated in chunk order).
-  const vtkIdType numChunks = (numCorners + kChunk - 1) / kChunk;
-  std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
   vtkSMPTools::For(0,
     numChunks,
     1,
@@ -475,6 +490,71 @@ void Assign(const Surface& s,
         }
       }
     });
+}
+
+void Assign(const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  vtkIdType numPoints,
+  bool splitting,
+  Assignment& a)
+{
+  const long long numCorners = s.NumCorners();
+  const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
+
+  // 1. The first corner of every point and 2. the corners whose frame differs from their
+  // point's first corner, in corner order (lists concatenated in order).
+  const vtkIdType numChunks = (numCorners + kChunk - 1) / kChunk;
+  std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
+  if (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1)
+  {
+    // One ascending pass (the same result, without atomics): a point's first corner is the
+    // first corner with a frame seen; the later ones are compared with it.
+    a.FirstCorner.assign(static_cast<size_t>(numPoints), kNoCorner);
+    std::vector<long long>* list = numChunks > 0 ? &differing[0] : nullptr;
+    if (s.StripCorners == 0 && s.PolyFrameless.empty())
+    {
+      // only polygons, all with a frame: output corner c is kernel corner c, of point conn[c]
+      long long* firstCorner = a.FirstCorner.data();
+      const long long* conn = s.FaceConnectivity;
+      const CornerFrame* frame = frames.data();
+      for (long long c = 0; c < numCorners; ++c)
+      {
+        long long& first = firstCorner[conn[c]];
+        if (first == kNoCorner)
+        {
+          first = c;
+        }
+        else if (!SameFrame(frame[c], frame[first]))
+        {
+          list->push_back(c);
+        }
+      }
+    }
+    else
+    {
+      for (long long c = 0; c < numCorners; ++c)
+      {
+        const long long slot = s.SlotOf(c);
+        if (slot < 0)
+        {
+          continue;
+        }
+        long long& first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
+        if (first == kNoCorner)
+        {
+          first = c;
+        }
+        else if (!SameFrame(frames[static_cast<size_t>(slot)], frameOf(first)))
+        {
+          list->push_back(c);
+        }
+      }
+    }
+  }
+  else
+  {
+    FirstCornersAndDifferences(s, frames, numPoints, a, differing);
+  }
 
   // 3. Strip corners whose strip triangles disagree.
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
@@ -598,8 +678,8 @@ template<typename OutArray>
 void WriteOutput(const MikkTSpaceRequest& request,
   const Surface& s,
   const std::vector<CornerFrame>& frames,
-  const std::vector<float>& positions,
-  const std::vector<float>& normals,
+  const float* positions,
+  const float* normals,
   const Assignment& a,
   vtkPolyData* output)
 {
@@ -680,7 +760,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
         {
           // The normal the kernel used (float), normalised in double; a zero or non-finite
           // normal gives a zero bitangent (SafeNormalize), never NaN.
-          const float* nf = normals.data() + 3 * static_cast<size_t>(sourceOf(p));
+          const float* nf = normals + 3 * static_cast<size_t>(sourceOf(p));
           const glm::dvec3 n = SafeNormalize(glm::dvec3(nf[0], nf[1], nf[2]));
           const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
           const glm::dvec3 bt = static_cast<double>(sign) * glm::cross(n, t);
@@ -754,12 +834,12 @@ void WriteOutput(const MikkTSpaceRequest& request,
                 t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
               }
             }
-            const float* p0 = positions.data() + 3 * s.FaceConnectivity[cb];
+            const float* p0 = positions + 3 * s.FaceConnectivity[cb];
             const glm::dvec3 o(p0[0], p0[1], p0[2]);
             for (long long c = cb + 1; c + 1 < ce; ++c)
             {
-              const float* p1 = positions.data() + 3 * s.FaceConnectivity[c];
-              const float* p2 = positions.data() + 3 * s.FaceConnectivity[c + 1];
+              const float* p1 = positions + 3 * s.FaceConnectivity[c];
+              const float* p2 = positions + 3 * s.FaceConnectivity[c + 1];
               n += glm::cross(
                 glm::dvec3(p1[0], p1[1], p1[2]) - o, glm::dvec3(p2[0], p2[1], p2[2]) - o);
             }
@@ -808,9 +888,10 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
     return passThrough();
   }
 
-  const std::vector<float> positions = ConvertToFloat(input->GetPoints()->GetData(), numPoints, 3);
-  const std::vector<float> normals = ConvertToFloat(request.Normals, numPoints, 3);
-  const std::vector<float> tcoords = ConvertToFloat(request.TCoords, numPoints, 2);
+  std::vector<float> positionStore, normalStore, tcoordStore;
+  const float* positions = FloatData(input->GetPoints()->GetData(), numPoints, 3, positionStore);
+  const float* normals = FloatData(request.Normals, numPoints, 3, normalStore);
+  const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
   filter->UpdateProgress(0.05);
 
   mikk::MeshInput in;
@@ -818,9 +899,9 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   in.FaceOffsets = surface.FaceOffsets;
   in.FaceConnectivity = surface.FaceConnectivity;
   in.NumberOfPoints = numPoints;
-  in.Positions = positions.data();
-  in.Normals = normals.data();
-  in.TCoords = tcoords.data();
+  in.Positions = positions;
+  in.Normals = normals;
+  in.TCoords = tcoords;
   mikk::Result result = mikk::ComputeMikkTSpace(in,
     0,
     [filter](double progress)

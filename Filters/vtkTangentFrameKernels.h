@@ -346,6 +346,13 @@ inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
   return s / glm::length(s);
 }
 
+/// Whether SafeNormalize(n) is non-zero, i.e. n is finite and not the zero vector (without
+/// the scaling and square root).
+inline bool IsUsableNormal(const glm::dvec3& n)
+{
+  return detail::IsFinite(n) && n != glm::dvec3(0.0);
+}
+
 /**
  * A fixed unit tangent perpendicular to the unit normal n, continuous except where n.z changes
  * sign (the branch-free orthonormal basis of Duff et al., JCGT 2017). For n == 0 it gives

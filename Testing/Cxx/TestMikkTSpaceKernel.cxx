@@ -619,7 +619,15 @@ namespace
 {
 // Torus with quads and triangles, a mirrored band, collapsed UVs, degenerate triangles,
 // a fan polygon cap row and duplicated faces: exercises every path of the kernel.
-Mesh MixedTorus(int nu, int nv)
+// TrianglesOnly: every face a triangle (the kernel sets up runs of 8 triangle faces together);
+// Clean: only the mirrored band (no collapsed UVs, degenerate or duplicated faces).
+enum class TorusFaces
+{
+  Mixed,
+  TrianglesOnly,
+  Clean
+};
+Mesh MixedTorus(int nu, int nv, TorusFaces faces = TorusFaces::Mixed)
 {
   Mesh m;
   const float twoPi = 6.28318531f;
@@ -634,7 +642,7 @@ Mesh MixedTorus(int nu, int nv)
       {
         u = 1.0f - u; // mirrored band
       }
-      if ((i * 7 + j * 3) % 53 == 0)
+      if ((i * 7 + j * 3) % 53 == 0 && faces != TorusFaces::Clean)
       {
         u = v = 0.25f; // collapsed UVs -> group-with-any triangles
       }
@@ -648,7 +656,7 @@ Mesh MixedTorus(int nu, int nv)
     {
       const long long p00 = id(i, j), p10 = id(i + 1, j), p11 = id(i + 1, j + 1),
                       p01 = id(i, j + 1);
-      const int kind = (i + 3 * j) % 7;
+      const int kind = faces == TorusFaces::Mixed ? (i + 3 * j) % 7 : 3;
       if (kind < 3)
       {
         m.AddFace({ p00, p10, p11, p01 });
@@ -662,14 +670,51 @@ Mesh MixedTorus(int nu, int nv)
       {
         m.AddFace({ p00, p10, p11, p01, p00 }); // pentagon with a repeated corner
       }
-      if ((i + j) % 11 == 0)
+      if ((i + j) % 11 == 0 && faces != TorusFaces::Clean)
       {
         m.AddFace({ p00, p00, p11 }); // degenerate
       }
-      if ((i * j) % 37 == 5)
+      if ((i * j) % 37 == 5 && faces != TorusFaces::Clean)
       {
         m.AddFace({ p00, p10, p11 }); // duplicated face: non-manifold edges
       }
+    }
+  }
+  return m;
+}
+
+// n x n grid of triangle pairs with jittered positions, normals and UVs (a fixed pseudo-random
+// sequence): corner angles from a few degrees to nearly 180, so every branch of the acos
+// evaluation is taken.
+Mesh JitteredGrid(int n)
+{
+  Mesh m;
+  unsigned state = 12345u;
+  const auto jitter = [&state]()
+  {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24) - 0.5f; // [-0.5, 0.5)
+  };
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const float x = float(i) + 0.9f * jitter(), y = float(j) + 0.9f * jitter();
+      const float z = 0.3f * jitter();
+      const float nx = 0.2f * jitter(), ny = 0.2f * jitter();
+      const float len = std::sqrt(nx * nx + ny * ny + 1.0f);
+      m.AddPoint({ x, y, z },
+        { nx / len, ny / len, 1.0f / len },
+        { (x + 0.3f * jitter()) / float(n), (y + 0.3f * jitter()) / float(n) });
+    }
+  }
+  const auto id = [n](int i, int j) { return static_cast<long long>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      m.AddFace({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+      m.AddFace({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
     }
   }
   return m;
@@ -700,6 +745,59 @@ TEST(MikkTSpaceKernel, DeterministicAcrossThreadCounts)
       << "run " << i;
     EXPECT_EQ(results[i].NumberOfDefaultCorners, results[0].NumberOfDefaultCorners);
   }
+}
+
+// Every instruction set the CPU has (AVX-512, AVX2, SSE2 on x86-64) gives the same bits and
+// counts: the default (the best) is compared with each lower one, on the mixed torus, on
+// triangle-only and clean tori (8-triangle setup, the one-group fast path, no final scan), on
+// a jittered grid (corner angles up to nearly 180 degrees) and on a torus with a NaN normal
+// and a NaN position.
+TEST(MikkTSpaceKernel, SameBitsWithEveryInstructionSet)
+{
+  struct RestoreDefault
+  {
+    ~RestoreDefault() { mikk::LimitInstructionSet(mikk::InstructionSet::AVX512); }
+  } restore;
+  const mikk::InstructionSet best = mikk::LimitInstructionSet(mikk::InstructionSet::AVX512);
+  if (best == mikk::InstructionSet::Baseline)
+  {
+    GTEST_SKIP() << "this CPU (or build) has only the baseline instruction set";
+  }
+  std::vector<Mesh> meshes = { MixedTorus(160, 90),
+    MixedTorus(160, 90, TorusFaces::TrianglesOnly),
+    MixedTorus(160, 90, TorusFaces::Clean),
+    JitteredGrid(120) };
+  Mesh withNaN = MixedTorus(40, 20, TorusFaces::TrianglesOnly);
+  withNaN.N[3 * 5 + 1] = std::nanf("");
+  withNaN.P[3 * 17] = std::nanf("");
+  meshes.push_back(withNaN);
+  for (size_t k = 0; k < meshes.size(); ++k)
+  {
+    mikk::LimitInstructionSet(best);
+    const mikk::Result expected = RunKernel(meshes[k]);
+    for (const mikk::InstructionSet isa :
+      { mikk::InstructionSet::Baseline, mikk::InstructionSet::AVX2 })
+    {
+      if (isa >= best)
+      {
+        continue;
+      }
+      ASSERT_EQ(mikk::LimitInstructionSet(isa), isa);
+      const mikk::Result r = RunKernel(meshes[k]);
+      ASSERT_EQ(r.Corners.size(), expected.Corners.size());
+      EXPECT_EQ(0,
+        std::memcmp(r.Corners.data(),
+          expected.Corners.data(),
+          expected.Corners.size() * sizeof(mikk::CornerFrame)))
+        << "mesh " << k << ", instruction set " << static_cast<int>(isa);
+      EXPECT_EQ(r.NumberOfDefaultCorners, expected.NumberOfDefaultCorners) << "mesh " << k;
+      EXPECT_EQ(r.NumberOfNonFiniteCorners, expected.NumberOfNonFiniteCorners) << "mesh " << k;
+      EXPECT_EQ(r.NumberOfDegenerateTriangles, expected.NumberOfDegenerateTriangles);
+      EXPECT_EQ(r.NumberOfGroupWithAnyTriangles, expected.NumberOfGroupWithAnyTriangles);
+    }
+  }
+  // the NaN mesh reaches the non-finite handling
+  EXPECT_GT(RunKernel(withNaN).NumberOfNonFiniteCorners, 0);
 }
 
 // The callback can stop the computation; it is told the progress.
