@@ -7,6 +7,7 @@
 #              temporary folder beside it)
 #   OUT        optional: the output path (with @WORK@)
 #   STDOUT     optional: a regular expression the standard output must match
+#   STDERR     optional: a regular expression the standard error must match (the message)
 #   CHECK      optional, with EXPECT ok: a command ('|'-separated, @WORK@ expanded) run after
 #              the tool, which must exit 0 (e.g. the picture checker)
 #   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
@@ -104,5 +105,8 @@ else()
 endif()
 if(STDOUT AND NOT out MATCHES "${STDOUT}")
   message(FATAL_ERROR "stdout does not match '${STDOUT}'\n${report}")
+endif()
+if(STDERR AND NOT err MATCHES "${STDERR}")
+  message(FATAL_ERROR "stderr does not match '${STDERR}'\n${report}")
 endif()
 message("${report}")
