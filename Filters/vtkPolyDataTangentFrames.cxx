@@ -23,7 +23,9 @@
 #include <atomic>
 #include <cfloat>
 #include <memory>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
@@ -750,6 +752,52 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
   return array;
 }
 
+/**
+ * Why a cell array cannot be read safely, or an empty string when it can: single-component
+ * offsets and connectivity, at least one offset, the first 0, none smaller than the one before
+ * it (a negative cell size), the last equal to the connectivity size (no cell reaches past it).
+ * VTK's vtkCellArray::SetData accepts any arrays; the readers below rely on all of this.
+ */
+std::string CellArrayProblem(vtkCellArray* cells)
+{
+  if (cells->GetOffsetsArray()->GetNumberOfComponents() != 1 ||
+    cells->GetConnectivityArray()->GetNumberOfComponents() != 1)
+  {
+    return "its offsets or connectivity have more than one component";
+  }
+  if (cells->GetOffsetsArray()->GetNumberOfValues() == 0)
+  {
+    return "it has no offsets (not even the leading 0)";
+  }
+  std::string problem;
+  WithCellStorage(cells,
+    [&](const auto* offsets, const auto*)
+    {
+      const vtkIdType numCells = cells->GetOffsetsArray()->GetNumberOfValues() - 1;
+      const vtkIdType size = cells->GetConnectivityArray()->GetNumberOfValues();
+      if (offsets[0] != 0)
+      {
+        problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
+        return;
+      }
+      for (vtkIdType c = 0; c < numCells; ++c)
+      {
+        if (offsets[c + 1] < offsets[c])
+        {
+          problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
+            std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
+          return;
+        }
+      }
+      if (static_cast<vtkIdType>(offsets[numCells]) != size)
+      {
+        problem = "its last offset is " + std::to_string(offsets[numCells]) +
+          " but the connectivity holds " + std::to_string(size) + " ids";
+      }
+    });
+  return problem;
+}
+
 /// Number of polygon or strip cells with fewer than 3 points.
 vtkIdType CountShortCells(vtkCellArray* cells)
 {
@@ -826,6 +874,22 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     output->ShallowCopy(input);
     return 1;
   };
+  // Malformed cell arrays first: nothing below (not even the cell counts) can be trusted.
+  const std::pair<const char*, vtkCellArray*> cellArrays[] = { { "vertex", input->GetVerts() },
+    { "line", input->GetLines() },
+    { "polygon", input->GetPolys() },
+    { "triangle strip", input->GetStrips() } };
+  for (const auto& named : cellArrays)
+  {
+    const std::string problem = CellArrayProblem(named.second);
+    if (!problem.empty())
+    {
+      vtkErrorMacro("Cannot compute tangent frames: the " << named.first
+                                                          << " cell array is malformed: " << problem
+                                                          << "; passing the input through.");
+      return passThrough();
+    }
+  }
   if (input->GetNumberOfPoints() == 0 ||
     input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
@@ -1048,7 +1112,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     vtkNormalMapping::detail::MikkTSpaceCounts counts;
     const int result = vtkNormalMapping::detail::RunMikkTSpace(request, output, counts);
     self->NumberOfDegenerateTriangles = counts.DegenerateTriangles;
-    self->NumberOfFallbackPoints = counts.DefaultCorners;
+    self->NumberOfFallbackPoints = counts.FallbackCorners;
     self->NumberOfHandednessConflicts = counts.Conflicts;
     self->NumberOfSplitPoints = counts.SplitPoints;
     return result;

@@ -35,10 +35,11 @@
  * NumberOfFallbackPoints.
  *
  * Bad input is reported and never crashes: missing or non-numeric texture coordinates, point
- * ids out of range, or arrays shorter than the point count are errors, and the output is the
- * input passed through; missing normals are computed (area-weighted, without splitting) with a
- * warning; cell normals alone are averaged to points with a warning; texture coordinates with 1
- * or more than 2 components use (u, 0) or the first two with a warning.
+ * ids out of range, arrays shorter than the point count, or a malformed cell array (offsets
+ * that do not start at 0, decrease, or do not end at the connectivity size) are errors, and
+ * the output is the input passed through; missing normals are computed (area-weighted, without
+ * splitting) with a warning; cell normals alone are averaged to points with a warning; texture
+ * coordinates with 1 or more than 2 components use (u, 0) or the first two with a warning.
  *
  * The work runs on vtkSMPTools and is deterministic: the output is bit-identical for any number
  * of threads, because each point sums its triangles in a fixed order through a point-to-triangle
@@ -141,7 +142,10 @@ public:
   /// Triangles (after fan-triangulating polygons and strips) with no usable frame.
   vtkGetMacro(NumberOfDegenerateTriangles, vtkIdType);
   /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
-  /// For MIKKTSPACE: face corners left at MikkTSpace's default frame ((1, 0, 0), sign -1).
+  /// For MIKKTSPACE: face corners MikkTSpace cannot resolve, which get (1, 0, 0) made
+  /// perpendicular to the normal: those it leaves at its default ((1, 0, 0), sign -1, which the
+  /// reference outputs whatever the normal) and those whose summed tangents cancel (the
+  /// reference outputs that sum unnormalised, zero or below ~1e-19; the sign is kept).
   vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
   /// Points whose triangles disagree on handedness (mirror seams); for MIKKTSPACE, points whose
   /// corners have different frames.

@@ -15,11 +15,24 @@
 //   strips). A point whose corners carry bitwise different frames is a conflict. With Splitting
 //   every further distinct frame of it becomes a new point (appended after the input points in
 //   order of first appearance, with a copy of all point data), and the corners carrying that
-//   frame are re-pointed to it. Points used by no polygon or strip get the default frame.
-// * Cell tangents: the sum of the cell's kernel-corner tangents (corners left at the default
-//   excluded), made perpendicular to the cell's geometric normal (sum of the cross products of
-//   its kernel triangles) and normalised; if that fails the fixed perpendicular of
-//   vtkNormalMapping::FallbackTangent; (0, 0, 0) for vertex and line cells.
+//   frame are re-pointed to it.
+// * The filter's contract (finite unit tangents perpendicular to the unit normal), applied to
+//   each output point's frame with the point's own normal, without touching the kernel's bits
+//   where they already meet it: a tangent that is not unit within 1e-6 (the reference returns
+//   a sum that cancels at a corner unnormalised: zero or below ~1e-19) is a cancelled corner
+//   and gets the fallback frame, (1,0,0) made perpendicular to the normal, keeping its sign; a
+//   unit tangent with |T.N| above 1e-4 (MikkTSpace's default (1,0,0) where the normal is not
+//   perpendicular to it, normals clearly off unit length, which the kernel takes as they are)
+//   is Gram-Schmidt-ed against the normal in double. Both use
+//   vtkNormalMapping::PerpendicularTangent (Duff et al.'s fixed basis where the tangent is
+//   parallel to the normal). Points used by no polygon or strip get the default frame treated
+//   the same way. Points are assigned and split on the kernel's frames (the contract is a
+//   function of the frame and the point's normal, so corners that share a frame share the
+//   result). NumberOfFallbackPoints counts the kernel's default corners and the cancelled ones.
+// * Cell tangents: the sum of the cell's kernel-corner tangents (corners that had the
+//   default's bits or cancelled excluded), made perpendicular to the cell's geometric normal (sum
+//   of the cross products of its kernel triangles) and normalised; if that fails the fixed
+//   perpendicular of vtkNormalMapping::FallbackTangent; (0, 0, 0) for vertex and line cells.
 #include "vtkPolyDataTangentFramesMikkTSpace.h"
 
 #include "vtkNormalMappingPrivate.h"
@@ -81,12 +94,67 @@ bool IsDefault(const CornerFrame& f)
   return SameFrame(f, mikk::DefaultCornerFrame);
 }
 
-/// Copies the first `outComps` components of the first n tuples to float (missing ones: 0),
-/// each value rounded to float as the reference's float interface would.
-struct ToFloat
+/// |length - 1| allowed before a kernel tangent counts as cancelled. The kernel normalises in
+/// float: a unit vector within a few float ulps (measured on the shared reference meshes: 8.4e-8
+/// at most), whereas a cancelled sum is below ~1e-19; 1e-6 is what the weighted methods' float
+/// output meets.
+constexpr double kUnitTolerance = 1e-6;
+/// |T.N| (unit N) allowed before a kernel tangent is Gram-Schmidt-ed. MikkTSpace projects with
+/// the normal as given, so a normal off unit length by e leaves T.N of about 2e. Normals in real
+/// files are not unit to float precision: on the shared reference meshes |N| - 1 reaches 4.4e-5
+/// (Khronos' NormalTangentMirrorTest) and T.N 1.13e-5. 1e-4 (0.0057 degrees, far below the
+/// 1/127 rad step of an 8-bit normal map) keeps all of those bit for bit, as the reference
+/// gives them, and corrects the default (1,0,0) and clearly non-unit normals.
+constexpr double kPerpendicularTolerance = 1e-4;
+
+/// True when a kernel tangent is not unit: the reference's unnormalised sum that cancelled.
+bool IsCancelled(const CornerFrame& f)
+{
+  const double tt = double(f.Tangent[0]) * f.Tangent[0] + double(f.Tangent[1]) * f.Tangent[1] +
+    double(f.Tangent[2]) * f.Tangent[2];
+  constexpr double lowest = (1.0 - kUnitTolerance) * (1.0 - kUnitTolerance);
+  constexpr double highest = (1.0 + kUnitTolerance) * (1.0 + kUnitTolerance);
+  return !(tt >= lowest && tt <= highest);
+}
+
+/// The kernel frame `f` of a point with normal `n` (as given, any length; zero or non-finite:
+/// none) made to meet the filter's contract (see the rules at the top). The common case, a
+/// unit tangent perpendicular enough, is decided without a square root or a normalisation.
+CornerFrame ContractFrame(const CornerFrame& f, const glm::dvec3& n)
+{
+  const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
+  const bool cancelled = IsCancelled(f);
+  const double nn = glm::dot(n, n);
+  if (!cancelled && nn > 1e-200 && nn < 1e200)
+  {
+    // |T.N| / |N| <= tolerance, squared (no overflow or underflow in this range).
+    const double d = glm::dot(t, n);
+    if (d * d <= kPerpendicularTolerance * kPerpendicularTolerance * nn)
+    {
+      return f;
+    }
+  }
+  const glm::dvec3 unit = SafeNormalize(n);
+  if (!cancelled && std::abs(glm::dot(t, unit)) <= kPerpendicularTolerance)
+  {
+    return f; // a normal of extreme magnitude, or none
+  }
+  const glm::dvec3 u = PerpendicularTangent(unit, cancelled ? glm::dvec3(1.0, 0.0, 0.0) : t);
+  CornerFrame out = f;
+  for (int k = 0; k < 3; ++k)
+  {
+    out.Tangent[k] = static_cast<float>(u[k]);
+  }
+  return out;
+}
+
+/// Copies the first `outComps` components of the first n tuples to OutT (missing ones: 0),
+/// each value rounded as a static_cast would (to float: as the reference's float interface).
+template<typename OutT>
+struct ConvertTuples
 {
   template<typename ArrayT>
-  void operator()(ArrayT* array, vtkIdType n, int outComps, float* out) const
+  void operator()(ArrayT* array, vtkIdType n, int outComps, OutT* out) const
   {
     const auto tuples = vtk::DataArrayTupleRange(array, 0, n);
     const int copy = std::min(array->GetNumberOfComponents(), outComps);
@@ -97,19 +165,31 @@ struct ToFloat
         for (vtkIdType i = b; i < e; ++i)
         {
           const auto tuple = tuples[i];
-          float* o = out + static_cast<size_t>(i) * outComps;
+          OutT* o = out + static_cast<size_t>(i) * outComps;
           for (int k = 0; k < copy; ++k)
           {
-            o[k] = static_cast<float>(tuple[k]);
+            o[k] = static_cast<OutT>(tuple[k]);
           }
           for (int k = copy; k < outComps; ++k)
           {
-            o[k] = 0.0f;
+            o[k] = OutT(0);
           }
         }
       });
   }
 };
+
+template<typename OutT>
+std::vector<OutT> Convert(vtkDataArray* array, vtkIdType n, int outComps)
+{
+  std::vector<OutT> out(static_cast<size_t>(n) * outComps);
+  ConvertTuples<OutT> worker;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, out.data()))
+  {
+    worker(array, n, outComps, out.data());
+  }
+  return out;
+}
 
 /// The first n tuples of `array` as `outComps` floats each: the array's own storage when it is a
 /// float array with exactly that many components (no copy), else a converted copy kept in
@@ -122,12 +202,57 @@ const float* FloatData(vtkDataArray* array, vtkIdType n, int outComps, std::vect
     return floats->GetPointer(0);
   }
   storage.resize(static_cast<size_t>(n) * outComps);
-  ToFloat worker;
+  ConvertTuples<float> worker;
   if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, storage.data()))
   {
     worker(array, n, outComps, storage.data());
   }
   return storage.data();
+}
+
+/// The normals the contract is checked against: the input's own values, in double.
+/// Float normals are read from the kernel's copy; any other type is kept in double (rounding a
+/// double normal to float can make it zero or infinite, or turn its direction a little).
+struct ContractNormals
+{
+  const float* Float = nullptr;
+  std::vector<double> Wide;
+
+  ContractNormals(vtkDataArray* normals, vtkIdType n, const float* asFloat)
+  {
+    if (normals->GetDataType() == VTK_FLOAT)
+    {
+      this->Float = asFloat;
+    }
+    else
+    {
+      this->Wide = Convert<double>(normals, n, 3);
+    }
+  }
+  glm::dvec3 operator[](vtkIdType p) const
+  {
+    const size_t i = 3 * static_cast<size_t>(p);
+    return this->Float ? glm::dvec3(this->Float[i], this->Float[i + 1], this->Float[i + 2])
+                       : glm::dvec3(this->Wide[i], this->Wide[i + 1], this->Wide[i + 2]);
+  }
+};
+
+/// Number of kernel corners whose tangent cancelled.
+vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
+{
+  std::atomic<vtkIdType> count(0);
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(frames.size()),
+    [&](vtkIdType b, vtkIdType e)
+    {
+      vtkIdType local = 0;
+      for (vtkIdType c = b; c < e; ++c)
+      {
+        local += IsCancelled(frames[c]) ? 1 : 0;
+      }
+      count += local;
+    });
+  return count.load();
 }
 
 /// Output tuple i (< numIn: tuple i; else tuple source[i - numIn]) of a 3-component array.
@@ -679,7 +804,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
   const Surface& s,
   const std::vector<CornerFrame>& frames,
   const float* positions,
-  const float* normals,
+  const ContractNormals& contractNormals,
   const Assignment& a,
   vtkPolyData* output)
 {
@@ -707,7 +832,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
     }
   }
 
-  // Per-point frames.
+  // Per-point frames, as the kernel gave them (points without a corner that has a frame: the
+  // default); the contract is applied below, with the point's own normal.
   const auto pointFrame = [&](vtkIdType p) -> const CornerFrame&
   {
     if (p >= numIn)
@@ -715,12 +841,12 @@ void WriteOutput(const MikkTSpaceRequest& request,
       return a.SplitFrame[static_cast<size_t>(p - numIn)];
     }
     const long long c = a.FirstCorner[static_cast<size_t>(p)];
-    if (c == kNoCorner)
+    const long long slot = c == kNoCorner ? -1 : s.SlotOf(c);
+    if (slot >= 0)
     {
-      return mikk::DefaultCornerFrame;
+      return frames[static_cast<size_t>(slot)];
     }
-    const long long slot = s.SlotOf(c);
-    return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
+    return mikk::DefaultCornerFrame;
   };
   const auto sourceOf = [&](vtkIdType p)
   { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
@@ -749,7 +875,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
     {
       for (vtkIdType p = b; p < e; ++p)
       {
-        const CornerFrame& f = pointFrame(p);
+        const CornerFrame f = ContractFrame(pointFrame(p), contractNormals[sourceOf(p)]);
         const float sign = signFactor * f.Sign;
         for (int k = 0; k < 3; ++k)
         {
@@ -758,10 +884,9 @@ void WriteOutput(const MikkTSpaceRequest& request,
         sOut[p] = static_cast<OutT>(sign);
         if (bOut)
         {
-          // The normal the kernel used (float), normalised in double; a zero or non-finite
-          // normal gives a zero bitangent (SafeNormalize), never NaN.
-          const float* nf = normals + 3 * static_cast<size_t>(sourceOf(p));
-          const glm::dvec3 n = SafeNormalize(glm::dvec3(nf[0], nf[1], nf[2]));
+          // The unit normal the tangent was made perpendicular to; a zero or non-finite normal
+          // gives a zero bitangent (SafeNormalize), never NaN.
+          const glm::dvec3 n = SafeNormalize(contractNormals[sourceOf(p)]);
           const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
           const glm::dvec3 bt = static_cast<double>(sign) * glm::cross(n, t);
           for (int k = 0; k < 3; ++k)
@@ -829,7 +954,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
             for (long long c = cb; c < ce; ++c)
             {
               const CornerFrame& cf = frames[static_cast<size_t>(c)];
-              if (!IsDefault(cf))
+              if (!IsDefault(cf) && !IsCancelled(cf))
               {
                 t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
               }
@@ -931,6 +1056,9 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   }
   counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
   counts.DefaultCorners = result.NumberOfDefaultCorners;
+  const ContractNormals contractNormals(request.Normals, numPoints, normals);
+  const vtkIdType cancelled = CountCancelled(result.Corners);
+  counts.FallbackCorners = counts.DefaultCorners + cancelled;
 
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, request.Splitting, assignment);
@@ -944,15 +1072,19 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
     return 1;
   }
 
+  const auto write = [&](auto* arrayType)
+  {
+    using OutArray = std::remove_pointer_t<decltype(arrayType)>;
+    WriteOutput<OutArray>(
+      request, surface, result.Corners, positions, contractNormals, assignment, output);
+  };
   if (request.DoublePrecision)
   {
-    WriteOutput<vtkDoubleArray>(
-      request, surface, result.Corners, positions, normals, assignment, output);
+    write(static_cast<vtkDoubleArray*>(nullptr));
   }
   else
   {
-    WriteOutput<vtkFloatArray>(
-      request, surface, result.Corners, positions, normals, assignment, output);
+    write(static_cast<vtkFloatArray*>(nullptr));
   }
   filter->UpdateProgress(1.0);
   return 1;

@@ -39,6 +39,9 @@ struct MikkTSpaceCounts
   // Kernel corners (polygon corners, 3 per strip triangle) left at MikkTSpace's default frame,
   // tangent (1,0,0) and sign -1.
   vtkIdType DefaultCorners = 0;
+  // Kernel corners given the fallback frame: the default ones and those whose tangent cancelled
+  // (not unit); see the contract in vtkPolyDataTangentFramesMikkTSpace.cxx.
+  vtkIdType FallbackCorners = 0;
   // Points whose corners carry bitwise different frames, including points with a strip corner
   // whose strip triangles disagree (splitting cannot separate those).
   vtkIdType Conflicts = 0;

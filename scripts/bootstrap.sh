@@ -12,12 +12,13 @@ job="${1:-demo}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
 
-# clang-14 + libclang-rt-14-dev: the sanitizer and libFuzzer build (scripts/sanitize.sh).
+# clang-14 + libclang-rt-14-dev: the sanitizer and libFuzzer build (scripts/sanitize.sh);
+# nlohmann-json3-dev + libstb-dev: tinygltf compiled from its header in that build.
 # python3-vtk9 + libpython3-dev: the Python package and its tests (libvtk9-dev pulls them in, as
 # it does libpng-dev and libjpeg-dev, which the normalmap tool decodes embedded images with).
 packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  libtinygltf-dev xvfb xauth clang-14 libclang-rt-14-dev python3-vtk9 libpython3-dev libpng-dev
-  libjpeg-dev)
+  libtinygltf-dev xvfb xauth clang-14 libclang-rt-14-dev nlohmann-json3-dev libstb-dev
+  python3-vtk9 libpython3-dev libpng-dev libjpeg-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Builds the project with clang, AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer,
 # part of ASan) and the libFuzzer targets in ./build-asan (ASAN_BUILD_DIR overrides), then
-#   bash scripts/sanitize.sh              # runs every ctest test there, the fuzz smoke included
-#   bash scripts/sanitize.sh fuzz SECONDS # fuzzes FuzzTangentFrames for SECONDS (local use)
-# Any sanitizer report fails the run. Needs the Debian packages clang-14 and libclang-rt-14-dev
+#   bash scripts/sanitize.sh                   # every ctest test there, the fuzz smoke runs too
+#   bash scripts/sanitize.sh fuzz SECONDS      # fuzzes FuzzTangentFrames for SECONDS (local use)
+#   bash scripts/sanitize.sh fuzz SECONDS gltf # fuzzes FuzzNormalMapGLTF (the tool's glTF path)
+# Any sanitizer report fails the run. tinygltf is compiled from its header in this build
+# (NORMALMAPPING_TINYGLTF_FROM_SOURCE), so its own memory accesses are checked too. Needs the
+# Debian packages clang-14, libclang-rt-14-dev, nlohmann-json3-dev and libstb-dev
 # (scripts/bootstrap.sh installs them). `bash scripts/bootstrap.sh test` runs the first form
 # after the normal build and tests.
 set -euo pipefail
@@ -27,18 +30,27 @@ echo "== configuring and building with ASan + UBSan in $build"
 # No Python wrapping here (so no Python tests): an ASan-built extension can only be loaded into
 # Debian's uninstrumented python3 with libasan preloaded into the interpreter, whose own
 # allocator and leaks ASan would then report. The normal build runs the Python tests.
+# tinygltf is compiled here from Debian's header (NORMALMAPPING_TINYGLTF_FROM_SOURCE), not linked
+# as the shared library, so that ASan, UBSan and libFuzzer see inside it.
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DNORMALMAPPING_BUILD_BENCHMARKS=OFF -DNORMALMAPPING_BUILD_FUZZERS=ON \
-  -DNORMALMAPPING_WRAP_PYTHON=OFF >/dev/null
+  -DNORMALMAPPING_WRAP_PYTHON=OFF -DNORMALMAPPING_TINYGLTF_FROM_SOURCE=ON >/dev/null
 cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
 cmake --build "$build" -j "$jobs" >/dev/null
 
 if [ "$job" = fuzz ]; then
-  # New inputs go to build-asan/fuzz-corpus (kept between runs), crashes to
-  # build-asan/fuzz-artifacts; the checked-in corpus is only read.
+  # New inputs go to build-asan/fuzz-corpus[-gltf] (kept between runs), crashes to
+  # build-asan/fuzz-artifacts[-gltf]; the checked-in corpus is only read.
+  if [ "${3:-tangents}" = gltf ]; then
+    mkdir -p "$build/fuzz-corpus-gltf" "$build/fuzz-artifacts-gltf"
+    exec "$build/bin/FuzzNormalMapGLTF" -max_total_time="${2:-600}" -max_len=16384 \
+      -dict="$root/Testing/Fuzz/gltf.dict" -print_final_stats=1 \
+      -artifact_prefix="$build/fuzz-artifacts-gltf/" \
+      "$build/fuzz-corpus-gltf" "$root/Testing/Fuzz/gltf-corpus"
+  fi
   mkdir -p "$build/fuzz-corpus" "$build/fuzz-artifacts"
   exec "$build/bin/FuzzTangentFrames" -max_total_time="${2:-600}" -max_len=4096 \
     -print_final_stats=1 -artifact_prefix="$build/fuzz-artifacts/" \

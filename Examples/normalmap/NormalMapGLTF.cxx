@@ -1086,6 +1086,95 @@ bool PackBuffers(tinygltf::Model& model, std::string& error)
   return true;
 }
 
+// tinygltf 2.7.0 writes a node, scene, texture or material that has none of the properties it
+// serializes as `null` instead of `{}`, and then cannot read its own file back ("`textures'
+// does not contain an JSON object"); other readers reject it too. Such objects get an empty
+// `extras`, which tinygltf writes as `"extras":null` (extras may hold any JSON value), so that
+// the object is written as an object. Found by FuzzNormalMapGLTF.
+template<typename T>
+void KeepAsObject(T& object, bool hasSerializedProperty)
+{
+  if (!hasSerializedProperty && object.extras.Type() == tinygltf::NULL_TYPE)
+  {
+    object.extras = tinygltf::Value(tinygltf::Value::Object());
+  }
+}
+
+void KeepEmptyObjects(tinygltf::Model& model)
+{
+  for (tinygltf::Node& n : model.nodes)
+  {
+    KeepAsObject(n,
+      n.camera >= 0 || n.skin >= 0 || n.mesh >= 0 || !n.name.empty() || !n.children.empty() ||
+        !n.rotation.empty() || !n.scale.empty() || !n.translation.empty() || !n.matrix.empty() ||
+        !n.weights.empty() || !n.extensions.empty());
+  }
+  for (tinygltf::Scene& s : model.scenes)
+  {
+    KeepAsObject(s, !s.nodes.empty() || !s.name.empty() || !s.extensions.empty());
+  }
+  for (tinygltf::Texture& t : model.textures)
+  {
+    KeepAsObject(t, t.sampler >= 0 || t.source >= 0 || !t.name.empty() || !t.extensions.empty());
+  }
+  for (tinygltf::Material& m : model.materials)
+  {
+    // Factors equal to their defaults are not written either; only properties that are always
+    // written when set count (a material with only factors gets the harmless extras too).
+    KeepAsObject(m,
+      !m.name.empty() || m.doubleSided || m.alphaMode != "OPAQUE" || m.normalTexture.index >= 0 ||
+        m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0 ||
+        m.pbrMetallicRoughness.baseColorTexture.index >= 0 ||
+        m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || !m.extensions.empty());
+  }
+}
+
+// tinygltf 2.7.0 writes an integer accessor's min and max through static_cast<int>, which is
+// undefined outside int's range (UNSIGNED_INT indices above 2^31 - 1 are valid glTF), and
+// non-finite bounds as JSON null, which it cannot read back. Such bounds are recomputed from the
+// data for float accessors (POSITION requires them) and dropped where they still cannot be
+// written (they are optional otherwise). Found by FuzzNormalMapGLTF.
+bool WritableBounds(const tinygltf::Accessor& acc)
+{
+  const bool integer = acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+    acc.componentType != TINYGLTF_COMPONENT_TYPE_DOUBLE;
+  for (const std::vector<double>* bounds : { &acc.minValues, &acc.maxValues })
+  {
+    for (double v : *bounds)
+    {
+      if (!std::isfinite(v) ||
+        (integer && (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void KeepWritableBounds(tinygltf::Model& model)
+{
+  for (size_t i = 0; i < model.accessors.size(); ++i)
+  {
+    tinygltf::Accessor& acc = model.accessors[i];
+    if (WritableBounds(acc))
+    {
+      continue;
+    }
+    acc.minValues.clear();
+    acc.maxValues.clear();
+    if (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+    {
+      SetMinMax(model, static_cast<int>(i));
+      if (!WritableBounds(acc))
+      {
+        acc.minValues.clear();
+        acc.maxValues.clear();
+      }
+    }
+  }
+}
+
 // Image writer for tinygltf: writes no image, only rewrites relative URIs for the output's
 // folder.
 struct ImageFolders
@@ -1530,6 +1619,8 @@ bool WriteDocument(Document& doc, NormalMapFiles::OutputTransaction& output, std
   }
   const bool binary = ext == ".glb";
   RemoveReplacedAccessors(doc);
+  KeepEmptyObjects(doc.Model);
+  KeepWritableBounds(doc.Model);
   if (!PackBuffers(doc.Model, error))
   {
     error = "cannot write '" + output.FinalPath() + "': " + error;

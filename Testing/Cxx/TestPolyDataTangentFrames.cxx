@@ -29,6 +29,8 @@
 #include "vtkTextureMapToSphere.h"
 #include "vtkTexturedSphereSource.h"
 #include "vtkTriangleFilter.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 
 #include <gtest/gtest.h>
 
@@ -1399,4 +1401,365 @@ TEST(PolyDataTangentFrames, MikkTSpaceWithoutNormalsUsesComputedNormals)
   ASSERT_NE(out->GetPointData()->GetNormals(), nullptr);
   EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 0); // no corner left at MikkTSpace's default
   ExpectValidFrames(out);
+}
+
+// ------------------------------------------------------------------ bad input, table-driven
+
+namespace
+{
+/// MirroredPair with one cell of every kind: a vertex, a line and a strip beside the polygons.
+vtkSmartPointer<vtkPolyData> EveryCellKind()
+{
+  auto mesh = WithCell(MirroredPair(), { 0, 1, 2 }, true);
+  mesh->SetVerts(vtkNew<vtkCellArray>());
+  mesh->SetLines(vtkNew<vtkCellArray>());
+  const vtkIdType vertex = 3, line[2] = { 0, 3 };
+  mesh->GetVerts()->InsertNextCell(1, &vertex);
+  mesh->GetLines()->InsertNextCell(2, line);
+  return mesh;
+}
+
+/// A copy of `mesh` whose cell array `kind` (0 vertices, 1 lines, 2 polygons, 3 strips) has the
+/// given offsets over a connectivity of `size` ids (valid point ids if there are points), in 32- or
+/// 64-bit storage. vtkCellArray::SetData takes such arrays without a check.
+vtkSmartPointer<vtkPolyData> WithMalformedCells(vtkPolyData* mesh,
+  int kind,
+  const std::vector<long long>& offsets,
+  vtkIdType size,
+  bool storage64)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(mesh);
+  vtkNew<vtkCellArray> cells;
+  const auto fill = [&](auto* o, auto* c)
+  {
+    using T = typename std::remove_pointer_t<decltype(o)>::ValueType;
+    for (long long v : offsets)
+    {
+      o->InsertNextValue(static_cast<T>(v));
+    }
+    for (vtkIdType i = 0; i < size; ++i)
+    {
+      c->InsertNextValue(static_cast<T>(i % std::max<vtkIdType>(mesh->GetNumberOfPoints(), 1)));
+    }
+    cells->SetData(o, c);
+  };
+  if (storage64)
+  {
+    fill(vtkNew<vtkTypeInt64Array>().GetPointer(), vtkNew<vtkTypeInt64Array>().GetPointer());
+  }
+  else
+  {
+    fill(vtkNew<vtkTypeInt32Array>().GetPointer(), vtkNew<vtkTypeInt32Array>().GetPointer());
+  }
+  switch (kind)
+  {
+    case 0:
+      copy->SetVerts(cells);
+      break;
+    case 1:
+      copy->SetLines(cells);
+      break;
+    case 2:
+      copy->SetPolys(cells);
+      break;
+    default:
+      copy->SetStrips(cells);
+  }
+  return copy;
+}
+
+/// One run of every method, with and without splitting; `check` sees each output.
+void ForEveryConfiguration(vtkPolyData* input,
+  const std::function<void(vtkPolyDataTangentFrames*, const Messages&)>& check,
+  const std::string& tcoordsName = std::string())
+{
+  for (int method : EveryMethod)
+  {
+    for (bool splitting : { true, false })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (splitting ? ", splitting" : ", no splitting"));
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      filter->SetInputData(input);
+      filter->SetMethod(method);
+      filter->SetSplitting(splitting);
+      filter->SetTCoordsArrayName(tcoordsName);
+      filter->ComputeBitangentsOn();
+      filter->ComputeCellTangentsOn();
+      filter->Update();
+      check(filter, messages);
+    }
+  }
+}
+
+/// The documented result of an error: exactly one error containing `text`, and the input passed
+/// through (the same points and cell arrays, no frames).
+void ExpectErrorAndPassThrough(vtkPolyDataTangentFrames* filter,
+  const Messages& messages,
+  vtkPolyData* input,
+  const std::string& text)
+{
+  vtkPolyData* out = filter->GetOutput();
+  ASSERT_EQ(messages.Errors.size(), 1u);
+  EXPECT_NE(messages.Errors[0].find(text), std::string::npos) << messages.Errors[0];
+  EXPECT_EQ(out->GetPoints(), input->GetPoints());
+  EXPECT_EQ(out->GetVerts(), input->GetVerts());
+  EXPECT_EQ(out->GetLines(), input->GetLines());
+  EXPECT_EQ(out->GetPolys(), input->GetPolys());
+  EXPECT_EQ(out->GetStrips(), input->GetStrips());
+  EXPECT_EQ(out->GetPointData()->GetTangents(), nullptr);
+}
+} // namespace
+
+TEST(PolyDataTangentFrames, MalformedCellArraysAreAnErrorForEveryMethod)
+{
+  // Offsets that do not start at 0, end before or past the connectivity (6 ids), decrease (a
+  // cell of negative size), are negative, lie far past the connectivity, or are missing
+  // altogether, in each of the four cell arrays, 32- and 64-bit: one error naming the array and
+  // the input passed through, from every method with and without splitting. Before, the
+  // weighted methods read (and MikkTSpace's cell tangents wrote) outside the arrays.
+  auto mesh = EveryCellKind();
+  const char* names[4] = { "vertex", "line", "polygon", "triangle strip" };
+  for (bool storage64 : { false, true })
+  {
+    const long long far = storage64 ? (1LL << 40) : VTK_TYPE_INT32_MAX;
+    const std::vector<std::pair<std::vector<long long>, std::string>> cases = {
+      { { 1, 3, 6 }, "its first offset is 1, not 0" },
+      { { 0, 3, 5 }, "its last offset is 5 but the connectivity holds 6 ids" },
+      { { 0, 3, 7 }, "its last offset is 7 but the connectivity holds 6 ids" },
+      { { 0, 4, 2, 6 }, "the offsets decrease at cell 1 (4, then 2)" },
+      { { 0, -3, 6 }, "the offsets decrease at cell 0 (0, then -3)" },
+      { { 0, far, 6 }, "the offsets decrease at cell 1" },
+      { { 0, 3, far }, "its last offset is " + std::to_string(far) },
+      { {}, "it has no offsets" },
+    };
+    for (int kind = 0; kind < 4; ++kind)
+    {
+      for (const auto& entry : cases)
+      {
+        const std::vector<long long>& offsets = entry.first;
+        const std::string& problem = entry.second; // (clang 14 cannot capture a structured binding)
+        SCOPED_TRACE(std::string(names[kind]) + (storage64 ? " 64-bit: " : " 32-bit: ") + problem);
+        auto bad = WithMalformedCells(mesh, kind, offsets, 6, storage64);
+        ForEveryConfiguration(bad,
+          [&](vtkPolyDataTangentFrames* filter, const Messages& messages)
+          {
+            ExpectErrorAndPassThrough(filter,
+              messages,
+              bad,
+              "the " + std::string(names[kind]) + " cell array is malformed: " + problem);
+          });
+      }
+    }
+  }
+  // Also without points, where a well-formed input has nothing to do.
+  vtkNew<vtkPolyData> noPoints;
+  noPoints->SetPoints(vtkNew<vtkPoints>());
+  auto bad = WithMalformedCells(noPoints, 2, { 0, 3, 7 }, 6, true);
+  ForEveryConfiguration(bad,
+    [&](vtkPolyDataTangentFrames* filter, const Messages& messages)
+    { ExpectErrorAndPassThrough(filter, messages, bad, "polygon cell array is malformed"); });
+}
+
+TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
+{
+  // The bad inputs of the README's "Error messages" table, each run through every method with
+  // and without splitting (bitangents and cell tangents on, so every output path runs): errors
+  // pass the input through; warnings and silent cases give valid frames (finite unit tangents
+  // perpendicular to the normals, signs of +1 or -1). Under AddressSanitizer (scripts/
+  // sanitize.sh) this is also the proof that none of them reads or writes out of bounds.
+  auto base = EveryCellKind();
+  struct Case
+  {
+    std::string Name;
+    std::function<void(vtkPolyData*)> Change;
+    std::string Error;   // expected error text (empty: none)
+    std::string Warning; // expected warning text (empty: none)
+    std::string TCoordsName = std::string();
+  };
+  const auto removeTCoords = [](vtkPolyData* m)
+  {
+    m->GetPointData()->SetTCoords(nullptr);
+    m->GetPointData()->RemoveArray("TCoords");
+  };
+  const auto removeNormals = [](vtkPolyData* m)
+  {
+    m->GetPointData()->SetNormals(nullptr);
+    m->GetPointData()->RemoveArray("Normals");
+  };
+  const auto addCell = [](vtkPolyData* m, std::vector<vtkIdType> ids, bool strip)
+  { (strip ? m->GetStrips() : m->GetPolys())->InsertNextCell(ids.size(), ids.data()); };
+  const auto setTCoords = [](vtkPolyData* m, vtkDataArray* uv, int components)
+  {
+    uv->SetName("TCoords");
+    uv->SetNumberOfComponents(components);
+    uv->SetNumberOfTuples(m->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < m->GetNumberOfPoints(); ++p)
+    {
+      for (int k = 0; k < components; ++k)
+      {
+        uv->SetComponent(p, k, m->GetPointData()->GetTCoords()->GetComponent(p, k % 2));
+      }
+    }
+    m->GetPointData()->SetTCoords(uv);
+  };
+  const std::vector<Case> cases = {
+    { "no texture coordinates", removeTCoords, "no active TCoords", "" },
+    { "texture coordinates named but missing",
+      [](vtkPolyData*) {},
+      "no point array texture coordinates 'UV2'",
+      "",
+      "UV2" },
+    { "texture coordinates named, a string array",
+      [&](vtkPolyData* m)
+      {
+        vtkNew<vtkStringArray> text;
+        text->SetName("UV2");
+        text->SetNumberOfValues(m->GetNumberOfPoints());
+        m->GetPointData()->AddArray(text);
+      },
+      "point array 'UV2' is not numeric (vtkStringArray)",
+      "",
+      "UV2" },
+    { "texture coordinates one short",
+      [](vtkPolyData* m) { m->GetPointData()->GetTCoords()->SetNumberOfTuples(3); },
+      "has 3 tuples for 4 points",
+      "" },
+    // The weighted methods say "a polygon or strip refers to a point id outside [0, 4)";
+    // MikkTSpace, when its kernel finds them, "N polygons or strip triangles use point ids
+    // outside [0, 4)".
+    { "polygon id past the end",
+      [&](vtkPolyData* m) {
+        addCell(m, { 0, 1, 4 }, false);
+      },
+      "outside [0, 4); passing the input through",
+      "" },
+    { "negative id in a 1-point polygon",
+      [&](vtkPolyData* m) { addCell(m, { -1 }, false); },
+      "outside [0, 4); passing the input through",
+      "" },
+    { "bad id in a strip of 2",
+      [&](vtkPolyData* m) {
+        addCell(m, { 2, 9 }, true);
+      },
+      "outside [0, 4); passing the input through",
+      "" },
+    { "polygons and strips with 0, 1 and 2 points",
+      [&](vtkPolyData* m)
+      {
+        for (const std::vector<vtkIdType>& ids : { std::vector<vtkIdType>{}, { 0 }, { 0, 2 } })
+        {
+          addCell(m, ids, false);
+          addCell(m, ids, true);
+        }
+      },
+      "",
+      "6 polygon or strip cells have fewer than 3 points" },
+    { "polygons and strips with repeated ids",
+      [&](vtkPolyData* m)
+      {
+        addCell(m, { 0, 1, 1, 2 }, false);
+        addCell(m, { 3, 3, 3 }, false);
+        addCell(m, { 0, 1, 0, 1 }, true);
+      },
+      "",
+      "" },
+    { "point normals one short",
+      [](vtkPolyData* m) { m->GetPointData()->GetNormals()->SetNumberOfTuples(3); },
+      "",
+      "Ignoring the point normals: point array 'Normals' has 3 tuples for 4 points" },
+    { "no normals", removeNormals, "", "no point normals; computing" },
+    { "cell normals only",
+      [&](vtkPolyData* m)
+      {
+        removeNormals(m);
+        vtkNew<vtkFloatArray> cn;
+        cn->SetNumberOfComponents(3);
+        for (vtkIdType c = 0; c < m->GetNumberOfCells(); ++c)
+        {
+          cn->InsertNextTuple3(0, 0, 1);
+        }
+        m->GetCellData()->SetNormals(cn);
+      },
+      "",
+      "cell normals but no point normals" },
+    { "zero and NaN normals",
+      [](vtkPolyData* m)
+      {
+        m->GetPointData()->GetNormals()->SetTuple3(0, 0, 0, 0);
+        m->GetPointData()->GetNormals()->SetTuple3(1, std::nan(""), 0, 1);
+      },
+      "",
+      "" },
+    { "1-component texture coordinates",
+      [&](vtkPolyData* m) { setTCoords(m, vtkNew<vtkDoubleArray>(), 1); },
+      "",
+      "have 1 component; using (u, 0)" },
+    { "3-component texture coordinates",
+      [&](vtkPolyData* m) { setTCoords(m, vtkNew<vtkDoubleArray>(), 3); },
+      "",
+      "have 3 components; using the first two" },
+    { "integer texture coordinates",
+      [&](vtkPolyData* m) { setTCoords(m, vtkNew<vtkShortArray>(), 2); },
+      "",
+      "" },
+    { "NaN and infinite coordinates",
+      [](vtkPolyData* m)
+      {
+        m->GetPoints()->SetPoint(1, std::nan(""), 0, 0);
+        m->GetPointData()->GetTCoords()->SetTuple2(3, INFINITY, 0);
+      },
+      "",
+      "" },
+    { "other point arrays shorter and longer",
+      [](vtkPolyData* m)
+      {
+        vtkNew<vtkDoubleArray> shorter, longer;
+        shorter->SetName("Shorter");
+        shorter->SetNumberOfTuples(2);
+        shorter->Fill(1);
+        longer->SetName("Longer");
+        longer->SetNumberOfTuples(9);
+        longer->Fill(2);
+        m->GetPointData()->AddArray(shorter);
+        m->GetPointData()->AddArray(longer);
+      },
+      "",
+      "" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.Name);
+    vtkNew<vtkPolyData> input;
+    input->DeepCopy(base);
+    c.Change(input);
+    ForEveryConfiguration(
+      input,
+      [&](vtkPolyDataTangentFrames* filter, const Messages& messages)
+      {
+        if (!c.Error.empty())
+        {
+          ExpectErrorAndPassThrough(filter, messages, input, c.Error);
+          return;
+        }
+        EXPECT_TRUE(messages.Errors.empty()) << messages.Errors.front();
+        if (c.Warning.empty())
+        {
+          EXPECT_TRUE(messages.Warnings.empty()) << messages.Warnings.front();
+        }
+        else
+        {
+          EXPECT_TRUE(messages.Has(messages.Warnings, c.Warning))
+            << (messages.Warnings.empty() ? std::string("no warning") : messages.Warnings[0]);
+        }
+        vtkPolyData* out = filter->GetOutput();
+        EXPECT_EQ(
+          out->GetNumberOfPoints(), input->GetNumberOfPoints() + filter->GetNumberOfSplitPoints());
+        EXPECT_EQ(out->GetNumberOfCells(), input->GetNumberOfCells());
+        ExpectValidFrames(out);
+      },
+      c.TCoordsName);
+  }
 }

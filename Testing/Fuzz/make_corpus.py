@@ -31,9 +31,12 @@ def cell(kind, ids, n_points):
 
 
 def mesh(points, uvs, cells, normals=None, flags=0, uv_mode=0, uv_components=2, normal_mode=1,
-         deltas=0, extra=None):
+         deltas=0, extra=None, malformed=None):
     """Bytes for one input. uvs/normals may be longer or shorter than points (set `deltas`
-    accordingly); normals are per cell for normal_mode 4; extra: the 'Extra' values or None."""
+    accordingly); normals are per cell for normal_mode 4; extra: the 'Extra' values or None;
+    malformed: None or (cell array 0-3, defect 0-7, position byte), see the decoder."""
+    if malformed:
+        flags |= 64
     data = bytes([flags, uv_mode + 8 * (uv_components - 1), normal_mode, deltas, len(points)])
     for p in points:
         data += b"".join(value(c) for c in p)
@@ -47,6 +50,9 @@ def mesh(points, uvs, cells, normals=None, flags=0, uv_mode=0, uv_components=2, 
     data += bytes([len(cells)])
     for kind, ids in cells:
         data += cell(kind, ids, len(points))
+    if malformed:
+        array, defect, where = malformed
+        data += bytes([array + 4 * defect, where])
     for n in normals or [] if cell_normals else []:
         data += b"".join(value(c) for c in n)
     return data
@@ -107,6 +113,25 @@ def main():
     seeds["short_integer_uv"] = mesh(tri, tri_uv, [(2, [0, 1, 2])], up, uv_mode=2)
     seeds["short_strip_bad_id"] = mesh(tri, tri_uv, [(2, [0, 1, 2]), (3, [1, 5])], up)
     seeds["empty_polygons_cell_tangents"] = mesh(tri, tri_uv, [(2, []), (3, [])], up, flags=16)
+    # Malformed cell arrays (the filter read and wrote outside them before): polygon offsets
+    # that decrease, strip offsets past the connectivity (32-bit storage), vertices without
+    # offsets.
+    p, uv, c = grid(4, 2, True)
+    seeds["malformed_polygon_offsets"] = mesh(p, uv, c, [(0, 0, 1)] * len(p),
+                                              malformed=(2, 3, 1))
+    seeds["malformed_strip_offsets_32bit"] = mesh(strip_points, strip_uv,
+                                                  [(3, list(range(6)))], [(0, 0, 1)] * 6,
+                                                  flags=32, malformed=(3, 5, 1))
+    seeds["malformed_no_vertex_offsets"] = mesh(strip_points, strip_uv,
+                                                [(0, [0, 5]), (2, [0, 2, 3, 1])],
+                                                [(0, 0, 1)] * 6, malformed=(0, 6, 0))
+    # MikkTSpace corners the reference leaves without a unit perpendicular tangent: normals
+    # along dP/du (the projected tangents cancel to zero), and zero UV area with normals that
+    # are not perpendicular to its default (1, 0, 0).
+    seeds["mikktspace_cancelled_corners"] = mesh(tri, tri_uv, [(2, [0, 1, 2])],
+                                                 [(1, 0, 0)] * 3, flags=8)
+    seeds["mikktspace_default_corners"] = mesh(tri, [(0.5, 0.5)] * 3, [(2, [0, 1, 2])],
+                                               [(0.625, 0, 0.75)] * 3)
     out = pathlib.Path(__file__).resolve().parent / "corpus"
     out.mkdir(exist_ok=True)
     for old in out.glob("*.bin"):

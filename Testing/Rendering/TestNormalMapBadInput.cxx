@@ -178,6 +178,93 @@ int TestNormalMapBadInput(int, char*[])
         Same(pixels, mapped, 2),
       "missing tangents: derivative frame, the same image");
   }
+  { // Texture coordinates with 3 components: drawn without the map, one warning.
+    auto uvw = vtkSmartPointer<vtkPolyData>::New();
+    uvw->DeepCopy(quad);
+    vtkDataArray* uv = quad->GetPointData()->GetTCoords();
+    vtkNew<vtkDoubleArray> three;
+    three->SetName("TCoords");
+    three->SetNumberOfComponents(3);
+    for (vtkIdType i = 0; i < uv->GetNumberOfTuples(); ++i)
+    {
+      three->InsertNextTuple3(uv->GetComponent(i, 0), uv->GetComponent(i, 1), 0.0);
+    }
+    uvw->GetPointData()->SetTCoords(three);
+    Scene scene(uvw, texture);
+    const auto pixels = scene.Render();
+    check(scene.Warned("texture coordinates have 3 components (2 needed)"),
+      "3-component texture coordinates: one warning");
+    check(Same(pixels, unmapped, 0), "3-component texture coordinates: drawn without the map");
+  }
+  { // A two-channel image with an RGB encoding: warned, decoded as two-channel. Two channels
+    // rebuild z from 8-bit x and y: within 2 levels of the RGB map (TestNormalMapEquivalences).
+    auto twoChannel = nmtest::MakeNormalTexture(
+      nmtest::MakeNormalMapImage(Pattern::Rivets, 64, Storage::TwoChannel));
+    Scene scene(quad, twoChannel);
+    const auto pixels = scene.Render();
+    check(scene.Warned("has 2 channels but the encoding is"), "two channels as RGB: one warning");
+    check(Same(pixels, mapped, 2), "two channels as RGB: decoded as a two-channel map");
+    // An object-space map needs 3 channels: drawn without the map.
+    Scene object(quad, twoChannel);
+    object.NormalMapper->SetMapEncoding(Mapper::OBJECT_SPACE);
+    const auto objectPixels = object.Render();
+    check(object.Warned("an object-space map needs 3 channels"),
+      "two-channel object-space map: one warning");
+    check(Same(objectPixels, unmapped, 0), "two-channel object-space map: drawn without the map");
+  }
+  { // Malformed named tangent arrays: a tuple short (derivatives instead), 2 components
+    // (derivatives), a sign array a tuple short (sign +1). Derivatives and point tangents agree
+    // within 2 levels on this quad (see "missing tangents" above); sign +1 is right on it.
+    vtkDataArray* t = quad->GetPointData()->GetArray("Tangents");
+    const auto named = [&](vtkIdType tuples, int components, vtkIdType signTuples)
+    {
+      auto mesh = vtkSmartPointer<vtkPolyData>::New();
+      mesh->DeepCopy(quad);
+      vtkNew<vtkDoubleArray> t2, s2;
+      t2->SetName("T2");
+      t2->SetNumberOfComponents(components);
+      s2->SetName("S2");
+      for (vtkIdType i = 0; i < tuples; ++i)
+      {
+        for (int k = 0; k < components; ++k)
+        {
+          t2->InsertNextValue(t->GetComponent(i, k));
+        }
+      }
+      for (vtkIdType i = 0; i < signTuples; ++i)
+      {
+        s2->InsertNextValue(1.0);
+      }
+      mesh->GetPointData()->AddArray(t2);
+      mesh->GetPointData()->AddArray(s2);
+      return mesh;
+    };
+    const vtkIdType n = quad->GetNumberOfPoints();
+    const struct
+    {
+      vtkSmartPointer<vtkPolyData> Mesh;
+      const char* Warning;
+      int Frame;
+    } cases[] = {
+      { named(n - 1, 3, n), "tangent array has", Mapper::APPLIED_DERIVATIVES },
+      { named(n, 2, n), "has 2 components (3 or 4 needed)", Mapper::APPLIED_DERIVATIVES },
+      { named(n, 3, n - 1),
+        "sign array 'S2' is not one value per point; using sign +1",
+        Mapper::APPLIED_UNSIGNED_TANGENTS },
+    };
+    for (const auto& c : cases)
+    {
+      Scene scene(c.Mesh, texture);
+      scene.NormalMapper->SetTangentsArrayName("T2");
+      scene.NormalMapper->SetTangentSignsArrayName("S2");
+      const auto pixels = scene.Render();
+      scene.Render();
+      check(scene.Warned(c.Warning) && scene.Warnings.size() == 1,
+        std::string("malformed tangents: one warning: ") + c.Warning);
+      check(scene.NormalMapper->GetLastAppliedFrame() == c.Frame && Same(pixels, mapped, 2),
+        std::string("malformed tangents: the fallback frame: ") + c.Warning);
+    }
+  }
   { // Changes between renders: frame source, texture removed and restored, a 1x1 map, empty
     // input. Each render is right for the state at that time.
     Scene scene(quad, texture);
