@@ -2908,6 +2908,11 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
 } // namespace
 
 //------------------------------------------------------------------------------
+InstructionSet CurrentInstructionSet()
+{
+  return UsableInstructionSet(MaximumInstructionSet.load());
+}
+
 InstructionSet LimitInstructionSet(InstructionSet maximum)
 {
   MaximumInstructionSet.store(maximum);

@@ -109,6 +109,10 @@ enum class InstructionSet
 /// them); returns the one they will use: `maximum`, or less if the CPU or build lacks it.
 InstructionSet LimitInstructionSet(InstructionSet maximum);
 
+/// The instruction set that vector code uses now: the best the CPU and build have, up to the
+/// LimitInstructionSet limit. vtkPolyDataTangentFrames' weighted methods follow it too.
+InstructionSet CurrentInstructionSet();
+
 /**
  * Compute MikkTSpace tangents for every face corner.
  * numThreads <= 0: vtkSMPTools default; > 0: at most that many threads (a vtkSMPTools

@@ -1,7 +1,9 @@
 #include "vtkPolyDataTangentFrames.h"
 
+#include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingPrivate.h"
 #include "vtkPolyDataTangentFramesMikkTSpace.h"
+#include "vtkTangentFrameBatch.h"
 #include "vtkTangentFrameKernels.h"
 
 #include "vtkCellArray.h"
@@ -165,20 +167,6 @@ struct MeshView
       withArea,
       angles);
   }
-  /// CornerSign(frame, Normal(p)) without normalizing: only the sign of N.n matters. A zero or
-  /// non-finite normal uses the geometric stand-in when there is one.
-  int Side(const TriangleFrame& f, vtkIdType p) const
-  {
-    const NT* n = this->Normals + 3 * p;
-    double d = n[0] * f.Normal.x + n[1] * f.Normal.y + n[2] * f.Normal.z;
-    if (!(d != 0.0 && std::isfinite(d)) && this->Fallback)
-    {
-      const double* g = this->Fallback + 3 * p;
-      d = g[0] * f.Normal.x + g[1] * f.Normal.y + g[2] * f.Normal.z;
-    }
-    // The same rule as CornerSign: a NaN or zero product keeps the triangle's orientation.
-    return d < 0.0 ? -f.Orientation : f.Orientation;
-  }
 };
 
 /// Calls f(view) with the MeshView of the right types.
@@ -262,10 +250,24 @@ void ForEachTriangle(const IdT* offsets,
 }
 
 /// Per-point sums of one execution, one per handedness (index 0: +1, 1: -1).
-struct Accumulator
+struct alignas(32) Accumulator
 {
-  glm::dvec3 Tangent[2];
-  double Weight[2];
+  /// Per handedness: the weighted tangent sum (x, y, z) and the sum of the weights.
+  double Sum[2][4];
+
+  glm::dvec3 Tangent(int side) const
+  {
+    return glm::dvec3(this->Sum[side][0], this->Sum[side][1], this->Sum[side][2]);
+  }
+  void SetTangent(int side, const glm::dvec3& t)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Sum[side][d] = t[d];
+    }
+  }
+  double& Weight(int side) { return this->Sum[side][3]; }
+  double Weight(int side) const { return this->Sum[side][3]; }
 };
 
 /// Everything the passes of one execution share.
@@ -279,6 +281,8 @@ struct Execution
   DegeneracyTolerance Tolerance;
   int Blocks = 1;
   bool BadIds = false;
+  /// Triangle frames four at a time with AVX2 (see vtkTangentFrameBatch.h).
+  bool Vector = false;
 
   /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin: runs
   /// long enough that few triangles straddle two owners (each owner computes such a triangle),
@@ -415,40 +419,83 @@ bool ComputePointNormals(Execution& ex,
   return done;
 }
 
-/// The weighted per-handedness sums of every point (the scatter).
+/// The weighted per-handedness sums of every point (the scatter). The triangles a block meets
+/// are collected in batches whose frames are computed together (vtkTangentFrameBatch.h), then
+/// added in cell order.
 template<typename View>
 bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degenerate)
 {
+  using namespace vtkNormalMapping::detail;
   std::vector<vtkIdType> degenerateByBlock(ex.Blocks, 0);
-  const bool angles = ex.Method == TangentMethod::AngleWeighted;
-  const bool area = ex.Method == TangentMethod::AreaWeighted;
-  const bool done = ex.OrderedScan(0.05,
+  std::vector<FrameBatch> batches(ex.Blocks);
+  using PT = std::remove_const_t<std::remove_pointer_t<decltype(view.Points)>>;
+  using UT = std::remove_const_t<std::remove_pointer_t<decltype(view.UVs)>>;
+  using NT = std::remove_const_t<std::remove_pointer_t<decltype(view.Normals)>>;
+  const BatchInput<PT, UT, NT> input{ view.Points,
+    view.UVs,
+    view.UVComponents,
+    view.Normals,
+    view.Fallback,
+    ex.Tolerance,
+    ex.Method == TangentMethod::AngleWeighted
+      ? BatchWeights::Angle
+      : (ex.Method == TangentMethod::AreaWeighted ? BatchWeights::Area : BatchWeights::One) };
+  const bool vector = ex.Vector;
+  const auto flush = [&](int block)
+  {
+    FrameBatch& b = batches[block];
+    ComputeBatch(input, b, vector);
+    for (int i = 0; i < b.Size; ++i)
+    {
+      const int orientation = b.Orientation[i];
+      if (orientation == 0)
+      {
+        // Counted once: by the block that owns the first corner.
+        degenerateByBlock[block] += ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
+        continue;
+      }
+      const double t[3] = { b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i] };
+      for (int k = 0; k < 3; ++k)
+      {
+        const vtkIdType p = b.Ids[k][i];
+        if (ex.Owns(block, p))
+        {
+          const int side = b.Side[k][i];
+          const double w = b.Weight[k][i];
+          double* sum = acc[p].Sum[side];
+          sum[0] += w * t[0];
+          sum[1] += w * t[1];
+          sum[2] += w * t[2];
+          sum[3] += w;
+        }
+      }
+    }
+    b.Size = 0;
+  };
+  bool done = ex.OrderedScan(0.05,
     0.75,
     [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
     {
-      double w[3] = { 1.0, 1.0, 1.0 };
-      const TriangleFrame f = view.Frame(tri, ex.Tolerance, area, angles ? w : nullptr);
-      if (f.Orientation == 0)
+      FrameBatch& b = batches[block];
+      b.Add(tri);
+      if (b.Full())
       {
-        // Counted once: by the block that owns the first corner.
-        degenerateByBlock[block] += ex.Owns(block, tri[0]) ? 1 : 0;
-        return;
-      }
-      if (area)
-      {
-        w[0] = w[1] = w[2] = f.Area;
-      }
-      for (int k = 0; k < 3; ++k)
-      {
-        const vtkIdType p = tri[k];
-        if (ex.Owns(block, p))
-        {
-          const int side = view.Side(f, p) > 0 ? 0 : 1;
-          acc[p].Tangent[side] += w[k] * f.Tangent;
-          acc[p].Weight[side] += w[k];
-        }
+        flush(block);
       }
     });
+  if (done)
+  {
+    vtkSMPTools::For(0,
+      ex.Blocks,
+      1,
+      [&](vtkIdType b0, vtkIdType b1)
+      {
+        for (vtkIdType block = b0; block < b1; ++block)
+        {
+          flush(static_cast<int>(block));
+        }
+      });
+  }
   degenerate = 0;
   for (vtkIdType d : degenerateByBlock)
   {
@@ -467,7 +514,7 @@ struct SplitPoint
 };
 
 template<typename OutT>
-void WriteFrame(vtkIdType p,
+inline void WriteFrame(vtkIdType p,
   const glm::dvec3& n,
   const glm::dvec3& t,
   double sign,
@@ -513,30 +560,70 @@ void Finish(Execution& ex,
     ex.NumberOfPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
+      // Points with one handedness and ordinary vectors are finished in batches (see
+      // vtkTangentFrameBatch.h); the others one at a time below, with the same kernels.
+      vtkNormalMapping::detail::FinishBatch batch;
+      const auto flush = [&]()
+      {
+        vtkNormalMapping::detail::ComputeFinish(batch, ex.Vector);
+        for (int i = 0; i < batch.Size; ++i)
+        {
+          const glm::dvec3 n(
+            batch.UnitNormal[0][i], batch.UnitNormal[1][i], batch.UnitNormal[2][i]);
+          const glm::dvec3 t = batch.OK[i]
+            ? glm::dvec3(batch.UnitTangent[0][i], batch.UnitTangent[1][i], batch.UnitTangent[2][i])
+            : FallbackTangent(n);
+          WriteFrame(batch.Ids[i], n, t, batch.Sign[i], tOut, sOut, bOut);
+        }
+        batch.Size = 0;
+      };
       for (vtkIdType p = begin; p < end; ++p)
       {
         Accumulator& a = acc[p];
-        if (!(a.Weight[0] > 0.0) && !(a.Weight[1] > 0.0))
+        if (!(a.Weight(0) > 0.0) && !(a.Weight(1) > 0.0))
         {
-          a.Weight[0] = FallbackMark;
+          a.Weight(0) = FallbackMark;
           fallbackLists.Local().push_back(p);
           continue;
         }
+        const auto* raw = view.Normals + 3 * p;
+        if (!(a.Weight(0) > 0.0 && a.Weight(1) > 0.0))
+        {
+          const int s = a.Weight(1) > a.Weight(0) ? 1 : 0;
+          const glm::dvec3 sum = a.Tangent(s);
+          if (batch.Takes(raw[0], raw[1], raw[2]) && batch.Takes(sum.x, sum.y, sum.z))
+          {
+            const int i = batch.Size++;
+            batch.Ids[i] = p;
+            batch.Sign[i] = s == 0 ? 1.0 : -1.0;
+            for (int d = 0; d < 3; ++d)
+            {
+              batch.N[d][i] = raw[d];
+              batch.T[d][i] = sum[d];
+            }
+            if (batch.Size == batch.Capacity)
+            {
+              flush();
+            }
+            continue;
+          }
+        }
         const glm::dvec3 n = view.Normal(p);
-        int side = a.Weight[1] > a.Weight[0] ? 1 : 0;
-        if (a.Weight[0] > 0.0 && a.Weight[1] > 0.0)
+        int side = a.Weight(1) > a.Weight(0) ? 1 : 0;
+        if (a.Weight(0) > 0.0 && a.Weight(1) > 0.0)
         {
           ++conflictCount.Local();
           if (ex.Splitting)
           {
             side = 0;
-            const glm::dvec3 mirrored = PerpendicularTangent(n, a.Tangent[1]);
+            const glm::dvec3 mirrored = PerpendicularTangent(n, a.Tangent(1));
             splitLists.Local().push_back({ p, n, mirrored });
           }
         }
-        const glm::dvec3 t = PerpendicularTangent(n, a.Tangent[side]);
+        const glm::dvec3 t = PerpendicularTangent(n, a.Tangent(side));
         WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
       }
+      flush();
     });
   conflicts = Total(conflictCount);
   splits = Merge(splitLists, [](const SplitPoint& a, const SplitPoint& b) { return a.Id < b.Id; });
@@ -554,12 +641,12 @@ bool FillFallbacks(Execution& ex,
   OutT* sOut,
   OutT* bOut)
 {
-  // Reuse the fallback points' (empty) accumulators: Tangent[0] sums the neighbours' tangents,
-  // Weight[1] their signs. Only fallback points are written; others are only read.
+  // Reuse the fallback points' (empty) accumulators: Tangent(0) sums the neighbours' tangents,
+  // Weight(1) their signs. Only fallback points are written; others are only read.
   for (vtkIdType p : fallbacks)
   {
-    acc[p].Tangent[0] = glm::dvec3(0.0);
-    acc[p].Weight[1] = 0.0;
+    acc[p].SetTangent(0, glm::dvec3(0.0));
+    acc[p].Weight(1) = 0.0;
   }
   const bool done = ex.OrderedScan(0.80,
     0.85,
@@ -568,17 +655,18 @@ bool FillFallbacks(Execution& ex,
       for (int k = 0; k < 3; ++k)
       {
         const vtkIdType p = tri[k];
-        if (!ex.Owns(block, p) || acc[p].Weight[0] != FallbackMark)
+        if (!ex.Owns(block, p) || acc[p].Weight(0) != FallbackMark)
         {
           continue;
         }
         for (int m = 0; m < 3; ++m)
         {
           const vtkIdType q = tri[m];
-          if (q != p && acc[q].Weight[0] != FallbackMark)
+          if (q != p && acc[q].Weight(0) != FallbackMark)
           {
-            acc[p].Tangent[0] += glm::dvec3(tOut[3 * q], tOut[3 * q + 1], tOut[3 * q + 2]);
-            acc[p].Weight[1] += sOut[q];
+            acc[p].SetTangent(
+              0, acc[p].Tangent(0) + glm::dvec3(tOut[3 * q], tOut[3 * q + 1], tOut[3 * q + 2]));
+            acc[p].Weight(1) += sOut[q];
           }
         }
       }
@@ -591,8 +679,8 @@ bool FillFallbacks(Execution& ex,
       {
         const vtkIdType p = fallbacks[i];
         const glm::dvec3 n = view.Normals ? view.Normal(p) : glm::dvec3(0.0);
-        const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent[0]);
-        WriteFrame(p, n, t, acc[p].Weight[1] < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
+        const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent(0));
+        WriteFrame(p, n, t, acc[p].Weight(1) < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
       }
     });
   return done;
@@ -981,6 +1069,8 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.Filter = self;
   ex.Method = static_cast<TangentMethod>(self->Method);
   ex.Splitting = self->Splitting;
+  ex.Vector =
+    vtkNormalMapping::mikk::CurrentInstructionSet() >= vtkNormalMapping::mikk::InstructionSet::AVX2;
   ex.NumberOfPoints = input->GetNumberOfPoints();
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();
@@ -1126,7 +1216,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     {
       std::fill(acc.get() + b,
         acc.get() + e,
-        Accumulator{ { glm::dvec3(0.0), glm::dvec3(0.0) }, { 0.0, 0.0 } });
+        Accumulator{ { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } } });
     });
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {

@@ -7,10 +7,14 @@
  * the precision of the stored data: every float input is exact in double, products of two floats
  * are exact, so the only rounding left is that of the stored coordinates themselves.
  *
- * Robustness at the extremes: edge and UV-delta vectors are rescaled by an exact power of two
- * before any product is formed, so positions from 1e-30 to 1e30 and UVs from 1e-10 to 1e10 give
- * the same frame directions (bit-identical under power-of-two scaling) with no underflow or
- * overflow. Non-finite input makes a triangle degenerate instead of spreading NaN.
+ * Robustness at the extremes: edge and UV-delta vectors whose largest component lies outside
+ * [2^-160, 2^160] are rescaled by an exact power of two before any product is formed, so any
+ * finite positions and UVs give the same frame directions (bit-identical under power-of-two
+ * scaling) with no underflow or overflow. Inside that range no product of up to four edge or UV
+ * components can overflow or leave the normal range, so rescaling would not change a single bit
+ * of a direction, ratio or test below and is skipped: every float input is inside it (float
+ * differences lie in [2^-149, 2^129]). Non-finite input makes a triangle degenerate instead of
+ * spreading NaN.
  */
 #ifndef vtkTangentFrameKernels_h
 #define vtkTangentFrameKernels_h
@@ -110,6 +114,27 @@ inline double PowerOfTwo(int k)
   return p;
 }
 
+/// Largest components of edge and UV-delta vectors that need no rescaling (see the file comment):
+/// products of four such numbers stay within [2^-640, 2^644] times small constants.
+constexpr double SafeMinimum = 0x1p-160;
+constexpr double SafeMaximum = 0x1p160;
+
+/// The exponent by which vectors whose largest component is m > 0 are rescaled: 0 inside the
+/// safe range, else the one that brings m into [0.5, 1).
+inline int RescaleExponent(double m)
+{
+  return (m >= SafeMinimum && m <= SafeMaximum) ? 0 : UnitExponent(m);
+}
+
+/// The same for the normalization of one vector (normals, summed tangents): no product of two
+/// components of a vector whose largest component lies in [2^-400, 2^400] can overflow, and a
+/// product that underflows is below 2^-222 of the largest square it is added to, so it cannot
+/// change the sum: rescaling would not change a bit of the unit vector and is skipped.
+inline int NormalizeExponent(double m)
+{
+  return (m >= 0x1p-400 && m <= 0x1p400) ? 0 : UnitExponent(m);
+}
+
 /// v * 2^k for any k a double exponent can need (two steps outside the normal range). Exact
 /// whenever the result components are normal numbers: directions and ratios do not change.
 template<typename V>
@@ -122,6 +147,22 @@ inline V ScaleByPowerOfTwo(const V& v, int k)
   }
   return v * PowerOfTwo(k);
 }
+
+/// Odd Taylor coefficients of atan, (-1)^k / (2k + 1) for k = 0..12, summed by Horner's rule in
+/// z^2 (AngleFromSineCosine and its vector form in vtkTangentFrameBatch.h).
+constexpr double AtanSeries[13] = { 1.0,
+  -1.0 / 3,
+  1.0 / 5,
+  -1.0 / 7,
+  1.0 / 9,
+  -1.0 / 11,
+  1.0 / 13,
+  -1.0 / 15,
+  1.0 / 17,
+  -1.0 / 19,
+  1.0 / 21,
+  -1.0 / 23,
+  1.0 / 25 };
 
 /**
  * atan2(s, c) for s >= 0, in [0, pi], without a library call: reduce to z = min/max in [0, 1],
@@ -149,25 +190,11 @@ inline double AngleFromSineCosine(double s, double c)
     z = (z - 1.0) / (z + 1.0);
     base = PiOver4;
   }
-  // Odd Taylor coefficients (-1)^k / (2k + 1), k = 0..12, summed by Horner's rule in z^2.
-  static constexpr double Coefficients[13] = { 1.0,
-    -1.0 / 3,
-    1.0 / 5,
-    -1.0 / 7,
-    1.0 / 9,
-    -1.0 / 11,
-    1.0 / 13,
-    -1.0 / 15,
-    1.0 / 17,
-    -1.0 / 19,
-    1.0 / 21,
-    -1.0 / 23,
-    1.0 / 25 };
   const double z2 = z * z;
-  double series = Coefficients[12];
+  double series = AtanSeries[12];
   for (int k = 11; k >= 0; --k)
   {
-    series = Coefficients[k] + z2 * series;
+    series = AtanSeries[k] + z2 * series;
   }
   double angle = base + z * series; // atan(num / den) in [0, pi/4] .. [0, pi/2]
   angle = steep ? 1.5707963267948966192 - angle : angle;
@@ -223,7 +250,7 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   {
     return frame; // coincident corners or non-finite positions
   }
-  const int ePos = detail::UnitExponent(maxE);
+  const int ePos = detail::RescaleExponent(maxE);
   e1 = detail::ScaleByPowerOfTwo(e1, ePos);
   e2 = detail::ScaleByPowerOfTwo(e2, ePos);
   const glm::dvec3 e3 = e2 - e1;
@@ -255,7 +282,7 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   {
     return frame; // collapsed or non-finite texture coordinates
   }
-  const int eUV = detail::UnitExponent(maxUV);
+  const int eUV = detail::RescaleExponent(maxUV);
   d1 = detail::ScaleByPowerOfTwo(d1, eUV);
   d2 = detail::ScaleByPowerOfTwo(d2, eUV);
   const glm::dvec2 d3 = d2 - d1;
@@ -297,7 +324,7 @@ inline void ComputeCornerAngles(const glm::dvec3& p0,
   {
     return;
   }
-  const int e = detail::UnitExponent(maxE);
+  const int e = detail::RescaleExponent(maxE);
   e01 = detail::ScaleByPowerOfTwo(e01, e);
   e02 = detail::ScaleByPowerOfTwo(e02, e);
   const glm::dvec3 e12 = e02 - e01;
@@ -342,7 +369,8 @@ inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
   {
     return glm::dvec3(0.0);
   }
-  const glm::dvec3 s = detail::ScaleByPowerOfTwo(n, detail::UnitExponent(m));
+  const int k = detail::NormalizeExponent(m);
+  const glm::dvec3 s = k == 0 ? n : detail::ScaleByPowerOfTwo(n, k);
   return s / glm::length(s);
 }
 
@@ -382,7 +410,8 @@ inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm:
   {
     return false;
   }
-  const glm::dvec3 ts = detail::ScaleByPowerOfTwo(t, detail::UnitExponent(tMax));
+  const int k = detail::NormalizeExponent(tMax);
+  const glm::dvec3 ts = k == 0 ? t : detail::ScaleByPowerOfTwo(t, k);
   const glm::dvec3 perp = ts - glm::dot(n, ts) * n;
   const double len = glm::length(perp);
   if (!(len > 1e-9 * glm::length(ts)))

@@ -1,5 +1,6 @@
 // Numerical stability of vtkPolyDataTangentFrames at the extremes: scaled, translated and
 // near-degenerate input, a vertex of very high valence, and meshes of degenerate triangles.
+#include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
 
@@ -16,7 +17,9 @@
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace
@@ -390,5 +393,64 @@ TEST(TangentFramesStability, MeshOfOnlyDegenerateTriangles)
     ExpectValid(out, 1e-6); // float output: 2^-23 per component
     EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 10000);
     EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 30000);
+  }
+}
+
+TEST(TangentFramesStability, SameBitsWithEveryInstructionSet)
+{
+  // The weighted methods compute triangle frames and point frames with AVX2 when the CPU has it
+  // and with scalar code otherwise; both perform the same IEEE operations, so the outputs must be
+  // identical bit for bit, with the single-precision path (float input), the double-precision
+  // path, and the special cases both hand to scalar code (invalid normals, huge scales).
+  namespace mikk = vtkNormalMapping::mikk;
+  struct RestoreDefault
+  {
+    ~RestoreDefault() { mikk::LimitInstructionSet(mikk::InstructionSet::AVX512); }
+  } restore;
+  if (mikk::LimitInstructionSet(mikk::InstructionSet::AVX2) == mikk::InstructionSet::Baseline)
+  {
+    GTEST_SKIP() << "this CPU (or build) has only the baseline instruction set";
+  }
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+  for (bool dbl : { false, true })
+  {
+    meshes.push_back(Transformed(Torus(true), 1.0, 0.0, 1.0, dbl));
+    meshes.push_back(Transformed(Torus(false), 1e-30, 0.0, 1e10, dbl));
+  }
+  auto broken = Transformed(Torus(true), 1.0, 0.0, 1.0, false);
+  vtkDataArray* normals = broken->GetPointData()->GetNormals();
+  normals->SetTuple3(3, 0.0, 0.0, 0.0);
+  normals->SetTuple3(40, std::nan(""), 0.0, 1.0);
+  broken->GetPoints()->SetPoint(77, std::nan(""), 0.0, 0.0);
+  meshes.push_back(broken);
+  for (size_t m = 0; m < meshes.size(); ++m)
+  {
+    for (int method : WeightedMethods)
+    {
+      vtkSmartPointer<vtkPolyData> out[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        mikk::LimitInstructionSet(
+          k == 0 ? mikk::InstructionSet::AVX2 : mikk::InstructionSet::Baseline);
+        vtkNew<vtkPolyDataTangentFrames> filter;
+        filter->SetInputData(meshes[m]);
+        filter->SetMethod(method);
+        filter->ComputeBitangentsOn();
+        filter->Update();
+        out[k] = filter->GetOutput();
+      }
+      SCOPED_TRACE("mesh " + std::to_string(m) + " method " + std::to_string(method));
+      ASSERT_EQ(out[0]->GetNumberOfPoints(), out[1]->GetNumberOfPoints());
+      for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+      {
+        vtkDataArray* a = out[0]->GetPointData()->GetArray(name);
+        vtkDataArray* b = out[1]->GetPointData()->GetArray(name);
+        ASSERT_TRUE(a && b) << name;
+        ASSERT_EQ(a->GetDataType(), b->GetDataType());
+        const size_t bytes =
+          static_cast<size_t>(a->GetNumberOfValues()) * static_cast<size_t>(a->GetDataTypeSize());
+        EXPECT_EQ(0, std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes)) << name;
+      }
+    }
   }
 }

@@ -1,0 +1,871 @@
+/**
+ * @file   vtkTangentFrameBatch.h
+ * @brief  ComputeTriangleFrame and the corner weights for many triangles at once (private).
+ *
+ * vtkPolyDataTangentFrames collects the triangles of a stretch of cells in a FrameBatch and
+ * computes their frames here: four triangles per AVX2 instruction when the CPU has it (chosen
+ * at run time, see mikk::LimitInstructionSet), one at a time otherwise. Both give the bits of
+ * the scalar kernels in vtkTangentFrameKernels.h: the vector code performs the same IEEE
+ * operations in the same order lane by lane, with no fused multiply-add (target "avx2" does not
+ * enable FMA), and hands every triangle whose edges or UV deltas are outside the safe range of
+ * RescaleExponent (or non-finite, or zero) to the scalar kernel.
+ */
+#ifndef vtkTangentFrameBatch_h
+#define vtkTangentFrameBatch_h
+
+#include "vtkTangentFrameKernels.h"
+#include "vtkType.h"
+
+#include <type_traits>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define VTK_TANGENT_BATCH_AVX2 1
+#define VTK_TANGENT_BATCH_AVX2_FN __attribute__((target("avx2")))
+#define VTK_TANGENT_BATCH_AVX2_INLINE __attribute__((target("avx2"), always_inline))
+#endif
+
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#endif
+
+namespace vtkNormalMapping
+{
+namespace detail
+{
+
+/// What the weights of a batch are.
+enum class BatchWeights
+{
+  One,   ///< every corner weighs 1 (Unweighted)
+  Area,  ///< the triangle's area at each corner (AreaWeighted)
+  Angle, ///< the interior angle at each corner (AngleWeighted)
+};
+
+/// Triangles and, once computed, their frames and corner weights (structure of arrays).
+struct FrameBatch
+{
+  static constexpr int Capacity = 64;
+  int Size = 0;
+  vtkIdType Ids[3][Capacity];
+  double Tangent[3][Capacity];
+  double Normal[3][Capacity];
+  double Weight[3][Capacity];
+  signed char Orientation[Capacity];
+  /// Which of its point's two sums each corner goes to: 0 for handedness +1, 1 for -1.
+  signed char Side[3][Capacity];
+
+  void Add(const vtkIdType* tri)
+  {
+    this->Ids[0][this->Size] = tri[0];
+    this->Ids[1][this->Size] = tri[1];
+    this->Ids[2][this->Size] = tri[2];
+    ++this->Size;
+  }
+  bool Full() const { return this->Size == Capacity; }
+};
+
+/// Raw inputs of the batch kernels: xyz positions, texture coordinates with `UVComponents`
+/// components (1: v = 0), point normals of any length, and unit stand-ins for points whose
+/// normal is zero or non-finite (or null).
+template<typename PT, typename UT, typename NT>
+struct BatchInput
+{
+  const PT* Points;
+  const UT* UVs;
+  int UVComponents;
+  const NT* Normals;
+  const double* Fallback;
+  DegeneracyTolerance Tolerance;
+  BatchWeights Weights;
+
+  /// The handedness a triangle with winding normal (x, y, z) and the given orientation gives at
+  /// point p: CornerSign without normalizing the point's normal (only the sign of the dot
+  /// product matters). A zero or non-finite product uses the stand-in when there is one; when
+  /// that fails too the triangle's orientation is kept.
+  int Side(double x, double y, double z, int orientation, vtkIdType p) const
+  {
+    const NT* n = this->Normals + 3 * p;
+    double d = n[0] * x + n[1] * y + n[2] * z;
+    if (!(d != 0.0 && std::isfinite(d)) && this->Fallback)
+    {
+      const double* g = this->Fallback + 3 * p;
+      d = g[0] * x + g[1] * y + g[2] * z;
+    }
+    return d < 0.0 ? -orientation : orientation;
+  }
+};
+
+/// Triangle i of the batch with the scalar kernel.
+template<typename PT, typename UT, typename NT>
+void ComputeBatchTriangle(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
+{
+  glm::dvec3 p[3];
+  glm::dvec2 uv[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType id = b.Ids[k][i];
+    const PT* x = in.Points + 3 * id;
+    p[k] = glm::dvec3(x[0], x[1], x[2]);
+    const UT* u = in.UVs + in.UVComponents * id;
+    uv[k] = glm::dvec2(u[0], in.UVComponents > 1 ? static_cast<double>(u[1]) : 0.0);
+  }
+  double angles[3] = { 1.0, 1.0, 1.0 };
+  const bool angle = in.Weights == BatchWeights::Angle;
+  const bool area = in.Weights == BatchWeights::Area;
+  const TriangleFrame f = ComputeTriangleFrame(
+    p[0], p[1], p[2], uv[0], uv[1], uv[2], in.Tolerance, area, angle ? angles : nullptr);
+  for (int c = 0; c < 3; ++c)
+  {
+    b.Tangent[c][i] = f.Tangent[c];
+    b.Normal[c][i] = f.Normal[c];
+    b.Weight[c][i] = area ? f.Area : angles[c];
+  }
+  b.Orientation[i] = f.Orientation;
+}
+
+/**
+ * The single-precision path, for float positions and texture coordinates: the same frame as
+ * ComputeTriangleFrame computed in float, eight triangles per AVX2 instruction. Its results
+ * differ from the double-precision kernel by float rounding (measured in
+ * TestTangentFrameKernels: under 1e-5 degrees on random triangles), which is of the order of the
+ * rounding of the float coordinates themselves. Triangles whose largest edge or UV-delta
+ * component is outside [2^-20, 2^20] (where products of four of them could leave float's normal
+ * range), non-finite or zero go to the double-precision kernel instead.
+ */
+namespace single
+{
+constexpr float SafeMinimum = 0x1p-20f;
+constexpr float SafeMaximum = 0x1p20f;
+/// Odd Taylor coefficients of atan to z^17: the remainder is below tan(pi/8)^19 / 19 < 3e-9,
+/// under float rounding.
+constexpr float AtanSeries[9] = { 1.0f,
+  -1.0f / 3,
+  1.0f / 5,
+  -1.0f / 7,
+  1.0f / 9,
+  -1.0f / 11,
+  1.0f / 13,
+  -1.0f / 15,
+  1.0f / 17 };
+constexpr float TanPiOver8 = 0.41421356237309504880f;
+constexpr float PiOver4 = 0.78539816339744830962f;
+constexpr float PiOver2 = 1.5707963267948966192f;
+constexpr float Pi = 3.14159265358979323846f;
+
+/// atan2(s, c) for s >= 0, in float: one division (the reduction to |z| <= tan(pi/8) is folded
+/// into it) and the series above.
+inline float Angle(float s, float c)
+{
+  const float ac = std::abs(c);
+  const bool steep = s > ac;
+  const float num = steep ? ac : s;
+  const float den = steep ? s : ac;
+  const bool reduce = num > TanPiOver8 * den;
+  const float z = (reduce ? num - den : num) / (reduce ? num + den : den);
+  const float z2 = z * z;
+  float series = AtanSeries[8];
+  for (int k = 7; k >= 0; --k)
+  {
+    series = AtanSeries[k] + z2 * series;
+  }
+  float angle = (reduce ? PiOver4 : 0.0f) + z * series;
+  angle = steep ? PiOver2 - angle : angle;
+  angle = c < 0.0f ? Pi - angle : angle;
+  return den > 0.0f ? angle : 0.0f;
+}
+
+inline float Dot(const float a[3], const float b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// Triangle i of the batch in float, or with the double kernel outside the safe range.
+template<typename NT>
+void ComputeTriangle(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
+{
+  float p[3][3], uv[3][2];
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType id = b.Ids[k][i];
+    for (int d = 0; d < 3; ++d)
+    {
+      p[k][d] = in.Points[3 * id + d];
+    }
+    const float* u = in.UVs + in.UVComponents * id;
+    uv[k][0] = u[0];
+    uv[k][1] = in.UVComponents > 1 ? u[1] : 0.0f;
+  }
+  float e1[3], e2[3], e3[3], d1[2], d2[2], d3[2];
+  float maxE = 0.0f, sumE = 0.0f, maxUV = 0.0f, sumUV = 0.0f;
+  for (int d = 0; d < 3; ++d)
+  {
+    e1[d] = p[1][d] - p[0][d];
+    e2[d] = p[2][d] - p[0][d];
+    e3[d] = e2[d] - e1[d];
+    maxE = std::max(maxE, std::max(std::abs(e1[d]), std::abs(e2[d])));
+    sumE = sumE + (e1[d] + e2[d]);
+  }
+  for (int d = 0; d < 2; ++d)
+  {
+    d1[d] = uv[1][d] - uv[0][d];
+    d2[d] = uv[2][d] - uv[0][d];
+    d3[d] = d2[d] - d1[d];
+    maxUV = std::max(maxUV, std::max(std::abs(d1[d]), std::abs(d2[d])));
+    sumUV = sumUV + (d1[d] + d2[d]);
+  }
+  if (!(std::isfinite(sumE) && std::isfinite(sumUV) && maxE >= SafeMinimum && maxE <= SafeMaximum &&
+        maxUV >= SafeMinimum && maxUV <= SafeMaximum))
+  {
+    ComputeBatchTriangle(in, b, i);
+    return;
+  }
+  const float n[3] = {
+    e1[1] * e2[2] - e2[1] * e1[2], e1[2] * e2[0] - e2[2] * e1[0], e1[0] * e2[1] - e2[0] * e1[1]
+  };
+  const float twiceArea2 = Dot(n, n);
+  const float longest2 = std::max(std::max(Dot(e1, e1), Dot(e2, e2)), Dot(e3, e3));
+  const float tolP = static_cast<float>(in.Tolerance.Position);
+  const bool posOK = twiceArea2 > ((tolP * tolP) * longest2) * longest2;
+  const float det = d1[0] * d2[1] - d2[0] * d1[1];
+  const float longestUV2 =
+    std::max(std::max(d1[0] * d1[0] + d1[1] * d1[1], d2[0] * d2[0] + d2[1] * d2[1]),
+      d3[0] * d3[0] + d3[1] * d3[1]);
+  const bool uvOK = std::abs(det) > static_cast<float>(in.Tolerance.UV) * longestUV2;
+  float t[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    t[d] = d2[1] * e1[d] - d1[1] * e2[d];
+    t[d] = det < 0.0f ? -t[d] : t[d];
+  }
+  const float tLength = std::sqrt(Dot(t, t));
+  const bool tOK = tLength > 0.0f && std::isfinite(tLength);
+  const float inverse = 1.0f / tLength;
+  float w[3] = { 1.0f, 1.0f, 1.0f };
+  if (in.Weights == BatchWeights::Angle)
+  {
+    const float sine = std::sqrt(twiceArea2);
+    w[0] = Angle(sine, Dot(e1, e2));
+    w[1] = Angle(sine, -Dot(e1, e3));
+    w[2] = Angle(sine, Dot(e2, e3));
+  }
+  else if (in.Weights == BatchWeights::Area)
+  {
+    w[0] = w[1] = w[2] = 0.5f * std::sqrt(twiceArea2);
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    b.Tangent[d][i] = t[d] * inverse;
+    b.Normal[d][i] = n[d];
+    b.Weight[d][i] = w[d];
+  }
+  b.Orientation[i] = posOK && uvOK && tOK ? (det > 0.0f ? 1 : -1) : 0;
+}
+} // namespace single
+
+/**
+ * Points whose frame is finished together: the summed tangent T and the point normal N of each
+ * (both finite, with largest components in [2^-400, 2^400], N non-zero), and once computed the
+ * unit normal and the unit tangent perpendicular to it, or OK = 0 where the tangent has no usable
+ * perpendicular part (see OrthonormalizeTangent).
+ */
+struct FinishBatch
+{
+  static constexpr int Capacity = 128;
+  int Size = 0;
+  vtkIdType Ids[Capacity];
+  double Sign[Capacity];
+  double T[3][Capacity];
+  double N[3][Capacity];
+  double UnitNormal[3][Capacity];
+  double UnitTangent[3][Capacity];
+  bool OK[Capacity];
+
+  /// Whether a vector can go in: finite, non-zero, largest component in [2^-400, 2^400].
+  static bool Takes(double x, double y, double z)
+  {
+    const double m = std::max({ std::abs(x), std::abs(y), std::abs(z) });
+    return m >= 0x1p-400 && m <= 0x1p400; // false for NaN
+  }
+};
+
+/// Point i of the batch with the scalar kernels (no rescaling happens in the batch's range).
+inline void FinishPoint(FinishBatch& b, int i)
+{
+  const glm::dvec3 n = SafeNormalize(glm::dvec3(b.N[0][i], b.N[1][i], b.N[2][i]));
+  glm::dvec3 t;
+  b.OK[i] = OrthonormalizeTangent(n, glm::dvec3(b.T[0][i], b.T[1][i], b.T[2][i]), t);
+  for (int d = 0; d < 3; ++d)
+  {
+    b.UnitNormal[d][i] = n[d];
+    b.UnitTangent[d][i] = t[d];
+  }
+}
+
+#ifdef VTK_TANGENT_BATCH_AVX2
+namespace avx2
+{
+using V = __m256d;
+
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Abs(V x)
+{
+  return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Max(V a, V b)
+{
+  return _mm256_max_pd(a, b);
+}
+/// mask ? a : b
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Select(V mask, V a, V b)
+{
+  return _mm256_blendv_pd(b, a, mask);
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Greater(V a, V b)
+{
+  return _mm256_cmp_pd(a, b, _CMP_GT_OQ);
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Dot(const V a[3], const V b[3])
+{
+  return _mm256_add_pd(
+    _mm256_add_pd(_mm256_mul_pd(a[0], b[0]), _mm256_mul_pd(a[1], b[1])), _mm256_mul_pd(a[2], b[2]));
+}
+/// a.a for two-component a.
+VTK_TANGENT_BATCH_AVX2_INLINE inline V Dot2(const V a[2])
+{
+  return _mm256_add_pd(_mm256_mul_pd(a[0], a[0]), _mm256_mul_pd(a[1], a[1]));
+}
+/// Finite, non-NaN lanes of x.
+VTK_TANGENT_BATCH_AVX2_INLINE inline V IsFinite(V x)
+{
+  return _mm256_cmp_pd(Abs(x), _mm256_set1_pd(DBL_MAX), _CMP_LE_OQ);
+}
+
+/// AngleFromSineCosine(s, c[j]) for j = 0, 1, 2, lane by lane with the same operations. The
+/// three series are summed together: each is a chain of 24 dependent operations, so one at a
+/// time would leave the CPU waiting on latency.
+VTK_TANGENT_BATCH_AVX2_INLINE inline void Angles(V s, const V c[3], V angle[3])
+{
+  const V one = _mm256_set1_pd(1.0);
+  V steep[3], den[3], z[3], base[3], z2[3], series[3];
+  for (int j = 0; j < 3; ++j)
+  {
+    const V ac = Abs(c[j]);
+    steep[j] = Greater(s, ac);
+    const V num = Select(steep[j], ac, s);
+    den[j] = Select(steep[j], s, ac);
+    z[j] = _mm256_div_pd(num, den[j]);
+    const V reduce = Greater(z[j], _mm256_set1_pd(0.41421356237309504880));
+    z[j] = Select(reduce, _mm256_div_pd(_mm256_sub_pd(z[j], one), _mm256_add_pd(z[j], one)), z[j]);
+    base[j] = _mm256_and_pd(reduce, _mm256_set1_pd(0.78539816339744830962));
+    z2[j] = _mm256_mul_pd(z[j], z[j]);
+    series[j] = _mm256_set1_pd(AtanSeries[12]);
+  }
+  for (int k = 11; k >= 0; --k)
+  {
+    const V ck = _mm256_set1_pd(AtanSeries[k]);
+    for (int j = 0; j < 3; ++j)
+    {
+      series[j] = _mm256_add_pd(ck, _mm256_mul_pd(z2[j], series[j]));
+    }
+  }
+  for (int j = 0; j < 3; ++j)
+  {
+    V a = _mm256_add_pd(base[j], _mm256_mul_pd(z[j], series[j]));
+    a = Select(steep[j], _mm256_sub_pd(_mm256_set1_pd(1.5707963267948966192), a), a);
+    a = Select(_mm256_cmp_pd(c[j], _mm256_setzero_pd(), _CMP_LT_OQ),
+      _mm256_sub_pd(_mm256_set1_pd(3.14159265358979323846), a),
+      a);
+    // !(den > 0): 0.
+    angle[j] = _mm256_and_pd(Greater(den[j], _mm256_setzero_pd()), a);
+  }
+}
+
+/// Triangles [i, i + 4) of the batch; lanes the vector code does not take go to the scalar
+/// kernel.
+template<typename PT, typename UT, typename NT>
+VTK_TANGENT_BATCH_AVX2_FN void ComputeFour(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
+{
+  V p[3][3], uv[3][2];
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    const PT* x0 = in.Points + 3 * ids[0];
+    const PT* x1 = in.Points + 3 * ids[1];
+    const PT* x2 = in.Points + 3 * ids[2];
+    const PT* x3 = in.Points + 3 * ids[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      p[k][d] = _mm256_setr_pd(x0[d], x1[d], x2[d], x3[d]);
+    }
+    const int nc = in.UVComponents;
+    const UT* u0 = in.UVs + nc * ids[0];
+    const UT* u1 = in.UVs + nc * ids[1];
+    const UT* u2 = in.UVs + nc * ids[2];
+    const UT* u3 = in.UVs + nc * ids[3];
+    uv[k][0] = _mm256_setr_pd(u0[0], u1[0], u2[0], u3[0]);
+    uv[k][1] = nc > 1 ? _mm256_setr_pd(u0[1], u1[1], u2[1], u3[1]) : _mm256_setzero_pd();
+  }
+  V e1[3], e2[3], e3[3], d1[2], d2[2];
+  V maxE = _mm256_setzero_pd(), sumE = _mm256_setzero_pd();
+  for (int d = 0; d < 3; ++d)
+  {
+    e1[d] = _mm256_sub_pd(p[1][d], p[0][d]);
+    e2[d] = _mm256_sub_pd(p[2][d], p[0][d]);
+    maxE = Max(maxE, Max(Abs(e1[d]), Abs(e2[d])));
+    sumE = _mm256_add_pd(sumE, _mm256_add_pd(e1[d], e2[d]));
+  }
+  V maxUV = _mm256_setzero_pd(), sumUV = _mm256_setzero_pd();
+  for (int d = 0; d < 2; ++d)
+  {
+    d1[d] = _mm256_sub_pd(uv[1][d], uv[0][d]);
+    d2[d] = _mm256_sub_pd(uv[2][d], uv[0][d]);
+    maxUV = Max(maxUV, Max(Abs(d1[d]), Abs(d2[d])));
+    sumUV = _mm256_add_pd(sumUV, _mm256_add_pd(d1[d], d2[d]));
+  }
+  const V lo = _mm256_set1_pd(SafeMinimum), hi = _mm256_set1_pd(SafeMaximum);
+  // Every component finite (a sum of finite numbers can overflow: then the scalar kernel decides)
+  // and both largest components in the safe range.
+  V vector = _mm256_and_pd(IsFinite(sumE), IsFinite(sumUV));
+  vector = _mm256_and_pd(vector, _mm256_cmp_pd(maxE, lo, _CMP_GE_OQ));
+  vector = _mm256_and_pd(vector, _mm256_cmp_pd(maxE, hi, _CMP_LE_OQ));
+  vector = _mm256_and_pd(vector, _mm256_cmp_pd(maxUV, lo, _CMP_GE_OQ));
+  vector = _mm256_and_pd(vector, _mm256_cmp_pd(maxUV, hi, _CMP_LE_OQ));
+  const int vectorLanes = _mm256_movemask_pd(vector);
+
+  for (int d = 0; d < 3; ++d)
+  {
+    e3[d] = _mm256_sub_pd(e2[d], e1[d]);
+  }
+  V n[3];
+  n[0] = _mm256_sub_pd(_mm256_mul_pd(e1[1], e2[2]), _mm256_mul_pd(e2[1], e1[2]));
+  n[1] = _mm256_sub_pd(_mm256_mul_pd(e1[2], e2[0]), _mm256_mul_pd(e2[2], e1[0]));
+  n[2] = _mm256_sub_pd(_mm256_mul_pd(e1[0], e2[1]), _mm256_mul_pd(e2[0], e1[1]));
+  const V twiceArea2 = Dot(n, n);
+  const V longest2 = Max(Max(Dot(e1, e1), Dot(e2, e2)), Dot(e3, e3));
+  const V tolP2 = _mm256_set1_pd(in.Tolerance.Position * in.Tolerance.Position);
+  const V posOK = Greater(twiceArea2, _mm256_mul_pd(_mm256_mul_pd(tolP2, longest2), longest2));
+
+  const V d3[2] = { _mm256_sub_pd(d2[0], d1[0]), _mm256_sub_pd(d2[1], d1[1]) };
+  const V det = _mm256_sub_pd(_mm256_mul_pd(d1[0], d2[1]), _mm256_mul_pd(d2[0], d1[1]));
+  const V longestUV2 = Max(Max(Dot2(d1), Dot2(d2)), Dot2(d3));
+  const V uvOK = Greater(Abs(det), _mm256_mul_pd(_mm256_set1_pd(in.Tolerance.UV), longestUV2));
+
+  const V flip =
+    _mm256_and_pd(_mm256_cmp_pd(det, _mm256_setzero_pd(), _CMP_LT_OQ), _mm256_set1_pd(-0.0));
+  V t[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    t[d] =
+      _mm256_xor_pd(_mm256_sub_pd(_mm256_mul_pd(d2[1], e1[d]), _mm256_mul_pd(d1[1], e2[d])), flip);
+  }
+  const V tLength = _mm256_sqrt_pd(Dot(t, t));
+  const V tOK = _mm256_and_pd(Greater(tLength, _mm256_setzero_pd()), IsFinite(tLength));
+  const V inverse = _mm256_div_pd(_mm256_set1_pd(1.0), tLength);
+  const V ok = _mm256_and_pd(_mm256_and_pd(posOK, uvOK), tOK);
+  const int okLanes = _mm256_movemask_pd(ok);
+  const int detPositive = _mm256_movemask_pd(Greater(det, _mm256_setzero_pd()));
+
+  alignas(32) double w[3][4];
+  if (in.Weights == BatchWeights::Angle)
+  {
+    const V cosines[3] = {
+      Dot(e1, e2), _mm256_xor_pd(Dot(e1, e3), _mm256_set1_pd(-0.0)), Dot(e2, e3)
+    };
+    V angles[3];
+    Angles(_mm256_sqrt_pd(twiceArea2), cosines, angles);
+    for (int k = 0; k < 3; ++k)
+    {
+      _mm256_store_pd(w[k], angles[k]);
+    }
+  }
+  else if (in.Weights == BatchWeights::Area)
+  {
+    const V area = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_sqrt_pd(twiceArea2));
+    _mm256_store_pd(w[0], area);
+    _mm256_store_pd(w[1], area);
+    _mm256_store_pd(w[2], area);
+  }
+  else
+  {
+    const V one = _mm256_set1_pd(1.0);
+    _mm256_store_pd(w[0], one);
+    _mm256_store_pd(w[1], one);
+    _mm256_store_pd(w[2], one);
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    _mm256_storeu_pd(b.Tangent[d] + i, _mm256_mul_pd(t[d], inverse));
+    _mm256_storeu_pd(b.Normal[d] + i, n[d]);
+    _mm256_storeu_pd(b.Weight[d] + i, _mm256_loadu_pd(w[d]));
+  }
+  for (int l = 0; l < 4; ++l)
+  {
+    if ((vectorLanes >> l) & 1)
+    {
+      b.Orientation[i + l] = ((okLanes >> l) & 1) ? (((detPositive >> l) & 1) ? 1 : -1) : 0;
+    }
+    else
+    {
+      ComputeBatchTriangle(in, b, i + l);
+    }
+  }
+}
+
+/// BatchInput::Side for the corners of triangles [i, i + 4), with the same operations.
+template<typename PT, typename UT, typename NT>
+VTK_TANGENT_BATCH_AVX2_FN void SidesOfFour(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
+{
+  V n[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    n[d] = _mm256_loadu_pd(b.Normal[d] + i);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    const NT* m0 = in.Normals + 3 * ids[0];
+    const NT* m1 = in.Normals + 3 * ids[1];
+    const NT* m2 = in.Normals + 3 * ids[2];
+    const NT* m3 = in.Normals + 3 * ids[3];
+    V m[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      m[d] = _mm256_setr_pd(m0[d], m1[d], m2[d], m3[d]);
+    }
+    const V dot = Dot(m, n);
+    const int negative = _mm256_movemask_pd(_mm256_cmp_pd(dot, _mm256_setzero_pd(), _CMP_LT_OQ));
+    const V sure =
+      _mm256_and_pd(_mm256_cmp_pd(dot, _mm256_setzero_pd(), _CMP_NEQ_OQ), IsFinite(dot));
+    const int unsure = in.Fallback ? (~_mm256_movemask_pd(sure) & 0xf) : 0;
+    for (int l = 0; l < 4; ++l)
+    {
+      const int orientation = b.Orientation[i + l];
+      int side = ((negative >> l) & 1) ? -orientation : orientation;
+      if ((unsure >> l) & 1)
+      {
+        side =
+          in.Side(b.Normal[0][i + l], b.Normal[1][i + l], b.Normal[2][i + l], orientation, ids[l]);
+      }
+      b.Side[k][i + l] = side < 0 ? 1 : 0;
+    }
+  }
+}
+
+/// Eight-lane float helpers of ComputeEight.
+namespace floats
+{
+using F = __m256;
+VTK_TANGENT_BATCH_AVX2_INLINE inline F abs(F x)
+{
+  return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x);
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline F gt(F x, F y)
+{
+  return _mm256_cmp_ps(x, y, _CMP_GT_OQ);
+}
+/// mask ? x : y
+VTK_TANGENT_BATCH_AVX2_INLINE inline F select(F mask, F x, F y)
+{
+  return _mm256_blendv_ps(y, x, mask);
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline F dot(const F* x, const F* y)
+{
+  return _mm256_add_ps(
+    _mm256_add_ps(_mm256_mul_ps(x[0], y[0]), _mm256_mul_ps(x[1], y[1])), _mm256_mul_ps(x[2], y[2]));
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline F dot2(const F* x)
+{
+  return _mm256_add_ps(_mm256_mul_ps(x[0], x[0]), _mm256_mul_ps(x[1], x[1]));
+}
+VTK_TANGENT_BATCH_AVX2_INLINE inline F finite(F x)
+{
+  return _mm256_cmp_ps(abs(x), _mm256_set1_ps(FLT_MAX), _CMP_LE_OQ);
+}
+/// Eight floats widened to double and stored at out[0..8).
+VTK_TANGENT_BATCH_AVX2_INLINE inline void store(double* out, F x)
+{
+  _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(x)));
+  _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
+}
+} // namespace floats
+
+/// single::ComputeTriangle for triangles [i, i + 8), lane by lane with the same operations.
+template<typename NT>
+VTK_TANGENT_BATCH_AVX2_FN void ComputeEight(const BatchInput<float, float, NT>& in,
+  FrameBatch& b,
+  int i)
+{
+  using namespace floats;
+  const F zero = _mm256_setzero_ps();
+  const F signBit = _mm256_set1_ps(-0.0f);
+
+  F p[3][3], uv[3][2];
+  const int nc = in.UVComponents;
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    const float* x[8];
+    const float* u[8];
+    for (int l = 0; l < 8; ++l)
+    {
+      x[l] = in.Points + 3 * ids[l];
+      u[l] = in.UVs + nc * ids[l];
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      p[k][d] =
+        _mm256_setr_ps(x[0][d], x[1][d], x[2][d], x[3][d], x[4][d], x[5][d], x[6][d], x[7][d]);
+    }
+    uv[k][0] =
+      _mm256_setr_ps(u[0][0], u[1][0], u[2][0], u[3][0], u[4][0], u[5][0], u[6][0], u[7][0]);
+    uv[k][1] = nc > 1
+      ? _mm256_setr_ps(u[0][1], u[1][1], u[2][1], u[3][1], u[4][1], u[5][1], u[6][1], u[7][1])
+      : zero;
+  }
+  F e1[3], e2[3], e3[3], d1[2], d2[2], d3[2];
+  F maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
+  for (int d = 0; d < 3; ++d)
+  {
+    e1[d] = _mm256_sub_ps(p[1][d], p[0][d]);
+    e2[d] = _mm256_sub_ps(p[2][d], p[0][d]);
+    e3[d] = _mm256_sub_ps(e2[d], e1[d]);
+    maxE = _mm256_max_ps(maxE, _mm256_max_ps(abs(e1[d]), abs(e2[d])));
+    sumE = _mm256_add_ps(sumE, _mm256_add_ps(e1[d], e2[d]));
+  }
+  for (int d = 0; d < 2; ++d)
+  {
+    d1[d] = _mm256_sub_ps(uv[1][d], uv[0][d]);
+    d2[d] = _mm256_sub_ps(uv[2][d], uv[0][d]);
+    d3[d] = _mm256_sub_ps(d2[d], d1[d]);
+    maxUV = _mm256_max_ps(maxUV, _mm256_max_ps(abs(d1[d]), abs(d2[d])));
+    sumUV = _mm256_add_ps(sumUV, _mm256_add_ps(d1[d], d2[d]));
+  }
+  const F lo = _mm256_set1_ps(single::SafeMinimum), hi = _mm256_set1_ps(single::SafeMaximum);
+  F vector = _mm256_and_ps(finite(sumE), finite(sumUV));
+  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxE, lo, _CMP_GE_OQ));
+  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxE, hi, _CMP_LE_OQ));
+  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxUV, lo, _CMP_GE_OQ));
+  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxUV, hi, _CMP_LE_OQ));
+  const int vectorLanes = _mm256_movemask_ps(vector);
+
+  F n[3];
+  n[0] = _mm256_sub_ps(_mm256_mul_ps(e1[1], e2[2]), _mm256_mul_ps(e2[1], e1[2]));
+  n[1] = _mm256_sub_ps(_mm256_mul_ps(e1[2], e2[0]), _mm256_mul_ps(e2[2], e1[0]));
+  n[2] = _mm256_sub_ps(_mm256_mul_ps(e1[0], e2[1]), _mm256_mul_ps(e2[0], e1[1]));
+  const F twiceArea2 = dot(n, n);
+  const F longest2 = _mm256_max_ps(_mm256_max_ps(dot(e1, e1), dot(e2, e2)), dot(e3, e3));
+  const float tolP = static_cast<float>(in.Tolerance.Position);
+  const F posOK =
+    gt(twiceArea2, _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(tolP * tolP), longest2), longest2));
+  const F det = _mm256_sub_ps(_mm256_mul_ps(d1[0], d2[1]), _mm256_mul_ps(d2[0], d1[1]));
+  const F longestUV2 = _mm256_max_ps(_mm256_max_ps(dot2(d1), dot2(d2)), dot2(d3));
+  const F uvOK =
+    gt(abs(det), _mm256_mul_ps(_mm256_set1_ps(static_cast<float>(in.Tolerance.UV)), longestUV2));
+  const F flip = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_LT_OQ), signBit);
+  F t[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    t[d] =
+      _mm256_xor_ps(_mm256_sub_ps(_mm256_mul_ps(d2[1], e1[d]), _mm256_mul_ps(d1[1], e2[d])), flip);
+  }
+  const F tLength = _mm256_sqrt_ps(dot(t, t));
+  const F tOK = _mm256_and_ps(gt(tLength, zero), finite(tLength));
+  const F inverse = _mm256_div_ps(_mm256_set1_ps(1.0f), tLength);
+  const int okLanes = _mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(posOK, uvOK), tOK));
+  const int detPositive = _mm256_movemask_ps(gt(det, zero));
+
+  F w[3];
+  if (in.Weights == BatchWeights::Angle)
+  {
+    const F sine = _mm256_sqrt_ps(twiceArea2);
+    const F c[3] = { dot(e1, e2), _mm256_xor_ps(dot(e1, e3), signBit), dot(e2, e3) };
+    F steep[3], den[3], z[3], z2[3], base[3], series[3];
+    for (int j = 0; j < 3; ++j)
+    {
+      const F ac = abs(c[j]);
+      steep[j] = gt(sine, ac);
+      const F num = select(steep[j], ac, sine);
+      den[j] = select(steep[j], sine, ac);
+      const F reduce = gt(num, _mm256_mul_ps(_mm256_set1_ps(single::TanPiOver8), den[j]));
+      z[j] = _mm256_div_ps(select(reduce, _mm256_sub_ps(num, den[j]), num),
+        select(reduce, _mm256_add_ps(num, den[j]), den[j]));
+      base[j] = _mm256_and_ps(reduce, _mm256_set1_ps(single::PiOver4));
+      z2[j] = _mm256_mul_ps(z[j], z[j]);
+      series[j] = _mm256_set1_ps(single::AtanSeries[8]);
+    }
+    for (int k = 7; k >= 0; --k)
+    {
+      const F ck = _mm256_set1_ps(single::AtanSeries[k]);
+      for (int j = 0; j < 3; ++j)
+      {
+        series[j] = _mm256_add_ps(ck, _mm256_mul_ps(z2[j], series[j]));
+      }
+    }
+    for (int j = 0; j < 3; ++j)
+    {
+      F a = _mm256_add_ps(base[j], _mm256_mul_ps(z[j], series[j]));
+      a = select(steep[j], _mm256_sub_ps(_mm256_set1_ps(single::PiOver2), a), a);
+      a = select(
+        _mm256_cmp_ps(c[j], zero, _CMP_LT_OQ), _mm256_sub_ps(_mm256_set1_ps(single::Pi), a), a);
+      w[j] = _mm256_and_ps(gt(den[j], zero), a);
+    }
+  }
+  else if (in.Weights == BatchWeights::Area)
+  {
+    w[0] = w[1] = w[2] = _mm256_mul_ps(_mm256_set1_ps(0.5f), _mm256_sqrt_ps(twiceArea2));
+  }
+  else
+  {
+    w[0] = w[1] = w[2] = _mm256_set1_ps(1.0f);
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    store(b.Tangent[d] + i, _mm256_mul_ps(t[d], inverse));
+    store(b.Normal[d] + i, n[d]);
+    store(b.Weight[d] + i, w[d]);
+  }
+  for (int l = 0; l < 8; ++l)
+  {
+    if ((vectorLanes >> l) & 1)
+    {
+      b.Orientation[i + l] = ((okLanes >> l) & 1) ? (((detPositive >> l) & 1) ? 1 : -1) : 0;
+    }
+    else
+    {
+      ComputeBatchTriangle(in, b, i + l);
+    }
+  }
+}
+
+/// FinishPoint for points [i, i + 4), lane by lane with the same operations.
+VTK_TANGENT_BATCH_AVX2_FN inline void FinishFour(FinishBatch& b, int i)
+{
+  V m[3], t[3], n[3], perp[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    m[d] = _mm256_loadu_pd(b.N[d] + i);
+    t[d] = _mm256_loadu_pd(b.T[d] + i);
+  }
+  const V length = _mm256_sqrt_pd(Dot(m, m));
+  for (int d = 0; d < 3; ++d)
+  {
+    n[d] = _mm256_div_pd(m[d], length);
+  }
+  const V along = Dot(n, t);
+  for (int d = 0; d < 3; ++d)
+  {
+    perp[d] = _mm256_sub_pd(t[d], _mm256_mul_pd(along, n[d]));
+  }
+  const V perpLength = _mm256_sqrt_pd(Dot(perp, perp));
+  const V ok = Greater(perpLength, _mm256_mul_pd(_mm256_set1_pd(1e-9), _mm256_sqrt_pd(Dot(t, t))));
+  for (int d = 0; d < 3; ++d)
+  {
+    _mm256_storeu_pd(b.UnitNormal[d] + i, n[d]);
+    _mm256_storeu_pd(b.UnitTangent[d] + i, _mm256_div_pd(perp[d], perpLength));
+  }
+  const int okLanes = _mm256_movemask_pd(ok);
+  for (int l = 0; l < 4; ++l)
+  {
+    b.OK[i + l] = ((okLanes >> l) & 1) != 0;
+  }
+}
+} // namespace avx2
+#endif
+
+/// Frames, weights and sides of every triangle in the batch. `vector`: use AVX2 (the caller
+/// checked that the CPU has it). Float positions and texture coordinates take the
+/// single-precision path, anything else the double-precision kernel.
+template<typename PT, typename UT, typename NT>
+void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, bool vector)
+{
+  int i = 0;
+  constexpr bool useFloat = std::is_same<PT, float>::value && std::is_same<UT, float>::value;
+#ifdef VTK_TANGENT_BATCH_AVX2
+  if (vector)
+  {
+    if constexpr (useFloat)
+    {
+      for (; i + 8 <= b.Size; i += 8)
+      {
+        avx2::ComputeEight(in, b, i);
+      }
+    }
+    else
+    {
+      for (; i + 4 <= b.Size; i += 4)
+      {
+        avx2::ComputeFour(in, b, i);
+      }
+    }
+  }
+#endif
+  for (; i < b.Size; ++i)
+  {
+    if constexpr (useFloat)
+    {
+      single::ComputeTriangle(in, b, i);
+    }
+    else
+    {
+      ComputeBatchTriangle(in, b, i);
+    }
+  }
+  i = 0;
+#ifdef VTK_TANGENT_BATCH_AVX2
+  if (vector)
+  {
+    for (; i + 4 <= b.Size; i += 4)
+    {
+      avx2::SidesOfFour(in, b, i);
+    }
+  }
+#else
+  (void)vector;
+#endif
+  for (; i < b.Size; ++i)
+  {
+    const int orientation = b.Orientation[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      b.Side[k][i] =
+        in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], orientation, b.Ids[k][i]) < 0 ? 1
+                                                                                              : 0;
+    }
+  }
+}
+
+/// Whether this build and CPU have the AVX2 code (ComputeBatch and ComputeFinish may use it).
+inline bool HaveBatchVectorCode()
+{
+#ifdef VTK_TANGENT_BATCH_AVX2
+  return __builtin_cpu_supports("avx2") != 0;
+#else
+  return false;
+#endif
+}
+
+/// Unit normals and tangents of every point in the batch; `vector`: use AVX2.
+inline void ComputeFinish(FinishBatch& b, bool vector)
+{
+  int i = 0;
+#ifdef VTK_TANGENT_BATCH_AVX2
+  if (vector)
+  {
+    for (; i + 4 <= b.Size; i += 4)
+    {
+      avx2::FinishFour(b, i);
+    }
+  }
+#else
+  (void)vector;
+#endif
+  for (; i < b.Size; ++i)
+  {
+    FinishPoint(b, i);
+  }
+}
+
+} // namespace detail
+} // namespace vtkNormalMapping
+
+#endif
