@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cfloat>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -219,6 +220,23 @@ void ForEachTriangle(const IdT* offsets,
   {
     const IdT* pts = conn + offsets[c];
     const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+    if (n == 3 && !strip)
+    {
+      // The common case, without the loops below.
+      tri[0] = pts[0];
+      tri[1] = pts[1];
+      tri[2] = pts[2];
+      const std::uint64_t largest = std::max({ static_cast<std::uint64_t>(tri[0]),
+        static_cast<std::uint64_t>(tri[1]),
+        static_cast<std::uint64_t>(tri[2]) });
+      if (largest >= static_cast<std::uint64_t>(numPoints))
+      {
+        bad = true; // a negative id is huge as unsigned
+        continue;
+      }
+      f(c, 0, static_cast<const vtkIdType*>(tri));
+      continue;
+    }
     bool inRange = true;
     for (vtkIdType k = 0; k < n; ++k)
     {
@@ -444,6 +462,16 @@ bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degen
   const auto flush = [&](int block)
   {
     FrameBatch& b = batches[block];
+    // The sums this batch adds to, fetched while its frames are computed.
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int i = 0; i < b.Size; ++i)
+      {
+#if defined(__GNUC__) || defined(__clang__)
+        __builtin_prefetch(acc + b.Ids[k][i], 1);
+#endif
+      }
+    }
     ComputeBatch(input, b, vector);
     for (int i = 0; i < b.Size; ++i)
     {
