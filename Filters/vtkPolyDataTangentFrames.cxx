@@ -34,10 +34,13 @@
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
 
 /*
- * How the work is organized (all in double):
+ * How the work is organized (sums and point frames in double; triangle frames in double, or
+ * in float for float points and texture coordinates):
  *
  * 1. Scatter: every triangle of every polygon and strip is visited in cell order; its frame is
- *    computed (vtkNormalMapping::ComputeTriangleFrame) and added, weighted, to an accumulator of
+ *    computed (in batches, vtkTangentFrameBatch.h, which gives the bits of
+ *    vtkNormalMapping::ComputeTriangleFrame or of its float form) and added, weighted, to an
+ *    accumulator of
  *    each of its corners, one sum per handedness. The points are split into as many contiguous
  *    blocks as there are threads; each thread scans all cells but only computes and adds for
  *    triangles with a corner in its block. Every point therefore sums its triangles in cell
