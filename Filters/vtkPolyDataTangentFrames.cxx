@@ -270,24 +270,29 @@ void ForEachTriangle(const IdT* offsets,
   }
 }
 
-/// Per-point sums of one execution, one per handedness (index 0: +1, 1: -1).
-struct alignas(32) Accumulator
+/// Per point: the weighted sum of its triangles' tangents (x, y, z) and of their weights, both
+/// handednesses together. A point whose corners all have one handedness (nearly every point)
+/// needs nothing else; a point with both (on a mirror seam) gets SideSums in a second scan.
+struct alignas(32) PointSum
 {
-  /// Per handedness: the weighted tangent sum (x, y, z) and the sum of the weights.
-  double Sum[2][4];
+  double Sum[4];
+
+  glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
+};
+
+/// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
+/// Both bits: a conflict (a mirror seam); none: a fallback point, marked FallbackMark in Finish.
+constexpr unsigned char PlusSide = 1, MinusSide = 2, BothSides = 3, FallbackMark = 4;
+
+/// The sums of one point per handedness (index 0: +1, 1: -1), for points with both.
+struct SideSums
+{
+  double Sum[2][4] = { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } };
 
   glm::dvec3 Tangent(int side) const
   {
     return glm::dvec3(this->Sum[side][0], this->Sum[side][1], this->Sum[side][2]);
   }
-  void SetTangent(int side, const glm::dvec3& t)
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      this->Sum[side][d] = t[d];
-    }
-  }
-  double& Weight(int side) { return this->Sum[side][3]; }
   double Weight(int side) const { return this->Sum[side][3]; }
 };
 
@@ -440,11 +445,24 @@ bool ComputePointNormals(Execution& ex,
   return done;
 }
 
-/// The weighted per-handedness sums of every point (the scatter). The triangles a block meets
-/// are collected in batches whose frames are computed together (vtkTangentFrameBatch.h), then
-/// added in cell order.
-template<typename View>
-bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degenerate)
+/**
+ * Visits the triangles, in cell order per block (Execution::OrderedScan), that `accept(block,
+ * tri)` takes; computes their frames in batches (vtkTangentFrameBatch.h) and calls add(block,
+ * point, side, weight, tangent) for each owned corner of each triangle with a frame, in cell
+ * order. Counts the triangles without a frame (each once, by the block owning its first
+ * corner). The frames, and so the sums, are the same bits in every scan. `sums`, when given, is
+ * the per-point array add() writes: its entries for a batch are prefetched while the batch's
+ * frames are computed.
+ */
+template<typename View, typename Accept, typename Add>
+bool ScanFrames(Execution& ex,
+  const View& view,
+  double p0,
+  double p1,
+  const Accept& accept,
+  const Add& add,
+  const PointSum* sums,
+  vtkIdType& degenerate)
 {
   using namespace vtkNormalMapping::detail;
   std::vector<vtkIdType> degenerateByBlock(ex.Blocks, 0);
@@ -465,23 +483,20 @@ bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degen
   const auto flush = [&](int block)
   {
     FrameBatch& b = batches[block];
-    // The sums this batch adds to, fetched while its frames are computed.
-    for (int k = 0; k < 3; ++k)
+#if defined(__GNUC__) || defined(__clang__)
+    for (int k = 0; sums && k < 3; ++k)
     {
       for (int i = 0; i < b.Size; ++i)
       {
-#if defined(__GNUC__) || defined(__clang__)
-        __builtin_prefetch(acc + b.Ids[k][i], 1);
-#endif
+        __builtin_prefetch(sums + b.Ids[k][i], 1);
       }
     }
+#endif
     ComputeBatch(input, b, vector);
     for (int i = 0; i < b.Size; ++i)
     {
-      const int orientation = b.Orientation[i];
-      if (orientation == 0)
+      if (b.Orientation[i] == 0)
       {
-        // Counted once: by the block that owns the first corner.
         degenerateByBlock[block] += ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
         continue;
       }
@@ -491,22 +506,20 @@ bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degen
         const vtkIdType p = b.Ids[k][i];
         if (ex.Owns(block, p))
         {
-          const int side = b.Side[k][i];
-          const double w = b.Weight[k][i];
-          double* sum = acc[p].Sum[side];
-          sum[0] += w * t[0];
-          sum[1] += w * t[1];
-          sum[2] += w * t[2];
-          sum[3] += w;
+          add(block, p, b.Side[k][i], b.Weight[k][i], t);
         }
       }
     }
     b.Size = 0;
   };
-  bool done = ex.OrderedScan(0.05,
-    0.75,
+  bool done = ex.OrderedScan(p0,
+    p1,
     [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
     {
+      if (!accept(block, tri))
+      {
+        return;
+      }
       FrameBatch& b = batches[block];
       b.Add(tri);
       if (b.Full())
@@ -533,6 +546,77 @@ bool Scatter(Execution& ex, const View& view, Accumulator* acc, vtkIdType& degen
     degenerate += d;
   }
   return done;
+}
+
+/// The weighted sums of every point and the handednesses of its corners (the scatter).
+template<typename View>
+bool Scatter(Execution& ex,
+  const View& view,
+  PointSum* sums,
+  unsigned char* sides,
+  vtkIdType& degenerate)
+{
+  return ScanFrames(
+    ex,
+    view,
+    0.05,
+    0.70,
+    [](int, const vtkIdType*) { return true; },
+    [&](int, vtkIdType p, int side, double w, const double* t)
+    {
+      double* sum = sums[p].Sum;
+      sum[0] += w * t[0];
+      sum[1] += w * t[1];
+      sum[2] += w * t[2];
+      sum[3] += w;
+      sides[p] |= w > 0.0 ? (side == 0 ? PlusSide : MinusSide) : 0;
+    },
+    sums,
+    degenerate);
+}
+
+/// The per-handedness sums of the points with both handednesses (sorted ids), by a second scan
+/// of the triangles that hold one of them.
+template<typename View>
+bool SumSides(Execution& ex,
+  const View& view,
+  const unsigned char* sides,
+  const std::vector<vtkIdType>& conflicted,
+  std::vector<SideSums>& out)
+{
+  out.assign(conflicted.size(), SideSums());
+  vtkIdType ignored = 0;
+  return ScanFrames(
+    ex,
+    view,
+    0.70,
+    0.75,
+    [&](int block, const vtkIdType* tri)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        if (sides[tri[k]] == BothSides && ex.Owns(block, tri[k]))
+        {
+          return true;
+        }
+      }
+      return false;
+    },
+    [&](int, vtkIdType p, int side, double w, const double* t)
+    {
+      if (sides[p] != BothSides)
+      {
+        return;
+      }
+      const auto it = std::lower_bound(conflicted.begin(), conflicted.end(), p);
+      double* sum = out[it - conflicted.begin()].Sum[side];
+      sum[0] += w * t[0];
+      sum[1] += w * t[1];
+      sum[2] += w * t[2];
+      sum[3] += w;
+    },
+    nullptr,
+    ignored);
 }
 
 /// A point on a mirror seam: its normal, and the frame of its mirrored (-1) side, which goes
@@ -568,31 +652,27 @@ inline void WriteFrame(vtkIdType p,
   }
 }
 
-/// Marks a point as a fallback point in its accumulator (no weight can be negative).
-constexpr double FallbackMark = -1.0;
-
-/// Per point: choose or split the handedness, Gram-Schmidt, write. Fallback points are marked
-/// in their accumulators and listed.
+/// Per point with one handedness: Gram-Schmidt, write. Points with none are marked FallbackMark
+/// and listed; points with both are listed for FinishConflicts.
 template<typename View, typename OutT>
 void Finish(Execution& ex,
   const View& view,
-  Accumulator* acc,
+  const PointSum* sums,
+  unsigned char* sides,
   OutT* tOut,
   OutT* sOut,
   OutT* bOut,
-  vtkIdType& conflicts,
-  std::vector<SplitPoint>& splits,
+  std::vector<vtkIdType>& conflicted,
   std::vector<vtkIdType>& fallbacks)
 {
-  vtkSMPThreadLocal<vtkIdType> conflictCount;
-  vtkSMPThreadLocal<std::vector<SplitPoint>> splitLists;
+  vtkSMPThreadLocal<std::vector<vtkIdType>> conflictLists;
   vtkSMPThreadLocal<std::vector<vtkIdType>> fallbackLists;
   vtkSMPTools::For(0,
     ex.NumberOfPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
-      // Points with one handedness and ordinary vectors are finished in batches (see
-      // vtkTangentFrameBatch.h); the others one at a time below, with the same kernels.
+      // Points with ordinary vectors are finished in batches (see vtkTangentFrameBatch.h); the
+      // others one at a time below, with the same kernels.
       vtkNormalMapping::detail::FinishBatch batch;
       const auto flush = [&]()
       {
@@ -610,55 +690,73 @@ void Finish(Execution& ex,
       };
       for (vtkIdType p = begin; p < end; ++p)
       {
-        Accumulator& a = acc[p];
-        if (!(a.Weight(0) > 0.0) && !(a.Weight(1) > 0.0))
+        const unsigned char has = sides[p];
+        if (has == 0)
         {
-          a.Weight(0) = FallbackMark;
+          sides[p] = FallbackMark;
           fallbackLists.Local().push_back(p);
           continue;
         }
-        const auto* raw = view.Normals + 3 * p;
-        if (!(a.Weight(0) > 0.0 && a.Weight(1) > 0.0))
+        if (has == BothSides)
         {
-          const int s = a.Weight(1) > a.Weight(0) ? 1 : 0;
-          const glm::dvec3 sum = a.Tangent(s);
-          if (batch.Takes(raw[0], raw[1], raw[2]) && batch.Takes(sum.x, sum.y, sum.z))
+          conflictLists.Local().push_back(p);
+          continue;
+        }
+        const double sign = has == PlusSide ? 1.0 : -1.0;
+        const auto* raw = view.Normals + 3 * p;
+        const double* sum = sums[p].Sum;
+        if (batch.Takes(raw[0], raw[1], raw[2]) && batch.Takes(sum[0], sum[1], sum[2]))
+        {
+          const int i = batch.Size++;
+          batch.Ids[i] = p;
+          batch.Sign[i] = sign;
+          for (int d = 0; d < 3; ++d)
           {
-            const int i = batch.Size++;
-            batch.Ids[i] = p;
-            batch.Sign[i] = s == 0 ? 1.0 : -1.0;
-            for (int d = 0; d < 3; ++d)
-            {
-              batch.N[d][i] = raw[d];
-              batch.T[d][i] = sum[d];
-            }
-            if (batch.Size == batch.Capacity)
-            {
-              flush();
-            }
-            continue;
+            batch.N[d][i] = raw[d];
+            batch.T[d][i] = sum[d];
           }
+          if (batch.Size == batch.Capacity)
+          {
+            flush();
+          }
+          continue;
         }
         const glm::dvec3 n = view.Normal(p);
-        int side = a.Weight(1) > a.Weight(0) ? 1 : 0;
-        if (a.Weight(0) > 0.0 && a.Weight(1) > 0.0)
-        {
-          ++conflictCount.Local();
-          if (ex.Splitting)
-          {
-            side = 0;
-            const glm::dvec3 mirrored = PerpendicularTangent(n, a.Tangent(1));
-            splitLists.Local().push_back({ p, n, mirrored });
-          }
-        }
-        const glm::dvec3 t = PerpendicularTangent(n, a.Tangent(side));
-        WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
+        WriteFrame(p, n, PerpendicularTangent(n, sums[p].Tangent()), sign, tOut, sOut, bOut);
       }
       flush();
     });
-  conflicts = Total(conflictCount);
-  splits = Merge(splitLists, [](const SplitPoint& a, const SplitPoint& b) { return a.Id < b.Id; });
+  conflicted = Merge(conflictLists, std::less<vtkIdType>());
   fallbacks = Merge(fallbackLists, std::less<vtkIdType>());
+}
+
+/// Points with both handednesses: the frame of the side with the larger weight, or with
+/// splitting the +1 frame here and the -1 frame listed for the point's copy.
+template<typename View, typename OutT>
+void FinishConflicts(const Execution& ex,
+  const View& view,
+  const std::vector<vtkIdType>& conflicted,
+  const std::vector<SideSums>& sums,
+  OutT* tOut,
+  OutT* sOut,
+  OutT* bOut,
+  std::vector<SplitPoint>& splits)
+{
+  splits.clear();
+  for (size_t i = 0; i < conflicted.size(); ++i)
+  {
+    const vtkIdType p = conflicted[i];
+    const SideSums& a = sums[i];
+    const glm::dvec3 n = view.Normal(p);
+    int side = a.Weight(1) > a.Weight(0) ? 1 : 0;
+    if (ex.Splitting)
+    {
+      side = 0;
+      splits.push_back({ p, n, PerpendicularTangent(n, a.Tangent(1)) });
+    }
+    const glm::dvec3 t = PerpendicularTangent(n, a.Tangent(side));
+    WriteFrame(p, n, t, side == 0 ? 1.0 : -1.0, tOut, sOut, bOut);
+  }
 }
 
 /// Points with no usable triangle: the mean of their non-fallback neighbours' tangents on their
@@ -666,18 +764,18 @@ void Finish(Execution& ex,
 template<typename View, typename OutT>
 bool FillFallbacks(Execution& ex,
   const View& view,
-  Accumulator* acc,
+  PointSum* acc,
+  const unsigned char* sides,
   const std::vector<vtkIdType>& fallbacks,
   OutT* tOut,
   OutT* sOut,
   OutT* bOut)
 {
-  // Reuse the fallback points' (empty) accumulators: Tangent(0) sums the neighbours' tangents,
-  // Weight(1) their signs. Only fallback points are written; others are only read.
+  // Reuse the fallback points' sums: Sum[0..2] adds the neighbours' tangents, Sum[3] their signs.
+  // Only fallback points are written; others are only read.
   for (vtkIdType p : fallbacks)
   {
-    acc[p].SetTangent(0, glm::dvec3(0.0));
-    acc[p].Weight(1) = 0.0;
+    std::fill(acc[p].Sum, acc[p].Sum + 4, 0.0);
   }
   const bool done = ex.OrderedScan(0.80,
     0.85,
@@ -686,18 +784,21 @@ bool FillFallbacks(Execution& ex,
       for (int k = 0; k < 3; ++k)
       {
         const vtkIdType p = tri[k];
-        if (!ex.Owns(block, p) || acc[p].Weight(0) != FallbackMark)
+        if (!ex.Owns(block, p) || sides[p] != FallbackMark)
         {
           continue;
         }
         for (int m = 0; m < 3; ++m)
         {
           const vtkIdType q = tri[m];
-          if (q != p && acc[q].Weight(0) != FallbackMark)
+          if (q != p && sides[q] != FallbackMark)
           {
-            acc[p].SetTangent(
-              0, acc[p].Tangent(0) + glm::dvec3(tOut[3 * q], tOut[3 * q + 1], tOut[3 * q + 2]));
-            acc[p].Weight(1) += sOut[q];
+            double* sum = acc[p].Sum;
+            for (int d = 0; d < 3; ++d)
+            {
+              sum[d] += tOut[3 * q + d];
+            }
+            sum[3] += sOut[q];
           }
         }
       }
@@ -710,8 +811,8 @@ bool FillFallbacks(Execution& ex,
       {
         const vtkIdType p = fallbacks[i];
         const glm::dvec3 n = view.Normals ? view.Normal(p) : glm::dvec3(0.0);
-        const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent(0));
-        WriteFrame(p, n, t, acc[p].Weight(1) < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
+        const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent());
+        WriteFrame(p, n, t, acc[p].Sum[3] < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
       }
     });
   return done;
@@ -1240,14 +1341,14 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   }
 
   // 2. Scatter and finish.
-  std::unique_ptr<Accumulator[]> acc(new Accumulator[numPoints]);
+  std::unique_ptr<PointSum[]> acc(new PointSum[numPoints]);
+  std::unique_ptr<unsigned char[]> sides(new unsigned char[numPoints]);
   vtkSMPTools::For(0,
     numPoints,
     [&](vtkIdType b, vtkIdType e)
     {
-      std::fill(acc.get() + b,
-        acc.get() + e,
-        Accumulator{ { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } } });
+      std::fill(acc.get() + b, acc.get() + e, PointSum{ { 0.0, 0.0, 0.0, 0.0 } });
+      std::fill(sides.get() + b, sides.get() + e, static_cast<unsigned char>(0));
     });
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {
@@ -1278,26 +1379,31 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     fallbackNormals,
     [&](const auto& view)
     {
-      done = Scatter(ex, view, acc.get(), self->NumberOfDegenerateTriangles);
+      done = Scatter(ex, view, acc.get(), sides.get(), self->NumberOfDegenerateTriangles);
       if (!done || ex.BadIds)
       {
         return;
       }
-      Finish(ex,
-        view,
-        acc.get(),
-        tOut(),
-        sOut(),
-        bOut(),
-        self->NumberOfHandednessConflicts,
-        splits,
-        fallbacks);
+      std::vector<vtkIdType> conflicted;
+      Finish(ex, view, acc.get(), sides.get(), tOut(), sOut(), bOut(), conflicted, fallbacks);
+      self->NumberOfHandednessConflicts = static_cast<vtkIdType>(conflicted.size());
+      if (!conflicted.empty())
+      {
+        std::vector<SideSums> sideSums;
+        done = SumSides(ex, view, sides.get(), conflicted, sideSums);
+        if (!done)
+        {
+          return;
+        }
+        FinishConflicts(ex, view, conflicted, sideSums, tOut(), sOut(), bOut(), splits);
+      }
       if (!fallbacks.empty())
       {
-        done = FillFallbacks(ex, view, acc.get(), fallbacks, tOut(), sOut(), bOut());
+        done = FillFallbacks(ex, view, acc.get(), sides.get(), fallbacks, tOut(), sOut(), bOut());
       }
     });
   acc.reset();
+  sides.reset();
   if (!done)
   {
     return aborted();
