@@ -270,18 +270,14 @@ void ForEachTriangle(const IdT* offsets,
   }
 }
 
-/// Per point: the weighted sum of its triangles' tangents (x, y, z) and of their weights, both
-/// handednesses together. A point whose corners all have one handedness (nearly every point)
-/// needs nothing else; a point with both (on a mirror seam) gets SideSums in a second scan.
-struct alignas(32) PointSum
-{
-  double Sum[4];
-
-  glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
-};
+/// Per point (vtkTangentFrameBatch.h): one weighted tangent sum and weight for both handednesses.
+/// A point whose corners all have one handedness (nearly every point) needs nothing else; a point
+/// with both (on a mirror seam) gets SideSums in a second scan.
+using vtkNormalMapping::detail::PointSum;
 
 /// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
 /// Both bits: a conflict (a mirror seam); none: a fallback point, marked FallbackMark in Finish.
+/// (The bits are set in vtkNormalMapping::detail::ScatterTarget::Mark.)
 constexpr unsigned char PlusSide = 1, MinusSide = 2, BothSides = 3, FallbackMark = 4;
 
 /// The sums of one point per handedness (index 0: +1, 1: -1), for points with both.
@@ -447,20 +443,19 @@ bool ComputePointNormals(Execution& ex,
 
 /**
  * Visits the triangles, in cell order per block (Execution::OrderedScan), that `accept(block,
- * tri)` takes; computes their frames in batches (vtkTangentFrameBatch.h) and calls add(block,
- * point, side, weight, tangent) for each owned corner of each triangle with a frame, in cell
- * order. Counts the triangles without a frame (each once, by the block owning its first
- * corner). The frames, and so the sums, are the same bits in every scan. `sums`, when given, is
- * the per-point array add() writes: its entries for a batch are prefetched while the batch's
- * frames are computed.
+ * tri)` takes; computes their frames in batches (vtkTangentFrameBatch.h) and hands each computed
+ * batch to consume(block, batch), in cell order. Counts the triangles without a frame (each
+ * once, by the block owning its first corner). The frames, and so the sums, are the same bits in
+ * every scan. `sums`, when given, is the per-point array consume() adds to: its entries for a
+ * batch are prefetched while the batch's frames are computed.
  */
-template<typename View, typename Accept, typename Add>
+template<typename View, typename Accept, typename Consume>
 bool ScanFrames(Execution& ex,
   const View& view,
   double p0,
   double p1,
   const Accept& accept,
-  const Add& add,
+  const Consume& consume,
   const PointSum* sums,
   vtkIdType& degenerate)
 {
@@ -495,21 +490,9 @@ bool ScanFrames(Execution& ex,
     ComputeBatch(input, b, vector);
     for (int i = 0; i < b.Size; ++i)
     {
-      if (b.Orientation[i] == 0)
-      {
-        degenerateByBlock[block] += ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
-        continue;
-      }
-      const double t[3] = { b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i] };
-      for (int k = 0; k < 3; ++k)
-      {
-        const vtkIdType p = b.Ids[k][i];
-        if (ex.Owns(block, p))
-        {
-          add(block, p, b.Side[k][i], b.Weight[k][i], t);
-        }
-      }
+      degenerateByBlock[block] += b.Orientation[i] == 0 && ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
     }
+    consume(block, b);
     b.Size = 0;
   };
   bool done = ex.OrderedScan(p0,
@@ -562,14 +545,12 @@ bool Scatter(Execution& ex,
     0.05,
     0.70,
     [](int, const vtkIdType*) { return true; },
-    [&](int, vtkIdType p, int side, double w, const double* t)
+    [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
-      double* sum = sums[p].Sum;
-      sum[0] += w * t[0];
-      sum[1] += w * t[1];
-      sum[2] += w * t[2];
-      sum[3] += w;
-      sides[p] |= w > 0.0 ? (side == 0 ? PlusSide : MinusSide) : 0;
+      const vtkNormalMapping::detail::ScatterTarget target{
+        sums, sides, ex.Blocks, block, Execution::OwnerShift
+      };
+      vtkNormalMapping::detail::ScatterBatch(b, target, ex.Vector);
     },
     sums,
     degenerate);
@@ -602,18 +583,26 @@ bool SumSides(Execution& ex,
       }
       return false;
     },
-    [&](int, vtkIdType p, int side, double w, const double* t)
+    [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
-      if (sides[p] != BothSides)
+      for (int i = 0; i < b.Size; ++i)
       {
-        return;
+        for (int k = 0; k < 3 && b.Orientation[i] != 0; ++k)
+        {
+          const vtkIdType p = b.Ids[k][i];
+          if (sides[p] != BothSides || !ex.Owns(block, p))
+          {
+            continue;
+          }
+          const auto it = std::lower_bound(conflicted.begin(), conflicted.end(), p);
+          double* sum = out[it - conflicted.begin()].Sum[b.Side[k][i]];
+          const double w = b.Weight[k][i];
+          sum[0] += w * b.Tangent[0][i];
+          sum[1] += w * b.Tangent[1][i];
+          sum[2] += w * b.Tangent[2][i];
+          sum[3] += w;
+        }
       }
-      const auto it = std::lower_bound(conflicted.begin(), conflicted.end(), p);
-      double* sum = out[it - conflicted.begin()].Sum[side];
-      sum[0] += w * t[0];
-      sum[1] += w * t[1];
-      sum[2] += w * t[2];
-      sum[3] += w;
     },
     nullptr,
     ignored);

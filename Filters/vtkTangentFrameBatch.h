@@ -302,6 +302,64 @@ inline void FinishPoint(FinishBatch& b, int i)
   }
 }
 
+/// Per point: the weighted sum of its triangles' tangents (x, y, z) and of their weights, both
+/// handednesses together (vtkPolyDataTangentFrames' scatter).
+struct alignas(32) PointSum
+{
+  double Sum[4];
+
+  glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
+};
+
+/**
+ * Where a batch's corners are added: per point, a PointSum and a byte of the handednesses seen (bit
+ * 0: +1, bit 1: -1, for positive weights). Only corners whose point `Block` owns are added: points
+ * are dealt to `Blocks` (a power of two) in runs of 2^OwnerShift ids, round robin.
+ */
+struct ScatterTarget
+{
+  PointSum* Sums;
+  unsigned char* Sides;
+  int Blocks;
+  int Block;
+  int OwnerShift;
+
+  bool Owns(vtkIdType p) const
+  {
+    return static_cast<int>((p >> this->OwnerShift) & (this->Blocks - 1)) == this->Block;
+  }
+  void Mark(vtkIdType p, int side, double w) const
+  {
+    this->Sides[p] |= w > 0.0 ? (side == 0 ? 1 : 2) : 0;
+  }
+};
+
+/// Adds the corners of the batch's triangles that have a frame, in order.
+inline void ScatterBatchScalar(const FrameBatch& b, const ScatterTarget& s)
+{
+  for (int i = 0; i < b.Size; ++i)
+  {
+    if (b.Orientation[i] == 0)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType p = b.Ids[k][i];
+      if (s.Owns(p))
+      {
+        const double w = b.Weight[k][i];
+        double* sum = s.Sums[p].Sum;
+        sum[0] += w * b.Tangent[0][i];
+        sum[1] += w * b.Tangent[1][i];
+        sum[2] += w * b.Tangent[2][i];
+        sum[3] += w;
+        s.Mark(p, b.Side[k][i], w);
+      }
+    }
+  }
+}
+
 #ifdef VTK_TANGENT_BATCH_AVX2
 namespace avx2
 {
@@ -769,6 +827,32 @@ VTK_TANGENT_BATCH_AVX2_FN inline void FinishFour(FinishBatch& b, int i)
     b.OK[i + l] = ((okLanes >> l) & 1) != 0;
   }
 }
+
+/// ScatterBatchScalar with one 4-lane addition per corner (the same operations: lane 3 adds
+/// w * 1).
+VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s)
+{
+  for (int i = 0; i < b.Size; ++i)
+  {
+    if (b.Orientation[i] == 0)
+    {
+      continue;
+    }
+    const V t = _mm256_setr_pd(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i], 1.0);
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType p = b.Ids[k][i];
+      if (s.Owns(p))
+      {
+        const double w = b.Weight[k][i];
+        double* sum = s.Sums[p].Sum;
+        _mm256_store_pd(
+          sum, _mm256_add_pd(_mm256_load_pd(sum), _mm256_mul_pd(_mm256_set1_pd(w), t)));
+        s.Mark(p, b.Side[k][i], w);
+      }
+    }
+  }
+}
 } // namespace avx2
 #endif
 
@@ -832,6 +916,21 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, bool vector)
                                                                                               : 0;
     }
   }
+}
+
+/// Adds the batch to `s` (see ScatterTarget); `vector`: use AVX2. Sums must be 32-byte aligned.
+inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s, bool vector)
+{
+#ifdef VTK_TANGENT_BATCH_AVX2
+  if (vector)
+  {
+    avx2::ScatterBatch(b, s);
+    return;
+  }
+#else
+  (void)vector;
+#endif
+  ScatterBatchScalar(b, s);
 }
 
 /// Whether this build and CPU have the AVX2 code (ComputeBatch and ComputeFinish may use it).
