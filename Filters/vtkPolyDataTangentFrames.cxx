@@ -473,7 +473,8 @@ bool ScanFrames(Execution& ex,
     ex.Tolerance,
     ex.Method == TangentMethod::AngleWeighted
       ? BatchWeights::Angle
-      : (ex.Method == TangentMethod::AreaWeighted ? BatchWeights::Area : BatchWeights::One) };
+      : (ex.Method == TangentMethod::AreaWeighted ? BatchWeights::Area : BatchWeights::One),
+    ex.NumberOfPoints };
   const bool vector = ex.Vector;
   const auto flush = [&](int block)
   {

@@ -78,6 +78,9 @@ struct BatchInput
   const double* Fallback;
   DegeneracyTolerance Tolerance;
   BatchWeights Weights;
+  /// The number of points (the vector code reads 16 bytes at a point's xyz except at the last
+  /// one); 0 when not known: then every point is read element by element.
+  vtkIdType NumberOfPoints = 0;
 
   /// The handedness a triangle with winding normal (x, y, z) and the given orientation gives at
   /// point p: CornerSign without normalizing the point's normal (only the sign of the dot
@@ -639,6 +642,49 @@ VTK_TANGENT_BATCH_AVX2_INLINE inline F finite(F x)
 {
   return _mm256_cmp_ps(abs(x), _mm256_set1_ps(FLT_MAX), _CMP_LE_OQ);
 }
+/// x, y and z of 8 points of an xyz array of `count` points: one 16-byte load per point (its x, y,
+/// z and the next point's x; the array's last point element by element), then transposed.
+VTK_TANGENT_BATCH_AVX2_INLINE inline void GatherXYZ(const float* xyz,
+  const vtkIdType* ids,
+  vtkIdType count,
+  F out[3])
+{
+  __m128 r[8];
+  for (int l = 0; l < 8; ++l)
+  {
+    const float* q = xyz + 3 * ids[l];
+    r[l] = ids[l] + 1 < count ? _mm_loadu_ps(q) : _mm_setr_ps(q[0], q[1], q[2], 0.0f);
+  }
+  _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
+  _MM_TRANSPOSE4_PS(r[4], r[5], r[6], r[7]);
+  for (int d = 0; d < 3; ++d)
+  {
+    out[d] = _mm256_insertf128_ps(_mm256_castps128_ps256(r[d]), r[4 + d], 1);
+  }
+}
+
+/// u and v of 8 points of a two-component array: one 8-byte load per point, then shuffled.
+VTK_TANGENT_BATCH_AVX2_INLINE inline void GatherUV(const float* uv,
+  const vtkIdType* ids,
+  F& u,
+  F& v)
+{
+  __m128 pairs[4]; // (u, v) of points 2h and 2h + 1
+  for (int h = 0; h < 4; ++h)
+  {
+    const __m128 low =
+      _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h]));
+    pairs[h] = _mm_loadh_pi(low, reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h + 1]));
+  }
+  const int evens = _MM_SHUFFLE(2, 0, 2, 0), odds = _MM_SHUFFLE(3, 1, 3, 1);
+  u = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], evens)),
+    _mm_shuffle_ps(pairs[2], pairs[3], evens),
+    1);
+  v = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], odds)),
+    _mm_shuffle_ps(pairs[2], pairs[3], odds),
+    1);
+}
+
 /// Eight floats widened to double and stored at out[0..8).
 VTK_TANGENT_BATCH_AVX2_INLINE inline void store(double* out, F x)
 {
@@ -662,17 +708,16 @@ VTK_TANGENT_BATCH_AVX2_FN void ComputeEight(const BatchInput<float, float, NT>& 
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
-    const float* x[8];
+    GatherXYZ(in.Points, ids, in.NumberOfPoints, p[k]);
+    if (nc == 2)
+    {
+      GatherUV(in.UVs, ids, uv[k][0], uv[k][1]);
+      continue;
+    }
     const float* u[8];
     for (int l = 0; l < 8; ++l)
     {
-      x[l] = in.Points + 3 * ids[l];
       u[l] = in.UVs + nc * ids[l];
-    }
-    for (int d = 0; d < 3; ++d)
-    {
-      p[k][d] =
-        _mm256_setr_ps(x[0][d], x[1][d], x[2][d], x[3][d], x[4][d], x[5][d], x[6][d], x[7][d]);
     }
     uv[k][0] =
       _mm256_setr_ps(u[0][0], u[1][0], u[2][0], u[3][0], u[4][0], u[5][0], u[6][0], u[7][0]);
