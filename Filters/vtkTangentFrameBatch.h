@@ -131,7 +131,7 @@ void ComputeBatchTriangle(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i
  * The single-precision path, for float positions and texture coordinates: the same frame as
  * ComputeTriangleFrame computed in float, eight triangles per AVX2 instruction. Its results
  * differ from the double-precision kernel by float rounding (measured in
- * TestTangentFrameKernels: under 1e-5 degrees on random triangles), which is of the order of the
+ * TestTangentFrameKernels: 1.1e-5 degrees at most on random triangles), of the order of the
  * rounding of the float coordinates themselves. Triangles whose largest edge or UV-delta
  * component is outside [2^-20, 2^20] (where products of four of them could leave float's normal
  * range), non-finite or zero go to the double-precision kernel instead.
