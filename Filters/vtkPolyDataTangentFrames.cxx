@@ -275,10 +275,9 @@ void ForEachTriangle(const IdT* offsets,
 /// with both (on a mirror seam) gets SideSums in a second scan.
 using vtkNormalMapping::detail::PointSum;
 
-/// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
-/// Both bits: a conflict (a mirror seam); none: a fallback point, marked FallbackMark in Finish.
-/// (The bits are set in vtkNormalMapping::detail::ScatterTarget::Mark.)
-constexpr unsigned char PlusSide = 1, MinusSide = 2, BothSides = 3, FallbackMark = 4;
+using vtkNormalMapping::detail::BothSides;
+using vtkNormalMapping::detail::FallbackMark;
+using vtkNormalMapping::detail::PlusSide;
 
 /// The sums of one point per handedness (index 0: +1, 1: -1), for points with both.
 struct SideSums

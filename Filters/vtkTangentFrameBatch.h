@@ -314,6 +314,11 @@ struct alignas(32) PointSum
   glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
 };
 
+/// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
+/// Both bits: a conflict (a mirror seam); none: a fallback point, which vtkPolyDataTangentFrames
+/// then marks FallbackMark.
+constexpr unsigned char PlusSide = 1, MinusSide = 2, BothSides = 3, FallbackMark = 4;
+
 /**
  * Where a batch's corners are added: per point, a PointSum and a byte of the handednesses seen (bit
  * 0: +1, bit 1: -1, for positive weights). Only corners whose point `Block` owns are added: points
@@ -333,7 +338,7 @@ struct ScatterTarget
   }
   void Mark(vtkIdType p, int side, double w) const
   {
-    this->Sides[p] |= w > 0.0 ? (side == 0 ? 1 : 2) : 0;
+    this->Sides[p] |= w > 0.0 ? (side == 0 ? PlusSide : MinusSide) : 0;
   }
 };
 
