@@ -20,7 +20,8 @@ set(_nm_sources
 set(_nm_private_headers
   Filters/vtkNormalMappingPrivate.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
-  Filters/vtkTangentFrameBatch.h)
+  Filters/vtkTangentFrameBatch.h
+  Filters/vtkTangentFrameLanes.h)
 
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_nowrap_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")

@@ -302,7 +302,9 @@ struct Execution
   DegeneracyTolerance Tolerance;
   int Blocks = 1;
   bool BadIds = false;
-  /// Triangle frames four at a time with AVX2 (see vtkTangentFrameBatch.h).
+  /// The batch code for triangle frames (see vtkTangentFrameBatch.h); Vector: AVX2 or better,
+  /// for the scatter and the point frames.
+  vtkNormalMapping::detail::BatchCode Code = vtkNormalMapping::detail::BatchCode::Scalar;
   bool Vector = false;
 
   /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin: runs
@@ -474,7 +476,7 @@ bool ScanFrames(Execution& ex,
       ? BatchWeights::Angle
       : (ex.Method == TangentMethod::AreaWeighted ? BatchWeights::Area : BatchWeights::One),
     ex.NumberOfPoints };
-  const bool vector = ex.Vector;
+  const auto code = ex.Code;
   const auto flush = [&](int block)
   {
     FrameBatch& b = batches[block];
@@ -487,7 +489,7 @@ bool ScanFrames(Execution& ex,
       }
     }
 #endif
-    ComputeBatch(input, b, vector);
+    ComputeBatch(input, b, code);
     for (int i = 0; i < b.Size; ++i)
     {
       degenerateByBlock[block] += b.Orientation[i] == 0 && ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
@@ -1190,8 +1192,17 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.Filter = self;
   ex.Method = static_cast<TangentMethod>(self->Method);
   ex.Splitting = self->Splitting;
-  ex.Vector =
-    vtkNormalMapping::mikk::CurrentInstructionSet() >= vtkNormalMapping::mikk::InstructionSet::AVX2;
+  {
+    // The instruction set the tests may limit, and this build's code for it.
+    namespace mikk = vtkNormalMapping::mikk;
+    using vtkNormalMapping::detail::BatchCode;
+    const mikk::InstructionSet isa = mikk::CurrentInstructionSet();
+    ex.Code = std::min(vtkNormalMapping::detail::BestBatchCode(),
+      isa == mikk::InstructionSet::AVX512
+        ? BatchCode::AVX512
+        : (isa == mikk::InstructionSet::AVX2 ? BatchCode::AVX2 : BatchCode::Scalar));
+    ex.Vector = ex.Code >= BatchCode::AVX2;
+  }
   ex.NumberOfPoints = input->GetNumberOfPoints();
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();

@@ -3,11 +3,13 @@
  * @brief  ComputeTriangleFrame and the corner weights for many triangles at once (private).
  *
  * vtkPolyDataTangentFrames collects the triangles of a stretch of cells in a FrameBatch and
- * computes their frames here: four triangles per AVX2 instruction when the CPU has it (chosen
- * at run time, see mikk::LimitInstructionSet), one at a time otherwise. Both give the bits of
- * the scalar kernels in vtkTangentFrameKernels.h: the vector code performs the same IEEE
- * operations in the same order lane by lane, with no fused multiply-add (target "avx2" does not
- * enable FMA), and hands every triangle whose edges or UV deltas are outside the safe range of
+ * computes their frames here, with the best code the CPU has (chosen at run time, see BatchCode
+ * and mikk::LimitInstructionSet): float input 16 triangles per AVX-512 instruction or 8 per AVX2
+ * one, double input 4 per AVX2 instruction, or one at a time. All give the bits of the scalar
+ * kernels: the vector code (written once for every width in vtkTangentFrameLanes.h) performs the
+ * same IEEE operations in the same order lane by lane with no fused multiply-add (target "avx2"
+ * has none; the AVX-512 arithmetic has its rounding in the instruction, which is never fused),
+ * and hands every triangle whose edges or UV deltas are outside the safe range of
  * RescaleExponent (or non-finite, or zero) to the scalar kernel.
  */
 #ifndef vtkTangentFrameBatch_h
@@ -16,6 +18,9 @@
 #include "vtkTangentFrameKernels.h"
 #include "vtkType.h"
 
+#include <climits>
+#include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -23,6 +28,7 @@
 #define VTK_TANGENT_BATCH_AVX2 1
 #define VTK_TANGENT_BATCH_AVX2_FN __attribute__((target("avx2")))
 #define VTK_TANGENT_BATCH_AVX2_INLINE __attribute__((target("avx2"), always_inline))
+#define VTK_TANGENT_BATCH_NOINLINE __attribute__((noinline))
 #endif
 
 #if defined(__clang__)
@@ -577,274 +583,6 @@ VTK_TANGENT_BATCH_AVX2_FN void ComputeFour(const BatchInput<PT, UT, NT>& in, Fra
   }
 }
 
-/// BatchInput::Side for the corners of triangles [i, i + 4), with the same operations.
-template<typename PT, typename UT, typename NT>
-VTK_TANGENT_BATCH_AVX2_FN void SidesOfFour(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
-{
-  V n[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    n[d] = _mm256_loadu_pd(b.Normal[d] + i);
-  }
-  for (int k = 0; k < 3; ++k)
-  {
-    const vtkIdType* ids = b.Ids[k] + i;
-    const NT* m0 = in.Normals + 3 * ids[0];
-    const NT* m1 = in.Normals + 3 * ids[1];
-    const NT* m2 = in.Normals + 3 * ids[2];
-    const NT* m3 = in.Normals + 3 * ids[3];
-    V m[3];
-    for (int d = 0; d < 3; ++d)
-    {
-      m[d] = _mm256_setr_pd(m0[d], m1[d], m2[d], m3[d]);
-    }
-    const V dot = Dot(m, n);
-    const int negative = _mm256_movemask_pd(_mm256_cmp_pd(dot, _mm256_setzero_pd(), _CMP_LT_OQ));
-    const V sure =
-      _mm256_and_pd(_mm256_cmp_pd(dot, _mm256_setzero_pd(), _CMP_NEQ_OQ), IsFinite(dot));
-    const int unsure = in.Fallback ? (~_mm256_movemask_pd(sure) & 0xf) : 0;
-    for (int l = 0; l < 4; ++l)
-    {
-      const int orientation = b.Orientation[i + l];
-      int side = ((negative >> l) & 1) ? -orientation : orientation;
-      if ((unsure >> l) & 1)
-      {
-        side =
-          in.Side(b.Normal[0][i + l], b.Normal[1][i + l], b.Normal[2][i + l], orientation, ids[l]);
-      }
-      b.Side[k][i + l] = side < 0 ? 1 : 0;
-    }
-  }
-}
-
-/// Eight-lane float helpers of ComputeEight.
-namespace floats
-{
-using F = __m256;
-VTK_TANGENT_BATCH_AVX2_INLINE inline F abs(F x)
-{
-  return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x);
-}
-VTK_TANGENT_BATCH_AVX2_INLINE inline F gt(F x, F y)
-{
-  return _mm256_cmp_ps(x, y, _CMP_GT_OQ);
-}
-/// mask ? x : y
-VTK_TANGENT_BATCH_AVX2_INLINE inline F select(F mask, F x, F y)
-{
-  return _mm256_blendv_ps(y, x, mask);
-}
-VTK_TANGENT_BATCH_AVX2_INLINE inline F dot(const F* x, const F* y)
-{
-  return _mm256_add_ps(
-    _mm256_add_ps(_mm256_mul_ps(x[0], y[0]), _mm256_mul_ps(x[1], y[1])), _mm256_mul_ps(x[2], y[2]));
-}
-VTK_TANGENT_BATCH_AVX2_INLINE inline F dot2(const F* x)
-{
-  return _mm256_add_ps(_mm256_mul_ps(x[0], x[0]), _mm256_mul_ps(x[1], x[1]));
-}
-VTK_TANGENT_BATCH_AVX2_INLINE inline F finite(F x)
-{
-  return _mm256_cmp_ps(abs(x), _mm256_set1_ps(FLT_MAX), _CMP_LE_OQ);
-}
-/// x, y and z of 8 points of an xyz array of `count` points: one 16-byte load per point (its x, y,
-/// z and the next point's x; the array's last point element by element), then transposed.
-VTK_TANGENT_BATCH_AVX2_INLINE inline void GatherXYZ(const float* xyz,
-  const vtkIdType* ids,
-  vtkIdType count,
-  F out[3])
-{
-  __m128 r[8];
-  for (int l = 0; l < 8; ++l)
-  {
-    const float* q = xyz + 3 * ids[l];
-    r[l] = ids[l] + 1 < count ? _mm_loadu_ps(q) : _mm_setr_ps(q[0], q[1], q[2], 0.0f);
-  }
-  _MM_TRANSPOSE4_PS(r[0], r[1], r[2], r[3]);
-  _MM_TRANSPOSE4_PS(r[4], r[5], r[6], r[7]);
-  for (int d = 0; d < 3; ++d)
-  {
-    out[d] = _mm256_insertf128_ps(_mm256_castps128_ps256(r[d]), r[4 + d], 1);
-  }
-}
-
-/// u and v of 8 points of a two-component array: one 8-byte load per point, then shuffled.
-VTK_TANGENT_BATCH_AVX2_INLINE inline void GatherUV(const float* uv,
-  const vtkIdType* ids,
-  F& u,
-  F& v)
-{
-  __m128 pairs[4]; // (u, v) of points 2h and 2h + 1
-  for (int h = 0; h < 4; ++h)
-  {
-    const __m128 low =
-      _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h]));
-    pairs[h] = _mm_loadh_pi(low, reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h + 1]));
-  }
-  const int evens = _MM_SHUFFLE(2, 0, 2, 0), odds = _MM_SHUFFLE(3, 1, 3, 1);
-  u = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], evens)),
-    _mm_shuffle_ps(pairs[2], pairs[3], evens),
-    1);
-  v = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], odds)),
-    _mm_shuffle_ps(pairs[2], pairs[3], odds),
-    1);
-}
-
-/// Eight floats widened to double and stored at out[0..8).
-VTK_TANGENT_BATCH_AVX2_INLINE inline void store(double* out, F x)
-{
-  _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(x)));
-  _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
-}
-} // namespace floats
-
-/// single::ComputeTriangle for triangles [i, i + 8), lane by lane with the same operations.
-template<typename NT>
-VTK_TANGENT_BATCH_AVX2_FN void ComputeEight(const BatchInput<float, float, NT>& in,
-  FrameBatch& b,
-  int i)
-{
-  using namespace floats;
-  const F zero = _mm256_setzero_ps();
-  const F signBit = _mm256_set1_ps(-0.0f);
-
-  F p[3][3], uv[3][2];
-  const int nc = in.UVComponents;
-  for (int k = 0; k < 3; ++k)
-  {
-    const vtkIdType* ids = b.Ids[k] + i;
-    GatherXYZ(in.Points, ids, in.NumberOfPoints, p[k]);
-    if (nc == 2)
-    {
-      GatherUV(in.UVs, ids, uv[k][0], uv[k][1]);
-      continue;
-    }
-    const float* u[8];
-    for (int l = 0; l < 8; ++l)
-    {
-      u[l] = in.UVs + nc * ids[l];
-    }
-    uv[k][0] =
-      _mm256_setr_ps(u[0][0], u[1][0], u[2][0], u[3][0], u[4][0], u[5][0], u[6][0], u[7][0]);
-    uv[k][1] = nc > 1
-      ? _mm256_setr_ps(u[0][1], u[1][1], u[2][1], u[3][1], u[4][1], u[5][1], u[6][1], u[7][1])
-      : zero;
-  }
-  F e1[3], e2[3], e3[3], d1[2], d2[2], d3[2];
-  F maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
-  for (int d = 0; d < 3; ++d)
-  {
-    e1[d] = _mm256_sub_ps(p[1][d], p[0][d]);
-    e2[d] = _mm256_sub_ps(p[2][d], p[0][d]);
-    e3[d] = _mm256_sub_ps(e2[d], e1[d]);
-    maxE = _mm256_max_ps(maxE, _mm256_max_ps(abs(e1[d]), abs(e2[d])));
-    sumE = _mm256_add_ps(sumE, _mm256_add_ps(e1[d], e2[d]));
-  }
-  for (int d = 0; d < 2; ++d)
-  {
-    d1[d] = _mm256_sub_ps(uv[1][d], uv[0][d]);
-    d2[d] = _mm256_sub_ps(uv[2][d], uv[0][d]);
-    d3[d] = _mm256_sub_ps(d2[d], d1[d]);
-    maxUV = _mm256_max_ps(maxUV, _mm256_max_ps(abs(d1[d]), abs(d2[d])));
-    sumUV = _mm256_add_ps(sumUV, _mm256_add_ps(d1[d], d2[d]));
-  }
-  const F lo = _mm256_set1_ps(single::SafeMinimum), hi = _mm256_set1_ps(single::SafeMaximum);
-  F vector = _mm256_and_ps(finite(sumE), finite(sumUV));
-  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxE, lo, _CMP_GE_OQ));
-  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxE, hi, _CMP_LE_OQ));
-  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxUV, lo, _CMP_GE_OQ));
-  vector = _mm256_and_ps(vector, _mm256_cmp_ps(maxUV, hi, _CMP_LE_OQ));
-  const int vectorLanes = _mm256_movemask_ps(vector);
-
-  F n[3];
-  n[0] = _mm256_sub_ps(_mm256_mul_ps(e1[1], e2[2]), _mm256_mul_ps(e2[1], e1[2]));
-  n[1] = _mm256_sub_ps(_mm256_mul_ps(e1[2], e2[0]), _mm256_mul_ps(e2[2], e1[0]));
-  n[2] = _mm256_sub_ps(_mm256_mul_ps(e1[0], e2[1]), _mm256_mul_ps(e2[0], e1[1]));
-  const F twiceArea2 = dot(n, n);
-  const F longest2 = _mm256_max_ps(_mm256_max_ps(dot(e1, e1), dot(e2, e2)), dot(e3, e3));
-  const float tolP = static_cast<float>(in.Tolerance.Position);
-  const F posOK =
-    gt(twiceArea2, _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(tolP * tolP), longest2), longest2));
-  const F det = _mm256_sub_ps(_mm256_mul_ps(d1[0], d2[1]), _mm256_mul_ps(d2[0], d1[1]));
-  const F longestUV2 = _mm256_max_ps(_mm256_max_ps(dot2(d1), dot2(d2)), dot2(d3));
-  const F uvOK =
-    gt(abs(det), _mm256_mul_ps(_mm256_set1_ps(static_cast<float>(in.Tolerance.UV)), longestUV2));
-  const F flip = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_LT_OQ), signBit);
-  F t[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    t[d] =
-      _mm256_xor_ps(_mm256_sub_ps(_mm256_mul_ps(d2[1], e1[d]), _mm256_mul_ps(d1[1], e2[d])), flip);
-  }
-  const F tLength = _mm256_sqrt_ps(dot(t, t));
-  const F tOK = _mm256_and_ps(gt(tLength, zero), finite(tLength));
-  const F inverse = _mm256_div_ps(_mm256_set1_ps(1.0f), tLength);
-  const int okLanes = _mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(posOK, uvOK), tOK));
-  const int detPositive = _mm256_movemask_ps(gt(det, zero));
-
-  F w[3];
-  if (in.Weights == BatchWeights::Angle)
-  {
-    const F sine = _mm256_sqrt_ps(twiceArea2);
-    const F c[3] = { dot(e1, e2), _mm256_xor_ps(dot(e1, e3), signBit), dot(e2, e3) };
-    F steep[3], den[3], z[3], z2[3], base[3], series[3];
-    for (int j = 0; j < 3; ++j)
-    {
-      const F ac = abs(c[j]);
-      steep[j] = gt(sine, ac);
-      const F num = select(steep[j], ac, sine);
-      den[j] = select(steep[j], sine, ac);
-      const F reduce = gt(num, _mm256_mul_ps(_mm256_set1_ps(single::TanPiOver8), den[j]));
-      z[j] = _mm256_div_ps(select(reduce, _mm256_sub_ps(num, den[j]), num),
-        select(reduce, _mm256_add_ps(num, den[j]), den[j]));
-      base[j] = _mm256_and_ps(reduce, _mm256_set1_ps(single::PiOver4));
-      z2[j] = _mm256_mul_ps(z[j], z[j]);
-      series[j] = _mm256_set1_ps(single::AtanSeries[8]);
-    }
-    for (int k = 7; k >= 0; --k)
-    {
-      const F ck = _mm256_set1_ps(single::AtanSeries[k]);
-      for (int j = 0; j < 3; ++j)
-      {
-        series[j] = _mm256_add_ps(ck, _mm256_mul_ps(z2[j], series[j]));
-      }
-    }
-    for (int j = 0; j < 3; ++j)
-    {
-      F a = _mm256_add_ps(base[j], _mm256_mul_ps(z[j], series[j]));
-      a = select(steep[j], _mm256_sub_ps(_mm256_set1_ps(single::PiOver2), a), a);
-      a = select(
-        _mm256_cmp_ps(c[j], zero, _CMP_LT_OQ), _mm256_sub_ps(_mm256_set1_ps(single::Pi), a), a);
-      w[j] = _mm256_and_ps(gt(den[j], zero), a);
-    }
-  }
-  else if (in.Weights == BatchWeights::Area)
-  {
-    w[0] = w[1] = w[2] = _mm256_mul_ps(_mm256_set1_ps(0.5f), _mm256_sqrt_ps(twiceArea2));
-  }
-  else
-  {
-    w[0] = w[1] = w[2] = _mm256_set1_ps(1.0f);
-  }
-  for (int d = 0; d < 3; ++d)
-  {
-    store(b.Tangent[d] + i, _mm256_mul_ps(t[d], inverse));
-    store(b.Normal[d] + i, n[d]);
-    store(b.Weight[d] + i, w[d]);
-  }
-  for (int l = 0; l < 8; ++l)
-  {
-    if ((vectorLanes >> l) & 1)
-    {
-      b.Orientation[i + l] = ((okLanes >> l) & 1) ? (((detPositive >> l) & 1) ? 1 : -1) : 0;
-    }
-    else
-    {
-      ComputeBatchTriangle(in, b, i + l);
-    }
-  }
-}
-
 /// FinishPoint for points [i, i + 4), lane by lane with the same operations.
 VTK_TANGENT_BATCH_AVX2_FN inline void FinishFour(FinishBatch& b, int i)
 {
@@ -904,32 +642,387 @@ VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const Sc
   }
 }
 } // namespace avx2
+
+/// ComputeBatchTriangle and BatchInput::Side for the lane kernels' special lanes, never inlined
+/// into them: compiled for the baseline instruction set, they cannot be fused into FMA however the
+/// kernels' instruction set is.
+template<typename PT, typename UT, typename NT>
+VTK_TANGENT_BATCH_NOINLINE void ScalarTriangle(const BatchInput<PT, UT, NT>& in,
+  FrameBatch& b,
+  int i)
+{
+  ComputeBatchTriangle(in, b, i);
+}
+template<typename PT, typename UT, typename NT>
+VTK_TANGENT_BATCH_NOINLINE int ScalarSide(const BatchInput<PT, UT, NT>& in,
+  const FrameBatch& b,
+  int i,
+  vtkIdType p)
+{
+  return in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], b.Orientation[i], p);
+}
+
+/// Byte l of the result is bit l of x (l < 8), as 0 or 1: a bit mask to bytes without a loop.
+inline std::uint64_t SpreadBits(unsigned x)
+{
+  // x in every byte, byte l keeps bit l; adding 0x7f carries exactly the non-zero bytes into
+  // their bit 7, and no byte into the next.
+  const std::uint64_t y =
+    (static_cast<std::uint64_t>(x & 0xffu) * 0x0101010101010101ULL) & 0x8040201008040201ULL;
+  return ((y + 0x7f7f7f7f7f7f7f7fULL) >> 7) & 0x0101010101010101ULL;
+}
+
+/// The index of the lowest set bit of x != 0.
+inline int LowestBit(unsigned x)
+{
+  return __builtin_ctz(x);
+}
+
+/// Bit l of `negative` / `zero`: byte l of x[0..count) is negative / zero (count <= 8).
+inline void ClassifyBytes(const signed char* x, int count, unsigned& negative, unsigned& zero)
+{
+  std::uint64_t word = 0;
+  std::memcpy(&word, x, static_cast<size_t>(count));
+  const __m128i v = _mm_cvtsi64_si128(static_cast<long long>(word));
+  const unsigned all = (1u << count) - 1;
+  negative = static_cast<unsigned>(_mm_movemask_epi8(v)) & all;
+  zero = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))) & all;
+}
+
+// The lane kernels (vtkTangentFrameLanes.h), once per instruction set. Everything between a
+// push and its pop is compiled for that instruction set, the templates' instances included.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+namespace avx2
+{
+/// Eight float lanes (four double lanes for the sides). AVX2 has no FMA, so nothing is fused.
+struct Lanes
+{
+  static constexpr int Count = 8;
+  static constexpr int DoubleCount = 4;
+  using F = __m256;
+  using M = __m256; // all ones in the lanes where true
+  using D = __m256d;
+
+  static F Zero() { return _mm256_setzero_ps(); }
+  static F Set(float x) { return _mm256_set1_ps(x); }
+  static F Load(const float* x) { return _mm256_loadu_ps(x); }
+  static F Add(F x, F y) { return _mm256_add_ps(x, y); }
+  static F Sub(F x, F y) { return _mm256_sub_ps(x, y); }
+  static F Mul(F x, F y) { return _mm256_mul_ps(x, y); }
+  static F Div(F x, F y) { return _mm256_div_ps(x, y); }
+  static F Sqrt(F x) { return _mm256_sqrt_ps(x); }
+  static F Max(F x, F y) { return _mm256_max_ps(x, y); }
+  static F Abs(F x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x); }
+  static F Negate(F x) { return _mm256_xor_ps(x, _mm256_set1_ps(-0.0f)); }
+  static F NegateWhere(M m, F x)
+  {
+    return _mm256_xor_ps(x, _mm256_and_ps(m, _mm256_set1_ps(-0.0f)));
+  }
+  static M Gt(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_GT_OQ); }
+  static M Ge(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_GE_OQ); }
+  static M Le(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_LE_OQ); }
+  static M Lt(F x, F y) { return _mm256_cmp_ps(x, y, _CMP_LT_OQ); }
+  static M Finite(F x) { return Le(Abs(x), _mm256_set1_ps(FLT_MAX)); }
+  static M And(M x, M y) { return _mm256_and_ps(x, y); }
+  /// m ? x : y
+  static F Select(M m, F x, F y) { return _mm256_blendv_ps(y, x, m); }
+  /// m ? x : 0
+  static F Keep(M m, F x) { return _mm256_and_ps(m, x); }
+  static unsigned Bits(M m) { return static_cast<unsigned>(_mm256_movemask_ps(m)); }
+
+  /// x, y, z and the next float of point `id` of an array of `count` xyz points: one 16-byte load,
+  /// or element by element at the array's last point (count 0: always).
+  static __m128 LoadPoint(const float* xyz, vtkIdType id, vtkIdType count)
+  {
+    const float* q = xyz + 3 * id;
+    return id + 1 < count ? _mm_loadu_ps(q) : _mm_setr_ps(q[0], q[1], q[2], 0.0f);
+  }
+  /// Rows r[0..4) transposed; the first three columns out.
+  static void Transpose(const __m128 r[4], __m128 out[3])
+  {
+    const __m128 low01 = _mm_unpacklo_ps(r[0], r[1]), low23 = _mm_unpacklo_ps(r[2], r[3]);
+    const __m128 high01 = _mm_unpackhi_ps(r[0], r[1]), high23 = _mm_unpackhi_ps(r[2], r[3]);
+    out[0] = _mm_movelh_ps(low01, low23);
+    out[1] = _mm_movehl_ps(low23, low01);
+    out[2] = _mm_movelh_ps(high01, high23);
+  }
+  /// The x, y and z of four points.
+  static void GatherFour(const float* xyz, const vtkIdType* ids, vtkIdType count, __m128 out[3])
+  {
+    const __m128 r[4] = { LoadPoint(xyz, ids[0], count),
+      LoadPoint(xyz, ids[1], count),
+      LoadPoint(xyz, ids[2], count),
+      LoadPoint(xyz, ids[3], count) };
+    Transpose(r, out);
+  }
+  static void GatherXYZ(const float* xyz, const vtkIdType* ids, vtkIdType count, F out[3])
+  {
+    __m128 low[3], high[3];
+    GatherFour(xyz, ids, count, low);
+    GatherFour(xyz, ids + 4, count, high);
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] = _mm256_insertf128_ps(_mm256_castps128_ps256(low[d]), high[d], 1);
+    }
+  }
+  /// u and v of 8 points of a two-component array: one 8-byte load per point.
+  static void GatherUV(const float* uv, const vtkIdType* ids, F& u, F& v)
+  {
+    __m128 pairs[4]; // (u, v) of points 2h and 2h + 1
+    for (int h = 0; h < 4; ++h)
+    {
+      const __m128 low =
+        _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h]));
+      pairs[h] = _mm_loadh_pi(low, reinterpret_cast<const __m64*>(uv + 2 * ids[2 * h + 1]));
+    }
+    const int evens = _MM_SHUFFLE(2, 0, 2, 0), odds = _MM_SHUFFLE(3, 1, 3, 1);
+    u = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], evens)),
+      _mm_shuffle_ps(pairs[2], pairs[3], evens),
+      1);
+    v = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_shuffle_ps(pairs[0], pairs[1], odds)),
+      _mm_shuffle_ps(pairs[2], pairs[3], odds),
+      1);
+  }
+  /// The lanes widened to double, stored at out[0..8).
+  static void StoreWide(double* out, F x)
+  {
+    _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(x)));
+    _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
+  }
+
+  static D LoadDouble(const double* x) { return _mm256_loadu_pd(x); }
+  static D AddDouble(D x, D y) { return _mm256_add_pd(x, y); }
+  static D MulDouble(D x, D y) { return _mm256_mul_pd(x, y); }
+  static unsigned NegativeBits(D x)
+  {
+    return static_cast<unsigned>(
+      _mm256_movemask_pd(_mm256_cmp_pd(x, _mm256_setzero_pd(), _CMP_LT_OQ)));
+  }
+  static unsigned NonZeroFiniteBits(D x)
+  {
+    const D a = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    const D ok = _mm256_and_pd(_mm256_cmp_pd(a, _mm256_setzero_pd(), _CMP_GT_OQ),
+      _mm256_cmp_pd(a, _mm256_set1_pd(DBL_MAX), _CMP_LE_OQ));
+    return static_cast<unsigned>(_mm256_movemask_pd(ok));
+  }
+  /// The normals of 4 points, in double.
+  static void GatherNormals(const float* n, const vtkIdType* ids, vtkIdType count, D out[3])
+  {
+    __m128 f[3];
+    GatherFour(n, ids, count, f);
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] = _mm256_cvtps_pd(f[d]);
+    }
+  }
+  static void GatherNormals(const double* n, const vtkIdType* ids, vtkIdType, D out[3])
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] =
+        _mm256_setr_pd(n[3 * ids[0] + d], n[3 * ids[1] + d], n[3 * ids[2] + d], n[3 * ids[3] + d]);
+    }
+  }
+};
+#include "vtkTangentFrameLanes.h"
+} // namespace avx2
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
 #endif
 
-/// Frames, weights and sides of every triangle in the batch. `vector`: use AVX2 (the caller
-/// checked that the CPU has it). Float positions and texture coordinates take the
-/// single-precision path, anything else the double-precision kernel.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2,avx512f"))), apply_to = function)
+#else
+#pragma GCC push_options
+#pragma GCC target("avx2,avx512f")
+#endif
+namespace avx512
+{
+/// Sixteen float lanes (eight double lanes for the sides). AVX-512F has fused multiply-add and
+/// compilers may fuse a separate multiply and add into it, so the arithmetic uses the forms with
+/// the rounding in the instruction (round to nearest, as everywhere), which are never fused.
+struct Lanes
+{
+  static constexpr int Count = 16;
+  static constexpr int DoubleCount = 8;
+  static constexpr int Nearest = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+  using F = __m512;
+  using M = __mmask16;
+  using D = __m512d;
+
+  static F Zero() { return _mm512_setzero_ps(); }
+  static F Set(float x) { return _mm512_set1_ps(x); }
+  static F Load(const float* x) { return _mm512_loadu_ps(x); }
+  static F Add(F x, F y) { return _mm512_add_round_ps(x, y, Nearest); }
+  static F Sub(F x, F y) { return _mm512_sub_round_ps(x, y, Nearest); }
+  static F Mul(F x, F y) { return _mm512_mul_round_ps(x, y, Nearest); }
+  static F Div(F x, F y) { return _mm512_div_round_ps(x, y, Nearest); }
+  static F Sqrt(F x) { return _mm512_sqrt_round_ps(x, Nearest); }
+  static F Max(F x, F y) { return _mm512_max_ps(x, y); }
+  static F Bitwise(__m512i x) { return _mm512_castsi512_ps(x); }
+  static F Abs(F x)
+  {
+    return Bitwise(_mm512_and_si512(_mm512_castps_si512(x), _mm512_set1_epi32(0x7fffffff)));
+  }
+  static F Negate(F x)
+  {
+    return Bitwise(_mm512_xor_si512(_mm512_castps_si512(x), _mm512_set1_epi32(INT_MIN)));
+  }
+  static F NegateWhere(M m, F x)
+  {
+    const __m512i bits = _mm512_castps_si512(x);
+    return Bitwise(_mm512_mask_xor_epi32(bits, m, bits, _mm512_set1_epi32(INT_MIN)));
+  }
+  static M Gt(F x, F y) { return _mm512_cmp_ps_mask(x, y, _CMP_GT_OQ); }
+  static M Ge(F x, F y) { return _mm512_cmp_ps_mask(x, y, _CMP_GE_OQ); }
+  static M Le(F x, F y) { return _mm512_cmp_ps_mask(x, y, _CMP_LE_OQ); }
+  static M Lt(F x, F y) { return _mm512_cmp_ps_mask(x, y, _CMP_LT_OQ); }
+  static M Finite(F x) { return Le(Abs(x), _mm512_set1_ps(FLT_MAX)); }
+  static M And(M x, M y) { return static_cast<M>(x & y); }
+  /// m ? x : y
+  static F Select(M m, F x, F y) { return _mm512_mask_blend_ps(m, y, x); }
+  /// m ? x : 0
+  static F Keep(M m, F x) { return _mm512_maskz_mov_ps(m, x); }
+  static unsigned Bits(M m) { return m; }
+
+  /// The x, y and z of 16 points: point 4c + r goes to 128-bit lane c of row r, and a transpose
+  /// within the lanes puts point l in lane l.
+  static void GatherXYZ(const float* xyz, const vtkIdType* ids, vtkIdType count, F out[3])
+  {
+    F r[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      r[j] = _mm512_castps128_ps512(avx2::Lanes::LoadPoint(xyz, ids[j], count));
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[4 + j], count), 1);
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[8 + j], count), 2);
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[12 + j], count), 3);
+    }
+    const F low01 = _mm512_unpacklo_ps(r[0], r[1]), low23 = _mm512_unpacklo_ps(r[2], r[3]);
+    const F high01 = _mm512_unpackhi_ps(r[0], r[1]), high23 = _mm512_unpackhi_ps(r[2], r[3]);
+    out[0] = _mm512_shuffle_ps(low01, low23, _MM_SHUFFLE(1, 0, 1, 0));
+    out[1] = _mm512_shuffle_ps(low01, low23, _MM_SHUFFLE(3, 2, 3, 2));
+    out[2] = _mm512_shuffle_ps(high01, high23, _MM_SHUFFLE(1, 0, 1, 0));
+  }
+  /// u and v of 16 points of a two-component array: one 8-byte load per point, then the even and
+  /// odd floats of the 32 picked out.
+  static void GatherUV(const float* uv, const vtkIdType* ids, F& u, F& v)
+  {
+    const auto pair = [&](int l)
+    {
+      const __m128 low =
+        _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(uv + 2 * ids[l]));
+      return _mm_loadh_pi(low, reinterpret_cast<const __m64*>(uv + 2 * ids[l + 1]));
+    };
+    F halves[2];
+    for (int half = 0; half < 2; ++half)
+    {
+      const int l = 8 * half;
+      halves[half] = _mm512_castps128_ps512(pair(l));
+      halves[half] = _mm512_insertf32x4(halves[half], pair(l + 2), 1);
+      halves[half] = _mm512_insertf32x4(halves[half], pair(l + 4), 2);
+      halves[half] = _mm512_insertf32x4(halves[half], pair(l + 6), 3);
+    }
+    const __m512i evens =
+      _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    const __m512i odds = _mm512_add_epi32(evens, _mm512_set1_epi32(1));
+    u = _mm512_permutex2var_ps(halves[0], evens, halves[1]);
+    v = _mm512_permutex2var_ps(halves[0], odds, halves[1]);
+  }
+  static void StoreWide(double* out, F x)
+  {
+    const __m512d bits = _mm512_castps_pd(x);
+    _mm512_storeu_pd(out, _mm512_cvtps_pd(_mm512_castps512_ps256(x)));
+    _mm512_storeu_pd(out + 8, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(bits, 1))));
+  }
+
+  static D LoadDouble(const double* x) { return _mm512_loadu_pd(x); }
+  static D AddDouble(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
+  static D MulDouble(D x, D y) { return _mm512_mul_round_pd(x, y, Nearest); }
+  static unsigned NegativeBits(D x)
+  {
+    return _mm512_cmp_pd_mask(x, _mm512_setzero_pd(), _CMP_LT_OQ);
+  }
+  static unsigned NonZeroFiniteBits(D x)
+  {
+    const D a = _mm512_abs_pd(x);
+    return _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_GT_OQ) &
+      _mm512_cmp_pd_mask(a, _mm512_set1_pd(DBL_MAX), _CMP_LE_OQ);
+  }
+  /// The normals of 8 points, in double.
+  static void GatherNormals(const float* n, const vtkIdType* ids, vtkIdType count, D out[3])
+  {
+    __m256 f[3];
+    avx2::Lanes::GatherXYZ(n, ids, count, f);
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] = _mm512_cvtps_pd(f[d]);
+    }
+  }
+  static void GatherNormals(const double* n, const vtkIdType* ids, vtkIdType, D out[3])
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] = _mm512_setr_pd(n[3 * ids[0] + d],
+        n[3 * ids[1] + d],
+        n[3 * ids[2] + d],
+        n[3 * ids[3] + d],
+        n[3 * ids[4] + d],
+        n[3 * ids[5] + d],
+        n[3 * ids[6] + d],
+        n[3 * ids[7] + d]);
+    }
+  }
+};
+#include "vtkTangentFrameLanes.h"
+} // namespace avx512
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
+#pragma GCC pop_options
+#endif
+#endif
+
+/// The code ComputeBatch runs: the scalar kernels, or the lane kernels with AVX2 (8 float or 4
+/// double lanes) or AVX-512 (16 float or 8 double lanes). Every one gives the same bits.
+enum class BatchCode
+{
+  Scalar = 0,
+  AVX2 = 1,
+  AVX512 = 2,
+};
+
+/// Frames, weights and sides of every triangle in the batch, with `code` (the caller checked that
+/// the CPU has it). Float positions and texture coordinates take the single-precision path,
+/// anything else the double-precision kernel (AVX2 at most: four double lanes).
 template<typename PT, typename UT, typename NT>
-void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, bool vector)
+void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode code)
 {
   int i = 0;
   constexpr bool useFloat = std::is_same<PT, float>::value && std::is_same<UT, float>::value;
 #ifdef VTK_TANGENT_BATCH_AVX2
-  if (vector)
+  if constexpr (useFloat)
   {
-    if constexpr (useFloat)
+    for (; code == BatchCode::AVX512 && i + 16 <= b.Size; i += 16)
     {
-      for (; i + 8 <= b.Size; i += 8)
-      {
-        avx2::ComputeEight(in, b, i);
-      }
+      avx512::ComputeLanes(in, b, i);
     }
-    else
+    for (; code >= BatchCode::AVX2 && i + 8 <= b.Size; i += 8)
     {
-      for (; i + 4 <= b.Size; i += 4)
-      {
-        avx2::ComputeFour(in, b, i);
-      }
+      avx2::ComputeLanes(in, b, i);
+    }
+  }
+  else
+  {
+    for (; code >= BatchCode::AVX2 && i + 4 <= b.Size; i += 4)
+    {
+      avx2::ComputeFour(in, b, i);
     }
   }
 #endif
@@ -946,15 +1039,16 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, bool vector)
   }
   i = 0;
 #ifdef VTK_TANGENT_BATCH_AVX2
-  if (vector)
+  for (; code == BatchCode::AVX512 && i + 8 <= b.Size; i += 8)
   {
-    for (; i + 4 <= b.Size; i += 4)
-    {
-      avx2::SidesOfFour(in, b, i);
-    }
+    avx512::SidesLanes(in, b, i);
+  }
+  for (; code >= BatchCode::AVX2 && i + 4 <= b.Size; i += 4)
+  {
+    avx2::SidesLanes(in, b, i);
   }
 #else
-  (void)vector;
+  (void)code;
 #endif
   for (; i < b.Size; ++i)
   {
@@ -983,13 +1077,18 @@ inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s, bool vecto
   ScatterBatchScalar(b, s);
 }
 
-/// Whether this build and CPU have the AVX2 code (ComputeBatch and ComputeFinish may use it).
-inline bool HaveBatchVectorCode()
+/// The best code this build and CPU have for ComputeBatch (ComputeFinish and ScatterBatch use
+/// AVX2 whenever it is at least that).
+inline BatchCode BestBatchCode()
 {
 #ifdef VTK_TANGENT_BATCH_AVX2
-  return __builtin_cpu_supports("avx2") != 0;
+  if (__builtin_cpu_supports("avx2") == 0)
+  {
+    return BatchCode::Scalar;
+  }
+  return __builtin_cpu_supports("avx512f") != 0 ? BatchCode::AVX512 : BatchCode::AVX2;
 #else
-  return false;
+  return BatchCode::Scalar;
 #endif
 }
 

@@ -293,7 +293,7 @@ struct RandomBatch
   detail::FrameBatch Compute(const std::vector<T>& p,
     const std::vector<T>& u,
     const std::vector<T>& n,
-    bool vector) const
+    detail::BatchCode code) const
   {
     detail::FrameBatch b;
     for (vtkIdType t = 0; t < Triangles; ++t)
@@ -301,10 +301,17 @@ struct RandomBatch
       const vtkIdType tri[3] = { 3 * t, 3 * t + 1, 3 * t + 2 };
       b.Add(tri);
     }
-    const detail::BatchInput<T, T, T> in{
-      p.data(), u.data(), 2, n.data(), nullptr, DegeneracyTolerance(), detail::BatchWeights::Angle
-    };
-    detail::ComputeBatch(in, b, vector);
+    // With the number of points, so that the vector code's 16-byte loads run (all but the last
+    // point's).
+    const detail::BatchInput<T, T, T> in{ p.data(),
+      u.data(),
+      2,
+      n.data(),
+      nullptr,
+      DegeneracyTolerance(),
+      detail::BatchWeights::Angle,
+      static_cast<vtkIdType>(p.size() / 3) };
+    detail::ComputeBatch(in, b, code);
     return b;
   }
 };
@@ -334,21 +341,38 @@ bool SameBits(const detail::FrameBatch& a, const detail::FrameBatch& b)
 }
 }
 
+/// The batch codes this build and CPU can run, scalar first.
+std::vector<detail::BatchCode> BatchCodes()
+{
+  std::vector<detail::BatchCode> codes;
+  for (int c = 0; c <= static_cast<int>(detail::BestBatchCode()); ++c)
+  {
+    codes.push_back(static_cast<detail::BatchCode>(c));
+  }
+  return codes;
+}
+
 TEST(TangentFrameKernels, BatchVectorAndScalarGiveTheSameBits)
 {
-  // The AVX2 code performs the scalar kernels' IEEE operations lane by lane (float and double
-  // paths), so the whole batch must match bit for bit, special triangles included.
-  if (!vtkNormalMapping::detail::HaveBatchVectorCode())
+  // The AVX2 and AVX-512 code performs the scalar kernels' IEEE operations lane by lane (float and
+  // double paths), so the whole batch must match bit for bit, special triangles included.
+  const std::vector<detail::BatchCode> codes = BatchCodes();
+  if (codes.size() < 2)
   {
     GTEST_SKIP() << "this CPU (or build) has no AVX2: only the scalar batch code runs";
   }
   for (unsigned seed : { 1u, 2u, 3u })
   {
     const RandomBatch r(seed);
-    EXPECT_TRUE(SameBits(r.Compute(r.P, r.U, r.N, true), r.Compute(r.P, r.U, r.N, false)))
-      << "float, seed " << seed;
-    EXPECT_TRUE(SameBits(r.Compute(r.Pd, r.Ud, r.Nd, true), r.Compute(r.Pd, r.Ud, r.Nd, false)))
-      << "double, seed " << seed;
+    const detail::FrameBatch f = r.Compute(r.P, r.U, r.N, detail::BatchCode::Scalar);
+    const detail::FrameBatch d = r.Compute(r.Pd, r.Ud, r.Nd, detail::BatchCode::Scalar);
+    for (size_t c = 1; c < codes.size(); ++c)
+    {
+      EXPECT_TRUE(SameBits(r.Compute(r.P, r.U, r.N, codes[c]), f))
+        << "float, seed " << seed << ", code " << c;
+      EXPECT_TRUE(SameBits(r.Compute(r.Pd, r.Ud, r.Nd, codes[c]), d))
+        << "double, seed " << seed << ", code " << c;
+    }
   }
 }
 
@@ -361,10 +385,10 @@ TEST(TangentFrameKernels, SinglePrecisionPathAgreesWithTheDoubleKernel)
   for (unsigned seed : { 1u, 2u, 3u })
   {
     const RandomBatch r(seed);
-    for (bool vector : { false, true })
+    for (detail::BatchCode code : BatchCodes())
     {
-      const detail::FrameBatch f = r.Compute(r.P, r.U, r.N, vector);
-      const detail::FrameBatch d = r.Compute(r.Pd, r.Ud, r.Nd, false);
+      const detail::FrameBatch f = r.Compute(r.P, r.U, r.N, code);
+      const detail::FrameBatch d = r.Compute(r.Pd, r.Ud, r.Nd, detail::BatchCode::Scalar);
       int frames = 0;
       for (int i = 0; i < f.Size; ++i)
       {
@@ -391,7 +415,7 @@ TEST(TangentFrameKernels, SinglePrecisionPathAgreesWithTheDoubleKernel)
 
 TEST(TangentFrameKernels, FinishBatchVectorAndScalarGiveTheSameBits)
 {
-  if (!vtkNormalMapping::detail::HaveBatchVectorCode())
+  if (detail::BestBatchCode() == detail::BatchCode::Scalar)
   {
     GTEST_SKIP() << "this CPU (or build) has no AVX2: only the scalar batch code runs";
   }

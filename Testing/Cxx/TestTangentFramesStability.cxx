@@ -398,10 +398,11 @@ TEST(TangentFramesStability, MeshOfOnlyDegenerateTriangles)
 
 TEST(TangentFramesStability, SameBitsWithEveryInstructionSet)
 {
-  // The weighted methods compute triangle frames and point frames with AVX2 when the CPU has it
-  // and with scalar code otherwise; both perform the same IEEE operations, so the outputs must be
-  // identical bit for bit, with the single-precision path (float input), the double-precision
-  // path, and the special cases both hand to scalar code (invalid normals, huge scales).
+  // The weighted methods compute triangle frames and point frames with AVX-512 or AVX2 when the
+  // CPU has it and with scalar code otherwise; all perform the same IEEE operations, so the outputs
+  // must be identical bit for bit, with the single-precision path (float input), the
+  // double-precision path, and the special cases both hand to scalar code (invalid normals, huge
+  // scales).
   namespace mikk = vtkNormalMapping::mikk;
   struct RestoreDefault
   {
@@ -423,33 +424,43 @@ TEST(TangentFramesStability, SameBitsWithEveryInstructionSet)
   normals->SetTuple3(40, std::nan(""), 0.0, 1.0);
   broken->GetPoints()->SetPoint(77, std::nan(""), 0.0, 0.0);
   meshes.push_back(broken);
+  const mikk::InstructionSet sets[] = {
+    mikk::InstructionSet::Baseline, mikk::InstructionSet::AVX2, mikk::InstructionSet::AVX512
+  };
   for (size_t m = 0; m < meshes.size(); ++m)
   {
     for (int method : WeightedMethods)
     {
-      vtkSmartPointer<vtkPolyData> out[2];
-      for (int k = 0; k < 2; ++k)
+      // Every instruction set this CPU has, against the baseline.
+      std::vector<vtkSmartPointer<vtkPolyData>> out;
+      for (const mikk::InstructionSet isa : sets)
       {
-        mikk::LimitInstructionSet(
-          k == 0 ? mikk::InstructionSet::AVX2 : mikk::InstructionSet::Baseline);
+        if (mikk::LimitInstructionSet(isa) != isa)
+        {
+          continue;
+        }
         vtkNew<vtkPolyDataTangentFrames> filter;
         filter->SetInputData(meshes[m]);
         filter->SetMethod(method);
         filter->ComputeBitangentsOn();
         filter->Update();
-        out[k] = filter->GetOutput();
+        out.push_back(filter->GetOutput());
       }
-      SCOPED_TRACE("mesh " + std::to_string(m) + " method " + std::to_string(method));
-      ASSERT_EQ(out[0]->GetNumberOfPoints(), out[1]->GetNumberOfPoints());
-      for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+      for (size_t k = 1; k < out.size(); ++k)
       {
-        vtkDataArray* a = out[0]->GetPointData()->GetArray(name);
-        vtkDataArray* b = out[1]->GetPointData()->GetArray(name);
-        ASSERT_TRUE(a && b) << name;
-        ASSERT_EQ(a->GetDataType(), b->GetDataType());
-        const size_t bytes =
-          static_cast<size_t>(a->GetNumberOfValues()) * static_cast<size_t>(a->GetDataTypeSize());
-        EXPECT_EQ(0, std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes)) << name;
+        SCOPED_TRACE("mesh " + std::to_string(m) + " method " + std::to_string(method) +
+          " instruction set " + std::to_string(k));
+        ASSERT_EQ(out[k]->GetNumberOfPoints(), out[0]->GetNumberOfPoints());
+        for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+        {
+          vtkDataArray* a = out[k]->GetPointData()->GetArray(name);
+          vtkDataArray* b = out[0]->GetPointData()->GetArray(name);
+          ASSERT_TRUE(a && b) << name;
+          ASSERT_EQ(a->GetDataType(), b->GetDataType());
+          const size_t bytes =
+            static_cast<size_t>(a->GetNumberOfValues()) * static_cast<size_t>(a->GetDataTypeSize());
+          EXPECT_EQ(0, std::memcmp(a->GetVoidPointer(0), b->GetVoidPointer(0), bytes)) << name;
+        }
       }
     }
   }

@@ -1,0 +1,207 @@
+// The batch kernels written once for any SIMD width (private; no include guard on purpose).
+//
+// vtkTangentFrameBatch.h includes this file once per instruction set, inside a namespace that
+// defines `Lanes` (the vector type, its masks and operations) and under a pragma that compiles
+// everything here for that instruction set. Every kernel performs the IEEE operations of its
+// scalar counterpart in the same order, lane by lane: Lanes must round each operation on its
+// own (no fused multiply-add), and the scalar code for special lanes is called, never inlined
+// (ScalarTriangle, ScalarSide), so that every instruction set gives the same bits.
+
+/// (x0 y0 + x1 y1) + x2 y2, as single::Dot.
+inline Lanes::F LanesDot(const Lanes::F* x, const Lanes::F* y)
+{
+  return Lanes::Add(
+    Lanes::Add(Lanes::Mul(x[0], y[0]), Lanes::Mul(x[1], y[1])), Lanes::Mul(x[2], y[2]));
+}
+
+/// x0 x0 + x1 x1.
+inline Lanes::F LanesDot2(const Lanes::F* x)
+{
+  return Lanes::Add(Lanes::Mul(x[0], x[0]), Lanes::Mul(x[1], x[1]));
+}
+
+/// single::ComputeTriangle for triangles [i, i + Lanes::Count).
+template<typename NT>
+void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
+{
+  using L = Lanes;
+  using F = typename L::F;
+  using M = typename L::M;
+  constexpr int count = L::Count;
+  const F zero = L::Zero();
+
+  F p[3][3], uv[3][2];
+  const int nc = in.UVComponents;
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    L::GatherXYZ(in.Points, ids, in.NumberOfPoints, p[k]);
+    if (nc == 2)
+    {
+      L::GatherUV(in.UVs, ids, uv[k][0], uv[k][1]);
+      continue;
+    }
+    alignas(64) float u[2][count];
+    for (int l = 0; l < count; ++l)
+    {
+      const float* x = in.UVs + nc * ids[l];
+      u[0][l] = x[0];
+      u[1][l] = nc > 1 ? x[1] : 0.0f;
+    }
+    uv[k][0] = L::Load(u[0]);
+    uv[k][1] = L::Load(u[1]);
+  }
+  F e1[3], e2[3], e3[3], d1[2], d2[2], d3[2];
+  F maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
+  for (int d = 0; d < 3; ++d)
+  {
+    e1[d] = L::Sub(p[1][d], p[0][d]);
+    e2[d] = L::Sub(p[2][d], p[0][d]);
+    e3[d] = L::Sub(e2[d], e1[d]);
+    maxE = L::Max(maxE, L::Max(L::Abs(e1[d]), L::Abs(e2[d])));
+    sumE = L::Add(sumE, L::Add(e1[d], e2[d]));
+  }
+  for (int d = 0; d < 2; ++d)
+  {
+    d1[d] = L::Sub(uv[1][d], uv[0][d]);
+    d2[d] = L::Sub(uv[2][d], uv[0][d]);
+    d3[d] = L::Sub(d2[d], d1[d]);
+    maxUV = L::Max(maxUV, L::Max(L::Abs(d1[d]), L::Abs(d2[d])));
+    sumUV = L::Add(sumUV, L::Add(d1[d], d2[d]));
+  }
+  const F lo = L::Set(single::SafeMinimum), hi = L::Set(single::SafeMaximum);
+  M vector = L::And(L::Finite(sumE), L::Finite(sumUV));
+  vector = L::And(vector, L::And(L::Ge(maxE, lo), L::Le(maxE, hi)));
+  vector = L::And(vector, L::And(L::Ge(maxUV, lo), L::Le(maxUV, hi)));
+  const unsigned vectorLanes = L::Bits(vector);
+
+  F n[3];
+  n[0] = L::Sub(L::Mul(e1[1], e2[2]), L::Mul(e2[1], e1[2]));
+  n[1] = L::Sub(L::Mul(e1[2], e2[0]), L::Mul(e2[2], e1[0]));
+  n[2] = L::Sub(L::Mul(e1[0], e2[1]), L::Mul(e2[0], e1[1]));
+  const F twiceArea2 = LanesDot(n, n);
+  const F longest2 = L::Max(L::Max(LanesDot(e1, e1), LanesDot(e2, e2)), LanesDot(e3, e3));
+  const float tolP = static_cast<float>(in.Tolerance.Position);
+  const M posOK = L::Gt(twiceArea2, L::Mul(L::Mul(L::Set(tolP * tolP), longest2), longest2));
+  const F det = L::Sub(L::Mul(d1[0], d2[1]), L::Mul(d2[0], d1[1]));
+  const F longestUV2 = L::Max(L::Max(LanesDot2(d1), LanesDot2(d2)), LanesDot2(d3));
+  const M uvOK =
+    L::Gt(L::Abs(det), L::Mul(L::Set(static_cast<float>(in.Tolerance.UV)), longestUV2));
+  const M flip = L::Lt(det, zero);
+  F t[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    t[d] = L::NegateWhere(flip, L::Sub(L::Mul(d2[1], e1[d]), L::Mul(d1[1], e2[d])));
+  }
+  const F tLength = L::Sqrt(LanesDot(t, t));
+  const M tOK = L::And(L::Gt(tLength, zero), L::Finite(tLength));
+  const F inverse = L::Div(L::Set(1.0f), tLength);
+  const unsigned okLanes = L::Bits(L::And(L::And(posOK, uvOK), tOK));
+  const unsigned detPositive = L::Bits(L::Gt(det, zero));
+
+  F w[3];
+  if (in.Weights == BatchWeights::Angle)
+  {
+    // single::Angle for the three corners; the three series are evaluated together, since each
+    // is a chain of dependent operations.
+    const F sine = L::Sqrt(twiceArea2);
+    const F c[3] = { LanesDot(e1, e2), L::Negate(LanesDot(e1, e3)), LanesDot(e2, e3) };
+    M steep[3], positive[3];
+    F z[3], z2[3], base[3], series[3];
+    for (int j = 0; j < 3; ++j)
+    {
+      const F ac = L::Abs(c[j]);
+      steep[j] = L::Gt(sine, ac);
+      const F num = L::Select(steep[j], ac, sine);
+      const F den = L::Select(steep[j], sine, ac);
+      positive[j] = L::Gt(den, zero);
+      const M reduce = L::Gt(num, L::Mul(L::Set(single::TanPiOver8), den));
+      z[j] =
+        L::Div(L::Select(reduce, L::Sub(num, den), num), L::Select(reduce, L::Add(num, den), den));
+      base[j] = L::Keep(reduce, L::Set(single::PiOver4));
+      z2[j] = L::Mul(z[j], z[j]);
+      series[j] = L::Set(single::AtanSeries[8]);
+    }
+    for (int k = 7; k >= 0; --k)
+    {
+      const F ck = L::Set(single::AtanSeries[k]);
+      for (int j = 0; j < 3; ++j)
+      {
+        series[j] = L::Add(ck, L::Mul(z2[j], series[j]));
+      }
+    }
+    for (int j = 0; j < 3; ++j)
+    {
+      F a = L::Add(base[j], L::Mul(z[j], series[j]));
+      a = L::Select(steep[j], L::Sub(L::Set(single::PiOver2), a), a);
+      a = L::Select(L::Lt(c[j], zero), L::Sub(L::Set(single::Pi), a), a);
+      w[j] = L::Keep(positive[j], a);
+    }
+  }
+  else if (in.Weights == BatchWeights::Area)
+  {
+    w[0] = w[1] = w[2] = L::Mul(L::Set(0.5f), L::Sqrt(twiceArea2));
+  }
+  else
+  {
+    w[0] = w[1] = w[2] = L::Set(1.0f);
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    L::StoreWide(b.Tangent[d] + i, L::Mul(t[d], inverse));
+    L::StoreWide(b.Normal[d] + i, n[d]);
+    L::StoreWide(b.Weight[d] + i, w[d]);
+  }
+  // Orientation bytes: 1 or -1 where the frame is usable, else 0. Then the lanes the vector code
+  // does not take, with the scalar kernel.
+  for (int l = 0; l < count; l += 8)
+  {
+    const unsigned ok = okLanes >> l;
+    const std::uint64_t bytes =
+      SpreadBits(ok & (detPositive >> l)) | (SpreadBits(ok & ~(detPositive >> l)) * 0xff);
+    std::memcpy(b.Orientation + i + l, &bytes, 8);
+  }
+  for (unsigned rest = ~vectorLanes & ((1u << count) - 1); rest != 0; rest &= rest - 1)
+  {
+    ScalarTriangle(in, b, i + LowestBit(rest));
+  }
+}
+
+/// BatchInput::Side for the corners of triangles [i, i + Lanes::DoubleCount), in double.
+template<typename PT, typename UT, typename NT>
+void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
+{
+  using L = Lanes;
+  using D = typename L::D;
+  constexpr int count = L::DoubleCount;
+  constexpr unsigned all = (1u << count) - 1;
+  D n[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    n[d] = L::LoadDouble(b.Normal[d] + i);
+  }
+  unsigned negativeOrientation, zeroOrientation;
+  ClassifyBytes(b.Orientation + i, count, negativeOrientation, zeroOrientation);
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    D m[3];
+    L::GatherNormals(in.Normals, ids, in.NumberOfPoints, m);
+    const D dot = L::AddDouble(
+      L::AddDouble(L::MulDouble(m[0], n[0]), L::MulDouble(m[1], n[1])), L::MulDouble(m[2], n[2]));
+    const unsigned negative = L::NegativeBits(dot);
+    // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
+    unsigned minus = (negative ^ negativeOrientation) & ~zeroOrientation & all;
+    if (in.Fallback)
+    {
+      for (unsigned unsure = ~L::NonZeroFiniteBits(dot) & all; unsure != 0; unsure &= unsure - 1)
+      {
+        const int l = LowestBit(unsure);
+        const int side = ScalarSide(in, b, i + l, ids[l]);
+        minus = side < 0 ? (minus | (1u << l)) : (minus & ~(1u << l));
+      }
+    }
+    const std::uint64_t bytes = SpreadBits(minus);
+    std::memcpy(b.Side[k] + i, &bytes, count);
+  }
+}
