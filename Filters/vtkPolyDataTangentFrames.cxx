@@ -56,6 +56,7 @@ namespace
 using namespace vtkNormalMapping;
 using vtkNormalMapping::detail::CopyWithAppendedPoints;
 using vtkNormalMapping::detail::ExtendPointArray;
+using vtkNormalMapping::detail::FrameBatch;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Cells processed between two progress reports / abort checks (on the calling thread).
@@ -204,6 +205,39 @@ void WithMeshView(const RealArray& points,
     });
 }
 
+/// Whether the three ids are in [0, numPoints) (a negative id is huge as unsigned).
+inline bool InRange(const vtkIdType* tri, vtkIdType numPoints)
+{
+  const std::uint64_t largest = std::max({ static_cast<std::uint64_t>(tri[0]),
+    static_cast<std::uint64_t>(tri[1]),
+    static_cast<std::uint64_t>(tri[2]) });
+  return largest < static_cast<std::uint64_t>(numPoints);
+}
+
+/// Appends the n triangles of `ids` (three each) to the batch, which has room, if every id is in
+/// [0, numPoints); else appends nothing and returns false.
+template<typename IdT>
+bool TakeTriangles(const IdT* ids, vtkIdType n, vtkIdType numPoints, FrameBatch& b)
+{
+  std::uint64_t largest = 0;
+  const int first = b.Size;
+  for (vtkIdType t = 0; t < n; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType id = ids[3 * t + k];
+      b.Ids[k][first + t] = id;
+      largest = std::max(largest, static_cast<std::uint64_t>(id));
+    }
+  }
+  if (largest >= static_cast<std::uint64_t>(numPoints))
+  {
+    return false;
+  }
+  b.Size += static_cast<int>(n);
+  return true;
+}
+
 /// Calls f(cellIndex, triangleIndexInCell, ids[3]) for the triangles of cells [begin, end):
 /// polygons fan from corner 0, strip triangle j is (j, j+1, j+2) with every odd one reversed so
 /// that all triangles of a strip share its winding. Cells with a point id outside
@@ -229,12 +263,9 @@ void ForEachTriangle(const IdT* offsets,
       tri[0] = pts[0];
       tri[1] = pts[1];
       tri[2] = pts[2];
-      const std::uint64_t largest = std::max({ static_cast<std::uint64_t>(tri[0]),
-        static_cast<std::uint64_t>(tri[1]),
-        static_cast<std::uint64_t>(tri[2]) });
-      if (largest >= static_cast<std::uint64_t>(numPoints))
+      if (!InRange(tri, numPoints))
       {
-        bad = true; // a negative id is huge as unsigned
+        bad = true;
         continue;
       }
       f(c, 0, static_cast<const vtkIdType*>(tri));
@@ -301,6 +332,8 @@ struct Execution
   vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
   DegeneracyTolerance Tolerance;
   int Blocks = 1;
+  /// Every polygon is a triangle (the common case): scans may read the connectivity as triples.
+  bool TrianglesOnly = false;
   bool BadIds = false;
   /// The batch code for triangle frames (see vtkTangentFrameBatch.h); Vector: AVX2 or better,
   /// for the scatter and the point frames.
@@ -327,6 +360,18 @@ struct Execution
    */
   template<typename F>
   bool OrderedScan(double p0, double p1, const F& f)
+  {
+    return this->OrderedScan(p0, p1, f, nullptr);
+  }
+
+  /**
+   * OrderedScan, but when every polygon is a triangle, each block's part of the polygons goes to
+   * runs(block, conn, begin, end) instead, which visits triangles [begin, end) from the
+   * connectivity `conn` (three ids each) itself and returns whether one has an id out of range
+   * (it must skip those, as ForEachTriangle does).
+   */
+  template<typename F, typename R>
+  bool OrderedScan(double p0, double p1, const F& f, const R& runs)
   {
     const vtkIdType total = this->Cells[0]->GetNumberOfCells() + this->Cells[1]->GetNumberOfCells();
     vtkIdType done = 0;
@@ -356,6 +401,14 @@ struct Execution
                 {
                   const int block = static_cast<int>(b);
                   bool badIds = false;
+                  if constexpr (!std::is_same<R, std::nullptr_t>::value)
+                  {
+                    if (kind == 0 && this->TrianglesOnly)
+                    {
+                      bad[b] |= runs(block, conn, begin, end) ? 1 : 0;
+                      continue;
+                    }
+                  }
                   ForEachTriangle(offsets,
                     conn,
                     kind == 1,
@@ -444,17 +497,19 @@ bool ComputePointNormals(Execution& ex,
 
 /**
  * Visits the triangles, in cell order per block (Execution::OrderedScan), that `accept(block,
- * tri)` takes; computes their frames in batches (vtkTangentFrameBatch.h) and hands each computed
- * batch to consume(block, batch), in cell order. Counts the triangles without a frame (each
- * once, by the block owning its first corner). The frames, and so the sums, are the same bits in
- * every scan. `sums`, when given, is the per-point array consume() adds to: its entries for a
- * batch are prefetched while the batch's frames are computed.
+ * tri)` takes (every one with an owned corner when `everyTriangle`: then accept is not called);
+ * computes their frames in batches (vtkTangentFrameBatch.h) and hands each computed batch to
+ * consume(block, batch), in cell order. Counts the triangles without a frame (each once, by the
+ * block owning its first corner). The frames, and so the sums, are the same bits in every scan.
+ * `sums`, when given, is the per-point array consume() adds to: its entries for a batch are
+ * prefetched while the batch's frames are computed.
  */
 template<typename View, typename Accept, typename Consume>
 bool ScanFrames(Execution& ex,
   const View& view,
   double p0,
   double p1,
+  bool everyTriangle,
   const Accept& accept,
   const Consume& consume,
   const PointSum* sums,
@@ -497,21 +552,54 @@ bool ScanFrames(Execution& ex,
     consume(block, b);
     b.Size = 0;
   };
-  bool done = ex.OrderedScan(p0,
-    p1,
-    [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
+  const auto visit = [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
+  {
+    if (!accept(block, tri))
     {
-      if (!accept(block, tri))
+      return;
+    }
+    FrameBatch& b = batches[block];
+    b.Add(tri);
+    if (b.Full())
+    {
+      flush(block);
+    }
+  };
+  // Polygons that are all triangles, when every triangle is wanted: whole runs of ids into the
+  // batch (one block), or the triangles with an owned corner (several).
+  const auto runs = [&](int block, const auto* conn, vtkIdType begin, vtkIdType end)
+  {
+    FrameBatch& b = batches[block];
+    bool bad = false;
+    for (vtkIdType c = begin; c < end;)
+    {
+      const vtkIdType n = std::min<vtkIdType>(FrameBatch::Capacity - b.Size, end - c);
+      const auto* ids = conn + 3 * c;
+      if (ex.Blocks > 1 || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
       {
-        return;
+        for (vtkIdType t = 0; t < n; ++t)
+        {
+          const vtkIdType tri[3] = { ids[3 * t], ids[3 * t + 1], ids[3 * t + 2] };
+          if (!InRange(tri, ex.NumberOfPoints))
+          {
+            bad = true;
+            continue;
+          }
+          if (ex.Owns(block, tri[0]) || ex.Owns(block, tri[1]) || ex.Owns(block, tri[2]))
+          {
+            b.Add(tri);
+          }
+        }
       }
-      FrameBatch& b = batches[block];
-      b.Add(tri);
+      c += n;
       if (b.Full())
       {
         flush(block);
       }
-    });
+    }
+    return bad;
+  };
+  bool done = everyTriangle ? ex.OrderedScan(p0, p1, visit, runs) : ex.OrderedScan(p0, p1, visit);
   if (done)
   {
     vtkSMPTools::For(0,
@@ -546,6 +634,7 @@ bool Scatter(Execution& ex,
     view,
     0.05,
     0.70,
+    true,
     [](int, const vtkIdType*) { return true; },
     [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
@@ -574,6 +663,7 @@ bool SumSides(Execution& ex,
     view,
     0.70,
     0.75,
+    false,
     [&](int block, const vtkIdType* tri)
     {
       for (int k = 0; k < 3; ++k)
@@ -1009,19 +1099,30 @@ std::string CellArrayProblem(vtkCellArray* cells)
   return problem;
 }
 
-/// Number of polygon or strip cells with fewer than 3 points.
-vtkIdType CountShortCells(vtkCellArray* cells)
+/// What a polygon or strip cell array holds: how many cells have fewer than 3 points, and whether
+/// every cell has exactly 3.
+struct CellSizes
 {
-  vtkIdType count = 0;
+  vtkIdType Short = 0;
+  bool TrianglesOnly = true;
+};
+
+CellSizes MeasureCells(vtkCellArray* cells)
+{
+  CellSizes sizes;
   WithCellStorage(cells,
     [&](const auto* offsets, const auto*)
     {
+      vtkIdType notThree = 0;
       for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
       {
-        count += offsets[c + 1] - offsets[c] < 3 ? 1 : 0;
+        const auto n = offsets[c + 1] - offsets[c];
+        sizes.Short += n < 3 ? 1 : 0;
+        notThree += n != 3 ? 1 : 0;
       }
+      sizes.TrianglesOnly = notThree == 0;
     });
-  return count;
+  return sizes;
 }
 } // namespace
 
@@ -1234,7 +1335,9 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     output->ShallowCopy(input);
     return 1;
   };
-  const vtkIdType shortCells = CountShortCells(ex.Cells[0]) + CountShortCells(ex.Cells[1]);
+  const CellSizes polygonSizes = MeasureCells(ex.Cells[0]);
+  ex.TrianglesOnly = polygonSizes.TrianglesOnly;
+  const vtkIdType shortCells = polygonSizes.Short + MeasureCells(ex.Cells[1]).Short;
   if (shortCells > 0)
   {
     vtkWarningWithObjectMacro(self,

@@ -752,6 +752,44 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInAnyCellAreAnErrorForEveryMethod)
   }
 }
 
+TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThreads)
+{
+  // Meshes of triangles only are read as runs of id triples, in one block (one thread) or with
+  // owner checks (several): a bad id anywhere, first or last triangle or in the middle of a
+  // batch, must still give the error and the pass-through.
+  vtkNormalMapping::TorusOptions options;
+  options.U = 200; // 36,000 triangles, 18,000 points: several blocks with 2 and 8 threads
+  options.V = 90;
+  const auto torus = vtkNormalMapping::MakeTorus(options);
+  const vtkIdType numCells = torus->GetNumberOfPolys();
+  for (const vtkIdType cell : { vtkIdType(0), vtkIdType(1000), numCells - 1 })
+  {
+    for (const vtkIdType id : { torus->GetNumberOfPoints(), vtkIdType(-1) })
+    {
+      auto bad = vtkSmartPointer<vtkPolyData>::New();
+      bad->DeepCopy(torus);
+      bad->GetPolys()->GetConnectivityArray()->SetComponent(
+        3 * cell + 1, 0, static_cast<double>(id));
+      for (int threads : { 1, 2, 8 })
+      {
+        SCOPED_TRACE("cell " + std::to_string(cell) + " id " + std::to_string(id) + ", " +
+          std::to_string(threads) + " threads");
+        NormalMappingTesting::WithThreads(threads,
+          [&]()
+          {
+            vtkNew<vtkPolyDataTangentFrames> filter;
+            Messages messages(filter);
+            filter->SetInputData(bad);
+            filter->Update();
+            ASSERT_EQ(messages.Errors.size(), 1u);
+            EXPECT_TRUE(messages.Has(messages.Errors, "point id outside")) << messages.Errors[0];
+            EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+          });
+      }
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, CellsWithFewerThanThreePointsPassThrough)
 {
   // Polygons with 0, 1 and 2 points and strips of 0, 1 and 2 points beside a mirrored pair:
