@@ -219,20 +219,26 @@ inline bool InRange(const vtkIdType* tri, vtkIdType numPoints)
 template<typename IdT>
 bool TakeTriangles(const IdT* ids, vtkIdType n, vtkIdType numPoints, FrameBatch& b)
 {
-  std::uint64_t largest = 0;
+  // An id is in range when id - numPoints is negative and id is not: the sign bit of
+  // (id - numPoints) & ~id, and-ed over all ids (branch-free, so the compiler vectorizes it).
+  std::int64_t inRange = -1;
+  for (vtkIdType j = 0; j < 3 * n; ++j)
+  {
+    const std::int64_t id = ids[j];
+    inRange &= static_cast<std::int64_t>(
+      (static_cast<std::uint64_t>(id) - static_cast<std::uint64_t>(numPoints)) &
+      ~static_cast<std::uint64_t>(id));
+  }
+  if (inRange >= 0)
+  {
+    return false;
+  }
   const int first = b.Size;
   for (vtkIdType t = 0; t < n; ++t)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      const vtkIdType id = ids[3 * t + k];
-      b.Ids[k][first + t] = id;
-      largest = std::max(largest, static_cast<std::uint64_t>(id));
-    }
-  }
-  if (largest >= static_cast<std::uint64_t>(numPoints))
-  {
-    return false;
+    b.Ids[0][first + t] = ids[3 * t];
+    b.Ids[1][first + t] = ids[3 * t + 1];
+    b.Ids[2][first + t] = ids[3 * t + 2];
   }
   b.Size += static_cast<int>(n);
   return true;
@@ -575,6 +581,15 @@ bool ScanFrames(Execution& ex,
     {
       const vtkIdType n = std::min<vtkIdType>(FrameBatch::Capacity - b.Size, end - c);
       const auto* ids = conn + 3 * c;
+#if defined(__GNUC__) || defined(__clang__)
+      // The connectivity is read once, run by run with a batch's work in between, which is too
+      // slow a stream for the hardware prefetcher to run ahead of: fetch the runs two ahead.
+      const auto* ahead = ids + 2 * 3 * FrameBatch::Capacity;
+      for (vtkIdType j = 0; j < 3 * n && ahead + j < conn + 3 * end; j += 64 / sizeof(*ids))
+      {
+        __builtin_prefetch(ahead + j);
+      }
+#endif
       if (ex.Blocks > 1 || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
       {
         for (vtkIdType t = 0; t < n; ++t)
@@ -734,7 +749,8 @@ inline void WriteFrame(vtkIdType p,
 }
 
 /// Per point with one handedness: Gram-Schmidt, write. Points with none are marked FallbackMark
-/// and listed; points with both are listed for FinishConflicts.
+/// and listed; points with both are listed for FinishConflicts. Runs of points go through the
+/// lane code (vtkTangentFrameLanes.h), which gives the bits of the scalar code below.
 template<typename View, typename OutT>
 void Finish(Execution& ex,
   const View& view,
@@ -746,66 +762,65 @@ void Finish(Execution& ex,
   std::vector<vtkIdType>& conflicted,
   std::vector<vtkIdType>& fallbacks)
 {
+  using vtkNormalMapping::detail::BatchCode;
   vtkSMPThreadLocal<std::vector<vtkIdType>> conflictLists;
   vtkSMPThreadLocal<std::vector<vtkIdType>> fallbackLists;
+  const auto point = [&](vtkIdType p)
+  {
+    const unsigned char has = sides[p];
+    if (has == 0)
+    {
+      sides[p] = FallbackMark;
+      fallbackLists.Local().push_back(p);
+      return;
+    }
+    if (has == BothSides)
+    {
+      conflictLists.Local().push_back(p);
+      return;
+    }
+    const glm::dvec3 n = view.Normal(p);
+    WriteFrame(p,
+      n,
+      PerpendicularTangent(n, sums[p].Tangent()),
+      has == PlusSide ? 1.0 : -1.0,
+      tOut,
+      sOut,
+      bOut);
+  };
   vtkSMPTools::For(0,
     ex.NumberOfPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
-      // Points with ordinary vectors are finished in batches (see vtkTangentFrameBatch.h); the
-      // others one at a time below, with the same kernels.
-      vtkNormalMapping::detail::FinishBatch batch;
-      const auto flush = [&]()
+      vtkIdType p = begin;
+#ifdef VTK_TANGENT_BATCH_AVX2
+      const auto lanes = [&](int count, auto finish)
       {
-        vtkNormalMapping::detail::ComputeFinish(batch, ex.Vector);
-        for (int i = 0; i < batch.Size; ++i)
+        for (; p + count <= end; p += count)
         {
-          const glm::dvec3 n(
-            batch.UnitNormal[0][i], batch.UnitNormal[1][i], batch.UnitNormal[2][i]);
-          const glm::dvec3 t = batch.OK[i]
-            ? glm::dvec3(batch.UnitTangent[0][i], batch.UnitTangent[1][i], batch.UnitTangent[2][i])
-            : FallbackTangent(n);
-          WriteFrame(batch.Ids[i], n, t, batch.Sign[i], tOut, sOut, bOut);
+          for (unsigned rest =
+                 finish(view.Normals, ex.NumberOfPoints, sums, sides, p, tOut, sOut, bOut);
+               rest != 0;
+               rest &= rest - 1)
+          {
+            point(p + vtkNormalMapping::detail::LowestBit(rest));
+          }
         }
-        batch.Size = 0;
       };
-      for (vtkIdType p = begin; p < end; ++p)
+      using NT = std::remove_const_t<std::remove_pointer_t<decltype(view.Normals)>>;
+      if (ex.Code == BatchCode::AVX512)
       {
-        const unsigned char has = sides[p];
-        if (has == 0)
-        {
-          sides[p] = FallbackMark;
-          fallbackLists.Local().push_back(p);
-          continue;
-        }
-        if (has == BothSides)
-        {
-          conflictLists.Local().push_back(p);
-          continue;
-        }
-        const double sign = has == PlusSide ? 1.0 : -1.0;
-        const auto* raw = view.Normals + 3 * p;
-        const double* sum = sums[p].Sum;
-        if (batch.Takes(raw[0], raw[1], raw[2]) && batch.Takes(sum[0], sum[1], sum[2]))
-        {
-          const int i = batch.Size++;
-          batch.Ids[i] = p;
-          batch.Sign[i] = sign;
-          for (int d = 0; d < 3; ++d)
-          {
-            batch.N[d][i] = raw[d];
-            batch.T[d][i] = sum[d];
-          }
-          if (batch.Size == batch.Capacity)
-          {
-            flush();
-          }
-          continue;
-        }
-        const glm::dvec3 n = view.Normal(p);
-        WriteFrame(p, n, PerpendicularTangent(n, sums[p].Tangent()), sign, tOut, sOut, bOut);
+        lanes(8, vtkNormalMapping::detail::avx512::FinishLanes<NT, OutT>);
       }
-      flush();
+      else if (ex.Code == BatchCode::AVX2)
+      {
+        lanes(4, vtkNormalMapping::detail::avx2::FinishLanes<NT, OutT>);
+      }
+#endif
+      for (; p < end; ++p)
+      {
+        point(p);
+      }
     });
   conflicted = Merge(conflictLists, std::less<vtkIdType>());
   fallbacks = Merge(fallbackLists, std::less<vtkIdType>());

@@ -272,45 +272,6 @@ void ComputeTriangle(const BatchInput<float, float, NT>& in, FrameBatch& b, int 
 }
 } // namespace single
 
-/**
- * Points whose frame is finished together: the summed tangent T and the point normal N of each
- * (both finite, with largest components in [2^-400, 2^400], N non-zero), and once computed the
- * unit normal and the unit tangent perpendicular to it, or OK = 0 where the tangent has no usable
- * perpendicular part (see OrthonormalizeTangent).
- */
-struct FinishBatch
-{
-  static constexpr int Capacity = 128;
-  int Size = 0;
-  vtkIdType Ids[Capacity];
-  double Sign[Capacity];
-  double T[3][Capacity];
-  double N[3][Capacity];
-  double UnitNormal[3][Capacity];
-  double UnitTangent[3][Capacity];
-  bool OK[Capacity];
-
-  /// Whether a vector can go in: finite, non-zero, largest component in [2^-400, 2^400].
-  static bool Takes(double x, double y, double z)
-  {
-    const double m = std::max({ std::abs(x), std::abs(y), std::abs(z) });
-    return m >= 0x1p-400 && m <= 0x1p400; // false for NaN
-  }
-};
-
-/// Point i of the batch with the scalar kernels (no rescaling happens in the batch's range).
-inline void FinishPoint(FinishBatch& b, int i)
-{
-  const glm::dvec3 n = SafeNormalize(glm::dvec3(b.N[0][i], b.N[1][i], b.N[2][i]));
-  glm::dvec3 t;
-  b.OK[i] = OrthonormalizeTangent(n, glm::dvec3(b.T[0][i], b.T[1][i], b.T[2][i]), t);
-  for (int d = 0; d < 3; ++d)
-  {
-    b.UnitNormal[d][i] = n[d];
-    b.UnitTangent[d][i] = t[d];
-  }
-}
-
 /// Per point: the weighted sum of its triangles' tangents (x, y, z) and of their weights, both
 /// handednesses together (vtkPolyDataTangentFrames' scatter).
 struct alignas(32) PointSum
@@ -583,39 +544,6 @@ VTK_TANGENT_BATCH_AVX2_FN void ComputeFour(const BatchInput<PT, UT, NT>& in, Fra
   }
 }
 
-/// FinishPoint for points [i, i + 4), lane by lane with the same operations.
-VTK_TANGENT_BATCH_AVX2_FN inline void FinishFour(FinishBatch& b, int i)
-{
-  V m[3], t[3], n[3], perp[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    m[d] = _mm256_loadu_pd(b.N[d] + i);
-    t[d] = _mm256_loadu_pd(b.T[d] + i);
-  }
-  const V length = _mm256_sqrt_pd(Dot(m, m));
-  for (int d = 0; d < 3; ++d)
-  {
-    n[d] = _mm256_div_pd(m[d], length);
-  }
-  const V along = Dot(n, t);
-  for (int d = 0; d < 3; ++d)
-  {
-    perp[d] = _mm256_sub_pd(t[d], _mm256_mul_pd(along, n[d]));
-  }
-  const V perpLength = _mm256_sqrt_pd(Dot(perp, perp));
-  const V ok = Greater(perpLength, _mm256_mul_pd(_mm256_set1_pd(1e-9), _mm256_sqrt_pd(Dot(t, t))));
-  for (int d = 0; d < 3; ++d)
-  {
-    _mm256_storeu_pd(b.UnitNormal[d] + i, n[d]);
-    _mm256_storeu_pd(b.UnitTangent[d] + i, _mm256_div_pd(perp[d], perpLength));
-  }
-  const int okLanes = _mm256_movemask_pd(ok);
-  for (int l = 0; l < 4; ++l)
-  {
-    b.OK[i + l] = ((okLanes >> l) & 1) != 0;
-  }
-}
-
 /// ScatterBatchScalar with one 4-lane addition per corner (the same operations: lane 3 adds
 /// w * 1).
 VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s)
@@ -670,6 +598,18 @@ inline std::uint64_t SpreadBits(unsigned x)
   const std::uint64_t y =
     (static_cast<std::uint64_t>(x & 0xffu) * 0x0101010101010101ULL) & 0x8040201008040201ULL;
   return ((y + 0x7f7f7f7f7f7f7f7fULL) >> 7) & 0x0101010101010101ULL;
+}
+
+/// Bit l of `plus` / `minus`: byte l of x[0..count) is PlusSide / MinusSide (count <= 8).
+inline void ClassifySides(const unsigned char* x, int count, unsigned& plus, unsigned& minus)
+{
+  std::uint64_t word = 0;
+  std::memcpy(&word, x, static_cast<size_t>(count));
+  const __m128i v = _mm_cvtsi64_si128(static_cast<long long>(word));
+  const unsigned all = (1u << count) - 1;
+  plus = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(PlusSide)))) & all;
+  minus =
+    static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(MinusSide)))) & all;
 }
 
 /// The index of the lowest set bit of x != 0.
@@ -795,7 +735,31 @@ struct Lanes
     _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
   }
 
+  using DM = __m256d; // all ones in the lanes where true
+  static D SetDouble(double x) { return _mm256_set1_pd(x); }
+  static D SubDouble(D x, D y) { return _mm256_sub_pd(x, y); }
+  static D DivDouble(D x, D y) { return _mm256_div_pd(x, y); }
+  static D SqrtDouble(D x) { return _mm256_sqrt_pd(x); }
+  static D MaxDouble(D x, D y) { return _mm256_max_pd(x, y); }
+  static D AbsDouble(D x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
+  static DM GtDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GT_OQ); }
+  static DM GeDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GE_OQ); }
+  static DM LeDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LE_OQ); }
+  static DM AndDouble(DM x, DM y) { return _mm256_and_pd(x, y); }
+  static unsigned BitsDouble(DM m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
+  /// x, y and z of the four PointSums s[0..4).
+  static void GatherSums(const PointSum* s, D out[3])
+  {
+    const D r0 = _mm256_load_pd(s[0].Sum), r1 = _mm256_load_pd(s[1].Sum);
+    const D r2 = _mm256_load_pd(s[2].Sum), r3 = _mm256_load_pd(s[3].Sum);
+    const D xz01 = _mm256_unpacklo_pd(r0, r1), yw01 = _mm256_unpackhi_pd(r0, r1);
+    const D xz23 = _mm256_unpacklo_pd(r2, r3), yw23 = _mm256_unpackhi_pd(r2, r3);
+    out[0] = _mm256_permute2f128_pd(xz01, xz23, 0x20);
+    out[1] = _mm256_permute2f128_pd(yw01, yw23, 0x20);
+    out[2] = _mm256_permute2f128_pd(xz01, xz23, 0x31);
+  }
   static D LoadDouble(const double* x) { return _mm256_loadu_pd(x); }
+  static void StoreDouble(double* out, D x) { _mm256_storeu_pd(out, x); }
   static D AddDouble(D x, D y) { return _mm256_add_pd(x, y); }
   static D MulDouble(D x, D y) { return _mm256_mul_pd(x, y); }
   static unsigned NegativeBits(D x)
@@ -942,7 +906,31 @@ struct Lanes
     _mm512_storeu_pd(out + 8, _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(bits, 1))));
   }
 
+  using DM = __mmask8;
+  static D SetDouble(double x) { return _mm512_set1_pd(x); }
+  static D SubDouble(D x, D y) { return _mm512_sub_round_pd(x, y, Nearest); }
+  static D DivDouble(D x, D y) { return _mm512_div_round_pd(x, y, Nearest); }
+  static D SqrtDouble(D x) { return _mm512_sqrt_round_pd(x, Nearest); }
+  static D MaxDouble(D x, D y) { return _mm512_max_pd(x, y); }
+  static D AbsDouble(D x) { return _mm512_abs_pd(x); }
+  static DM GtDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GT_OQ); }
+  static DM GeDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GE_OQ); }
+  static DM LeDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LE_OQ); }
+  static DM AndDouble(DM x, DM y) { return static_cast<DM>(x & y); }
+  static unsigned BitsDouble(DM m) { return m; }
+  /// x, y and z of the eight PointSums s[0..8).
+  static void GatherSums(const PointSum* s, D out[3])
+  {
+    __m256d low[3], high[3];
+    avx2::Lanes::GatherSums(s, low);
+    avx2::Lanes::GatherSums(s + 4, high);
+    for (int d = 0; d < 3; ++d)
+    {
+      out[d] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[d]), high[d], 1);
+    }
+  }
   static D LoadDouble(const double* x) { return _mm512_loadu_pd(x); }
+  static void StoreDouble(double* out, D x) { _mm512_storeu_pd(out, x); }
   static D AddDouble(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
   static D MulDouble(D x, D y) { return _mm512_mul_round_pd(x, y, Nearest); }
   static unsigned NegativeBits(D x)
@@ -1077,8 +1065,8 @@ inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s, bool vecto
   ScatterBatchScalar(b, s);
 }
 
-/// The best code this build and CPU have for ComputeBatch (ComputeFinish and ScatterBatch use
-/// AVX2 whenever it is at least that).
+/// The best code this build and CPU have for ComputeBatch and the finish (FinishLanes); the
+/// scatter uses AVX2 whenever it is at least that.
 inline BatchCode BestBatchCode()
 {
 #ifdef VTK_TANGENT_BATCH_AVX2
@@ -1090,27 +1078,6 @@ inline BatchCode BestBatchCode()
 #else
   return BatchCode::Scalar;
 #endif
-}
-
-/// Unit normals and tangents of every point in the batch; `vector`: use AVX2.
-inline void ComputeFinish(FinishBatch& b, bool vector)
-{
-  int i = 0;
-#ifdef VTK_TANGENT_BATCH_AVX2
-  if (vector)
-  {
-    for (; i + 4 <= b.Size; i += 4)
-    {
-      avx2::FinishFour(b, i);
-    }
-  }
-#else
-  (void)vector;
-#endif
-  for (; i < b.Size; ++i)
-  {
-    FinishPoint(b, i);
-  }
 }
 
 } // namespace detail

@@ -167,6 +167,25 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
   }
 }
 
+/// (x0 y0 + x1 y1) + x2 y2 in double, as glm::dot.
+inline Lanes::D LanesDotDouble(const Lanes::D* x, const Lanes::D* y)
+{
+  return Lanes::AddDouble(
+    Lanes::AddDouble(Lanes::MulDouble(x[0], y[0]), Lanes::MulDouble(x[1], y[1])),
+    Lanes::MulDouble(x[2], y[2]));
+}
+
+/// The lanes where v's largest component is in [2^-400, 2^400] (so normalizing v rescales nothing,
+/// see NormalizeExponent; false for NaN).
+inline unsigned LanesUsable(const Lanes::D* v)
+{
+  using L = Lanes;
+  const Lanes::D m =
+    L::MaxDouble(L::MaxDouble(L::AbsDouble(v[0]), L::AbsDouble(v[1])), L::AbsDouble(v[2]));
+  return L::BitsDouble(
+    L::AndDouble(L::GeDouble(m, L::SetDouble(0x1p-400)), L::LeDouble(m, L::SetDouble(0x1p400))));
+}
+
 /// BatchInput::Side for the corners of triangles [i, i + Lanes::DoubleCount), in double.
 template<typename PT, typename UT, typename NT>
 void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
@@ -187,8 +206,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
     const vtkIdType* ids = b.Ids[k] + i;
     D m[3];
     L::GatherNormals(in.Normals, ids, in.NumberOfPoints, m);
-    const D dot = L::AddDouble(
-      L::AddDouble(L::MulDouble(m[0], n[0]), L::MulDouble(m[1], n[1])), L::MulDouble(m[2], n[2]));
+    const D dot = LanesDotDouble(m, n);
     const unsigned negative = L::NegativeBits(dot);
     // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
     unsigned minus = (negative ^ negativeOrientation) & ~zeroOrientation & all;
@@ -204,4 +222,104 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
     const std::uint64_t bytes = SpreadBits(minus);
     std::memcpy(b.Side[k] + i, &bytes, count);
   }
+}
+
+/**
+ * The frames of points [p, p + Lanes::DoubleCount) of the filter's finish, as its scalar code
+ * computes and writes them (SafeNormalize, OrthonormalizeTangent, WriteFrame), for the points
+ * with one handedness whose normal and tangent sum are in the range where normalizing rescales
+ * nothing. Writes every lane's tangent, sign and (when bOut) bitangent; returns the lanes it did
+ * not do, whose output the caller's scalar code must write (or that a later pass writes).
+ */
+template<typename NT, typename OutT>
+unsigned FinishLanes(const NT* normals,
+  vtkIdType numPoints,
+  const PointSum* sums,
+  const unsigned char* sides,
+  vtkIdType p,
+  OutT* tOut,
+  OutT* sOut,
+  OutT* bOut)
+{
+  using L = Lanes;
+  using D = typename L::D;
+  constexpr int count = L::DoubleCount;
+  constexpr unsigned all = (1u << count) - 1;
+  unsigned plus, minus;
+  ClassifySides(sides + p, count, plus, minus);
+  if ((plus | minus) == 0)
+  {
+    return all;
+  }
+  vtkIdType ids[count];
+  for (int l = 0; l < count; ++l)
+  {
+    ids[l] = p + l;
+  }
+  D m[3], t[3], n[3], perp[3], unit[3];
+  L::GatherNormals(normals, ids, numPoints, m);
+  L::GatherSums(sums + p, t);
+  const unsigned usable = LanesUsable(m) & LanesUsable(t);
+  const D length = L::SqrtDouble(LanesDotDouble(m, m));
+  for (int d = 0; d < 3; ++d)
+  {
+    n[d] = L::DivDouble(m[d], length);
+  }
+  const D along = LanesDotDouble(n, t);
+  for (int d = 0; d < 3; ++d)
+  {
+    perp[d] = L::SubDouble(t[d], L::MulDouble(along, n[d]));
+  }
+  const D perpLength = L::SqrtDouble(LanesDotDouble(perp, perp));
+  const unsigned ok = L::BitsDouble(
+    L::GtDouble(perpLength, L::MulDouble(L::SetDouble(1e-9), L::SqrtDouble(LanesDotDouble(t, t)))));
+  const unsigned done = (plus | minus) & usable & ok;
+  if (done == 0)
+  {
+    return all;
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    unit[d] = L::DivDouble(perp[d], perpLength);
+  }
+  alignas(64) double frame[3][count];
+  const auto write = [&](OutT* out)
+  {
+    for (int l = 0; l < count; ++l)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        out[3 * (p + l) + d] = static_cast<OutT>(frame[d][l]);
+      }
+    }
+  };
+  for (int d = 0; d < 3; ++d)
+  {
+    L::StoreDouble(frame[d], unit[d]);
+  }
+  write(tOut);
+  for (int l = 0; l < count; ++l)
+  {
+    sOut[p + l] = static_cast<OutT>(((minus >> l) & 1u) ? -1.0 : 1.0);
+  }
+  if (bOut)
+  {
+    // sign * cross(n, t), as glm computes the cross product; the sign is exact.
+    const D cross[3] = { L::SubDouble(L::MulDouble(n[1], unit[2]), L::MulDouble(unit[1], n[2])),
+      L::SubDouble(L::MulDouble(n[2], unit[0]), L::MulDouble(unit[2], n[0])),
+      L::SubDouble(L::MulDouble(n[0], unit[1]), L::MulDouble(unit[0], n[1])) };
+    for (int d = 0; d < 3; ++d)
+    {
+      L::StoreDouble(frame[d], cross[d]);
+    }
+    for (int l = 0; l < count; ++l)
+    {
+      for (int d = 0; ((minus >> l) & 1u) && d < 3; ++d)
+      {
+        frame[d][l] = -frame[d][l];
+      }
+    }
+    write(bOut);
+  }
+  return all & ~done;
 }
