@@ -1068,13 +1068,22 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
   return array;
 }
 
+/// What a cell array holds: how many cells have fewer than 3 points, and whether every cell has
+/// exactly 3.
+struct CellSizes
+{
+  vtkIdType Short = 0;
+  bool TrianglesOnly = true;
+};
+
 /**
  * Why a cell array cannot be read safely, or an empty string when it can: single-component
  * offsets and connectivity, at least one offset, the first 0, none smaller than the one before
  * it (a negative cell size), the last equal to the connectivity size (no cell reaches past it).
  * VTK's vtkCellArray::SetData accepts any arrays; the readers below rely on all of this.
+ * `sizes` gets the array's cell sizes, in the same pass.
  */
-std::string CellArrayProblem(vtkCellArray* cells)
+std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
 {
   if (cells->GetOffsetsArray()->GetNumberOfComponents() != 1 ||
     cells->GetConnectivityArray()->GetNumberOfComponents() != 1)
@@ -1096,15 +1105,20 @@ std::string CellArrayProblem(vtkCellArray* cells)
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
+      vtkIdType notThree = 0;
       for (vtkIdType c = 0; c < numCells; ++c)
       {
-        if (offsets[c + 1] < offsets[c])
+        const auto n = offsets[c + 1] - offsets[c];
+        sizes.Short += n < 3 ? 1 : 0;
+        notThree += n != 3 ? 1 : 0;
+        if (n < 0)
         {
           problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
             std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
           return;
         }
       }
+      sizes.TrianglesOnly = notThree == 0;
       if (static_cast<vtkIdType>(offsets[numCells]) != size)
       {
         problem = "its last offset is " + std::to_string(offsets[numCells]) +
@@ -1114,31 +1128,22 @@ std::string CellArrayProblem(vtkCellArray* cells)
   return problem;
 }
 
-/// What a polygon or strip cell array holds: how many cells have fewer than 3 points, and whether
-/// every cell has exactly 3.
-struct CellSizes
+/// The number of the n normals that IsUsableNormal rejects (zero or non-finite), in one
+/// branch-free pass (x - x is 0 exactly for finite x).
+template<typename T>
+vtkIdType CountUnusableNormals(const T* normals, vtkIdType n)
 {
-  vtkIdType Short = 0;
-  bool TrianglesOnly = true;
-};
-
-CellSizes MeasureCells(vtkCellArray* cells)
-{
-  CellSizes sizes;
-  WithCellStorage(cells,
-    [&](const auto* offsets, const auto*)
-    {
-      vtkIdType notThree = 0;
-      for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
-      {
-        const auto n = offsets[c + 1] - offsets[c];
-        sizes.Short += n < 3 ? 1 : 0;
-        notThree += n != 3 ? 1 : 0;
-      }
-      sizes.TrianglesOnly = notThree == 0;
-    });
-  return sizes;
+  vtkIdType unusable = 0;
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    const T x = normals[3 * p], y = normals[3 * p + 1], z = normals[3 * p + 2];
+    const bool finite = (x - x) == T(0) && (y - y) == T(0) && (z - z) == T(0);
+    const bool zero = x == T(0) && y == T(0) && z == T(0);
+    unusable += (finite && !zero) ? 0 : 1;
+  }
+  return unusable;
 }
+
 } // namespace
 
 struct vtkPolyDataTangentFrames::Internals
@@ -1149,7 +1154,8 @@ struct vtkPolyDataTangentFrames::Internals
     vtkPolyData* output,
     vtkDataArray* uvs,
     vtkDataArray* normals,
-    vtkDataArray* cellNormals);
+    vtkDataArray* cellNormals,
+    const CellSizes polygonAndStripSizes[2]);
 };
 
 vtkPolyDataTangentFrames::vtkPolyDataTangentFrames() = default;
@@ -1206,9 +1212,11 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     { "line", input->GetLines() },
     { "polygon", input->GetPolys() },
     { "triangle strip", input->GetStrips() } };
-  for (const auto& named : cellArrays)
+  CellSizes sizes[4]; // polygons: 2, strips: 3
+  for (int a = 0; a < 4; ++a)
   {
-    const std::string problem = CellArrayProblem(named.second);
+    const auto& named = cellArrays[a];
+    const std::string problem = CellArrayProblem(named.second, sizes[a]);
     if (!problem.empty())
     {
       vtkErrorMacro("Cannot compute tangent frames: the " << named.first
@@ -1289,8 +1297,9 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
 
   const bool doublePrecision = this->OutputPrecision == DOUBLE_PRECISION ||
     (this->OutputPrecision == DEFAULT_PRECISION && input->GetPoints()->GetDataType() == VTK_DOUBLE);
-  return doublePrecision ? Internals::Run<double>(this, input, output, uvs, normals, cellNormals)
-                         : Internals::Run<float>(this, input, output, uvs, normals, cellNormals);
+  return doublePrecision
+    ? Internals::Run<double>(this, input, output, uvs, normals, cellNormals, sizes + 2)
+    : Internals::Run<float>(this, input, output, uvs, normals, cellNormals, sizes + 2);
 }
 
 template<typename OutT>
@@ -1299,7 +1308,8 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   vtkPolyData* output,
   vtkDataArray* uvs,
   vtkDataArray* normals,
-  vtkDataArray* cellNormals)
+  vtkDataArray* cellNormals,
+  const CellSizes polygonAndStripSizes[2])
 {
   // The concrete vtkFloatArray / vtkDoubleArray, so that users' SafeDownCasts work.
   using OutArray = typename std::
@@ -1350,9 +1360,8 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     output->ShallowCopy(input);
     return 1;
   };
-  const CellSizes polygonSizes = MeasureCells(ex.Cells[0]);
-  ex.TrianglesOnly = polygonSizes.TrianglesOnly;
-  const vtkIdType shortCells = polygonSizes.Short + MeasureCells(ex.Cells[1]).Short;
+  ex.TrianglesOnly = polygonAndStripSizes[0].TrianglesOnly;
+  const vtkIdType shortCells = polygonAndStripSizes[0].Short + polygonAndStripSizes[1].Short;
   if (shortCells > 0)
   {
     vtkWarningWithObjectMacro(self,
@@ -1407,14 +1416,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   else
   {
     vtkIdType invalid = 0;
-    WithPointer(normal,
-      [&](const auto* n)
-      {
-        for (vtkIdType p = 0; p < numPoints; ++p)
-        {
-          invalid += IsUsableNormal(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) ? 0 : 1;
-        }
-      });
+    WithPointer(normal, [&](const auto* n) { invalid = CountUnusableNormals(n, numPoints); });
     self->NumberOfInvalidNormals = invalid;
     if (invalid > 0)
     {

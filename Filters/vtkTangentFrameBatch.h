@@ -305,7 +305,8 @@ struct ScatterTarget
   }
   void Mark(vtkIdType p, int side, double w) const
   {
-    this->Sides[p] |= w > 0.0 ? (side == 0 ? PlusSide : MinusSide) : 0;
+    // PlusSide for side 0, MinusSide for side 1, for a positive weight.
+    this->Sides[p] |= static_cast<unsigned char>(static_cast<unsigned>(w > 0.0) << side);
   }
 };
 
@@ -545,8 +546,9 @@ VTK_TANGENT_BATCH_AVX2_FN void ComputeFour(const BatchInput<PT, UT, NT>& in, Fra
 }
 
 /// ScatterBatchScalar with one 4-lane addition per corner (the same operations: lane 3 adds
-/// w * 1).
-VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s)
+/// w * 1). `EveryPoint`: the target has one block, which owns every point.
+template<bool EveryPoint>
+VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const ScatterTarget& s)
 {
   for (int i = 0; i < b.Size; ++i)
   {
@@ -558,7 +560,7 @@ VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const Sc
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType p = b.Ids[k][i];
-      if (s.Owns(p))
+      if (EveryPoint || s.Owns(p))
       {
         const double w = b.Weight[k][i];
         double* sum = s.Sums[p].Sum;
@@ -567,6 +569,18 @@ VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const Sc
         s.Mark(p, b.Side[k][i], w);
       }
     }
+  }
+}
+
+VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s)
+{
+  if (s.Blocks == 1)
+  {
+    ScatterCorners<true>(b, s);
+  }
+  else
+  {
+    ScatterCorners<false>(b, s);
   }
 }
 } // namespace avx2
