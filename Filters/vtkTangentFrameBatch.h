@@ -691,10 +691,29 @@ struct Lanes
 
   /// x, y, z and the next float of point `id` of an array of `count` xyz points: one 16-byte load,
   /// or element by element at the array's last point (count 0: always).
+  /// Whether ids[0..n) (n a multiple of 4, ids >= 0) are all below `limit`.
+  static bool Below(const vtkIdType* ids, int n, vtkIdType limit)
+  {
+    if constexpr (sizeof(vtkIdType) != 8)
+    {
+      return *std::max_element(ids, ids + n) < limit;
+    }
+    // The sign bit of every id - limit, and-ed.
+    const __m256i l = _mm256_set1_epi64x(limit);
+    __m256i below = _mm256_set1_epi64x(-1);
+    for (int j = 0; j < n; j += 4)
+    {
+      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ids + j));
+      below = _mm256_and_si256(below, _mm256_sub_epi64(v, l));
+    }
+    return _mm256_movemask_pd(_mm256_castsi256_pd(below)) == 0xf;
+  }
+
+  template<bool Guarded>
   static __m128 LoadPoint(const float* xyz, vtkIdType id, vtkIdType count)
   {
     const float* q = xyz + 3 * id;
-    return id + 1 < count ? _mm_loadu_ps(q) : _mm_setr_ps(q[0], q[1], q[2], 0.0f);
+    return !Guarded || id + 1 < count ? _mm_loadu_ps(q) : _mm_setr_ps(q[0], q[1], q[2], 0.0f);
   }
   /// Rows r[0..4) transposed; the first three columns out.
   static void Transpose(const __m128 r[4], __m128 out[3])
@@ -706,19 +725,21 @@ struct Lanes
     out[2] = _mm_movelh_ps(high01, high23);
   }
   /// The x, y and z of four points.
+  template<bool Guarded>
   static void GatherFour(const float* xyz, const vtkIdType* ids, vtkIdType count, __m128 out[3])
   {
-    const __m128 r[4] = { LoadPoint(xyz, ids[0], count),
-      LoadPoint(xyz, ids[1], count),
-      LoadPoint(xyz, ids[2], count),
-      LoadPoint(xyz, ids[3], count) };
+    const __m128 r[4] = { LoadPoint<Guarded>(xyz, ids[0], count),
+      LoadPoint<Guarded>(xyz, ids[1], count),
+      LoadPoint<Guarded>(xyz, ids[2], count),
+      LoadPoint<Guarded>(xyz, ids[3], count) };
     Transpose(r, out);
   }
+  template<bool Guarded>
   static void GatherXYZ(const float* xyz, const vtkIdType* ids, vtkIdType count, F out[3])
   {
     __m128 low[3], high[3];
-    GatherFour(xyz, ids, count, low);
-    GatherFour(xyz, ids + 4, count, high);
+    GatherFour<Guarded>(xyz, ids, count, low);
+    GatherFour<Guarded>(xyz, ids + 4, count, high);
     for (int d = 0; d < 3; ++d)
     {
       out[d] = _mm256_insertf128_ps(_mm256_castps128_ps256(low[d]), high[d], 1);
@@ -789,15 +810,17 @@ struct Lanes
     return static_cast<unsigned>(_mm256_movemask_pd(ok));
   }
   /// The normals of 4 points, in double.
+  template<bool Guarded>
   static void GatherNormals(const float* n, const vtkIdType* ids, vtkIdType count, D out[3])
   {
     __m128 f[3];
-    GatherFour(n, ids, count, f);
+    GatherFour<Guarded>(n, ids, count, f);
     for (int d = 0; d < 3; ++d)
     {
       out[d] = _mm256_cvtps_pd(f[d]);
     }
   }
+  template<bool Guarded>
   static void GatherNormals(const double* n, const vtkIdType* ids, vtkIdType, D out[3])
   {
     for (int d = 0; d < 3; ++d)
@@ -872,15 +895,32 @@ struct Lanes
 
   /// The x, y and z of 16 points: point 4c + r goes to 128-bit lane c of row r, and a transpose
   /// within the lanes puts point l in lane l.
+  /// Whether ids[0..n) (n a multiple of 8, ids >= 0) are all below `limit`.
+  static bool Below(const vtkIdType* ids, int n, vtkIdType limit)
+  {
+    if constexpr (sizeof(vtkIdType) != 8)
+    {
+      return *std::max_element(ids, ids + n) < limit;
+    }
+    const __m512i l = _mm512_set1_epi64(limit);
+    __m512i below = _mm512_set1_epi64(-1);
+    for (int j = 0; j < n; j += 8)
+    {
+      below = _mm512_and_si512(below, _mm512_sub_epi64(_mm512_loadu_si512(ids + j), l));
+    }
+    return _mm512_cmplt_epi64_mask(below, _mm512_setzero_si512()) == 0xff;
+  }
+
+  template<bool Guarded>
   static void GatherXYZ(const float* xyz, const vtkIdType* ids, vtkIdType count, F out[3])
   {
     F r[4];
     for (int j = 0; j < 4; ++j)
     {
-      r[j] = _mm512_castps128_ps512(avx2::Lanes::LoadPoint(xyz, ids[j], count));
-      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[4 + j], count), 1);
-      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[8 + j], count), 2);
-      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint(xyz, ids[12 + j], count), 3);
+      r[j] = _mm512_castps128_ps512(avx2::Lanes::LoadPoint<Guarded>(xyz, ids[j], count));
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint<Guarded>(xyz, ids[4 + j], count), 1);
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint<Guarded>(xyz, ids[8 + j], count), 2);
+      r[j] = _mm512_insertf32x4(r[j], avx2::Lanes::LoadPoint<Guarded>(xyz, ids[12 + j], count), 3);
     }
     const F low01 = _mm512_unpacklo_ps(r[0], r[1]), low23 = _mm512_unpacklo_ps(r[2], r[3]);
     const F high01 = _mm512_unpackhi_ps(r[0], r[1]), high23 = _mm512_unpackhi_ps(r[2], r[3]);
@@ -958,15 +998,17 @@ struct Lanes
       _mm512_cmp_pd_mask(a, _mm512_set1_pd(DBL_MAX), _CMP_LE_OQ);
   }
   /// The normals of 8 points, in double.
+  template<bool Guarded>
   static void GatherNormals(const float* n, const vtkIdType* ids, vtkIdType count, D out[3])
   {
     __m256 f[3];
-    avx2::Lanes::GatherXYZ(n, ids, count, f);
+    avx2::Lanes::GatherXYZ<Guarded>(n, ids, count, f);
     for (int d = 0; d < 3; ++d)
     {
       out[d] = _mm512_cvtps_pd(f[d]);
     }
   }
+  template<bool Guarded>
   static void GatherNormals(const double* n, const vtkIdType* ids, vtkIdType, D out[3])
   {
     for (int d = 0; d < 3; ++d)

@@ -7,6 +7,14 @@
 // own (no fused multiply-add), and the scalar code for special lanes is called, never inlined
 // (ScalarTriangle, ScalarSide), so that every instruction set gives the same bits.
 
+/// Whether every corner id of triangles [i, i + N) is below `limit`.
+template<int N>
+bool IdsBelow(const FrameBatch& b, int i, vtkIdType limit)
+{
+  return Lanes::Below(b.Ids[0] + i, N, limit) && Lanes::Below(b.Ids[1] + i, N, limit) &&
+    Lanes::Below(b.Ids[2] + i, N, limit);
+}
+
 /// (x0 y0 + x1 y1) + x2 y2, as single::Dot.
 inline Lanes::F LanesDot(const Lanes::F* x, const Lanes::F* y)
 {
@@ -32,10 +40,19 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
 
   F p[3][3], uv[3][2];
   const int nc = in.UVComponents;
+  // The 16-byte loads must not read past the last point: guarded only where it is in the lanes.
+  const bool guarded = !IdsBelow<count>(b, i, in.NumberOfPoints - 1);
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
-    L::GatherXYZ(in.Points, ids, in.NumberOfPoints, p[k]);
+    if (guarded)
+    {
+      L::template GatherXYZ<true>(in.Points, ids, in.NumberOfPoints, p[k]);
+    }
+    else
+    {
+      L::template GatherXYZ<false>(in.Points, ids, in.NumberOfPoints, p[k]);
+    }
     if (nc == 2)
     {
       L::GatherUV(in.UVs, ids, uv[k][0], uv[k][1]);
@@ -199,13 +216,21 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
   {
     n[d] = L::LoadDouble(b.Normal[d] + i);
   }
+  const bool guarded = !IdsBelow<count>(b, i, in.NumberOfPoints - 1);
   unsigned negativeOrientation, zeroOrientation;
   ClassifyBytes(b.Orientation + i, count, negativeOrientation, zeroOrientation);
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
     D m[3];
-    L::GatherNormals(in.Normals, ids, in.NumberOfPoints, m);
+    if (guarded)
+    {
+      L::template GatherNormals<true>(in.Normals, ids, in.NumberOfPoints, m);
+    }
+    else
+    {
+      L::template GatherNormals<false>(in.Normals, ids, in.NumberOfPoints, m);
+    }
     const D dot = LanesDotDouble(m, n);
     const unsigned negative = L::NegativeBits(dot);
     // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
@@ -257,7 +282,14 @@ unsigned FinishLanes(const NT* normals,
     ids[l] = p + l;
   }
   D m[3], t[3], n[3], perp[3], unit[3];
-  L::GatherNormals(normals, ids, numPoints, m);
+  if (p + count < numPoints)
+  {
+    L::template GatherNormals<false>(normals, ids, numPoints, m);
+  }
+  else
+  {
+    L::template GatherNormals<true>(normals, ids, numPoints, m);
+  }
   L::GatherSums(sums + p, t);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
   const D length = L::SqrtDouble(LanesDotDouble(m, m));
