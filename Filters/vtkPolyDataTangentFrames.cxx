@@ -1416,7 +1416,25 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   else
   {
     vtkIdType invalid = 0;
-    WithPointer(normal, [&](const auto* n) { invalid = CountUnusableNormals(n, numPoints); });
+    WithPointer(normal,
+      [&](const auto* n)
+      {
+        using NT = std::remove_const_t<std::remove_pointer_t<decltype(n)>>;
+#ifdef VTK_TANGENT_BATCH_AVX2
+        if constexpr (std::is_same<NT, float>::value)
+        {
+          using vtkNormalMapping::detail::BatchCode;
+          if (ex.Code != BatchCode::Scalar)
+          {
+            invalid = ex.Code == BatchCode::AVX512
+              ? vtkNormalMapping::detail::avx512::CountUnusableNormals(n, numPoints)
+              : vtkNormalMapping::detail::avx2::CountUnusableNormals(n, numPoints);
+            return;
+          }
+        }
+#endif
+        invalid = CountUnusableNormals(n, numPoints);
+      });
     self->NumberOfInvalidNormals = invalid;
     if (invalid > 0)
     {

@@ -355,3 +355,43 @@ unsigned FinishLanes(const NT* normals,
   }
   return all & ~done;
 }
+
+/// The number of points [0, count) whose normal IsUsableNormal rejects (zero or non-finite),
+/// Lanes::Count points at a time.
+inline vtkIdType CountUnusableNormals(const float* normals, vtkIdType count)
+{
+  using L = Lanes;
+  using F = typename L::F;
+  constexpr int lanes = L::Count;
+  alignas(64) vtkIdType ids[lanes];
+  for (int l = 0; l < lanes; ++l)
+  {
+    ids[l] = l;
+  }
+  vtkIdType unusable = 0;
+  vtkIdType p = 0;
+  // Plain 16-byte loads while the last point is not in the lanes.
+  for (; p + lanes < count; p += lanes)
+  {
+    F n[3];
+    L::template GatherXYZ<false>(normals, ids, count, n);
+    const F a[3] = { L::Abs(n[0]), L::Abs(n[1]), L::Abs(n[2]) };
+    const F largest = L::Max(L::Max(a[0], a[1]), a[2]);
+    const F limit = L::Set(FLT_MAX);
+    // Finite (false for NaN) and not all zero.
+    const unsigned usable = L::Bits(L::And(L::And(L::Le(a[0], limit), L::Le(a[1], limit)),
+      L::And(L::Le(a[2], limit), L::Gt(largest, L::Zero()))));
+    unusable += lanes - __builtin_popcount(usable);
+    for (int l = 0; l < lanes; ++l)
+    {
+      ids[l] += lanes;
+    }
+  }
+  for (; p < count; ++p)
+  {
+    const float* n = normals + 3 * p;
+    const bool finite = std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]);
+    unusable += finite && !(n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) ? 0 : 1;
+  }
+  return unusable;
+}

@@ -497,6 +497,48 @@ void CheckFinishLanes(int count, Finish finish)
 }
 }
 
+TEST(TangentFrameKernels, LanesCountUnusableNormalsAsIsUsableNormalDoes)
+{
+  if (detail::BestBatchCode() == detail::BatchCode::Scalar)
+  {
+    GTEST_SKIP() << "this CPU (or build) has no AVX2: only the scalar count runs";
+  }
+  // Normals that are zero, +-0, NaN, +-Inf in one component, denormal or huge, at every position
+  // (the lanes, the tail, the last point), for every count up to a few lane widths.
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> kind(0, 9);
+  const float specials[] = { 0.0f,
+    -0.0f,
+    std::numeric_limits<float>::quiet_NaN(),
+    std::numeric_limits<float>::infinity(),
+    -std::numeric_limits<float>::infinity(),
+    std::numeric_limits<float>::denorm_min(),
+    std::numeric_limits<float>::max() };
+  for (int count = 0; count <= 70; ++count)
+  {
+    std::vector<float> n(3 * count, 0.5f);
+    vtkIdType expected = 0;
+    for (int p = 0; p < count; ++p)
+    {
+      const int k = kind(rng);
+      if (k < 3)
+      {
+        n[3 * p] = n[3 * p + 1] = n[3 * p + 2] = k == 0 ? 0.0f : -0.0f; // zero (k == 2: -0)
+      }
+      else if (k < 8)
+      {
+        n[3 * p + (k % 3)] = specials[k - 1]; // NaN, +-Inf, denormal, largest
+      }
+      expected += IsUsableNormal(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) ? 0 : 1;
+    }
+    EXPECT_EQ(detail::avx2::CountUnusableNormals(n.data(), count), expected) << count;
+    if (detail::BestBatchCode() == detail::BatchCode::AVX512)
+    {
+      EXPECT_EQ(detail::avx512::CountUnusableNormals(n.data(), count), expected) << count;
+    }
+  }
+}
+
 TEST(TangentFrameKernels, FinishLanesGiveTheBitsOfTheScalarFinish)
 {
   if (detail::BestBatchCode() == detail::BatchCode::Scalar)
