@@ -1105,19 +1105,33 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      vtkIdType notThree = 0;
+      // Sizes as unsigned differences and sign bits only (no branch), so the compiler
+      // vectorizes the pass: the sign bit of n is set for a negative size, that of n - 3 for a
+      // size below 3, and that of d | -d for d = n - 3 != 0.
+      std::uint64_t negative = 0, below3 = 0, notThree = 0;
       for (vtkIdType c = 0; c < numCells; ++c)
       {
-        const auto n = offsets[c + 1] - offsets[c];
-        sizes.Short += n < 3 ? 1 : 0;
-        notThree += n != 3 ? 1 : 0;
-        if (n < 0)
+        const std::uint64_t n =
+          static_cast<std::uint64_t>(static_cast<std::int64_t>(offsets[c + 1])) -
+          static_cast<std::uint64_t>(static_cast<std::int64_t>(offsets[c]));
+        const std::uint64_t d = n - 3;
+        negative |= n;
+        below3 += d >> 63;
+        notThree += (d | (0 - d)) >> 63;
+      }
+      if (negative >> 63)
+      {
+        for (vtkIdType c = 0; c < numCells; ++c)
         {
-          problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
-            std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
-          return;
+          if (offsets[c + 1] < offsets[c])
+          {
+            problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
+              std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
+            return;
+          }
         }
       }
+      sizes.Short = static_cast<vtkIdType>(below3);
       sizes.TrianglesOnly = notThree == 0;
       if (static_cast<vtkIdType>(offsets[numCells]) != size)
       {

@@ -29,6 +29,7 @@
 #define VTK_TANGENT_BATCH_AVX2_FN __attribute__((target("avx2")))
 #define VTK_TANGENT_BATCH_AVX2_INLINE __attribute__((target("avx2"), always_inline))
 #define VTK_TANGENT_BATCH_NOINLINE __attribute__((noinline))
+#define VTK_TANGENT_BATCH_ALWAYS_INLINE __attribute__((always_inline))
 #endif
 
 #if defined(__clang__)

@@ -9,7 +9,7 @@
 
 /// Whether every corner id of triangles [i, i + N) is below `limit`.
 template<int N>
-bool IdsBelow(const FrameBatch& b, int i, vtkIdType limit)
+VTK_TANGENT_BATCH_ALWAYS_INLINE inline bool IdsBelow(const FrameBatch& b, int i, vtkIdType limit)
 {
   return Lanes::Below(b.Ids[0] + i, N, limit) && Lanes::Below(b.Ids[1] + i, N, limit) &&
     Lanes::Below(b.Ids[2] + i, N, limit);
