@@ -794,6 +794,11 @@ struct Lanes
     out[1] = _mm256_permute2f128_pd(yw01, yw23, 0x20);
     out[2] = _mm256_permute2f128_pd(xz01, xz23, 0x31);
   }
+  static void Widen(F x, D& low, D& high)
+  {
+    low = _mm256_cvtps_pd(_mm256_castps256_ps128(x));
+    high = _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1));
+  }
   static D LoadDouble(const double* x) { return _mm256_loadu_pd(x); }
   static void StoreDouble(double* out, D x) { _mm256_storeu_pd(out, x); }
   static D AddDouble(D x, D y) { return _mm256_add_pd(x, y); }
@@ -984,6 +989,11 @@ struct Lanes
       out[d] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[d]), high[d], 1);
     }
   }
+  static void Widen(F x, D& low, D& high)
+  {
+    low = _mm512_cvtps_pd(_mm512_castps512_ps256(x));
+    high = _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(x), 1)));
+  }
   static D LoadDouble(const double* x) { return _mm512_loadu_pd(x); }
   static void StoreDouble(double* out, D x) { _mm512_storeu_pd(out, x); }
   static D AddDouble(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
@@ -1051,6 +1061,8 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode cod
 {
   int i = 0;
   constexpr bool useFloat = std::is_same<PT, float>::value && std::is_same<UT, float>::value;
+  // Triangles [0, sided) have their sides already (the float lanes with float normals).
+  int sided = 0;
 #ifdef VTK_TANGENT_BATCH_AVX2
   if constexpr (useFloat)
   {
@@ -1062,6 +1074,7 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode cod
     {
       avx2::ComputeLanes(in, b, i);
     }
+    sided = std::is_same<NT, float>::value ? i : 0;
   }
   else
   {
@@ -1082,7 +1095,7 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode cod
       ComputeBatchTriangle(in, b, i);
     }
   }
-  i = 0;
+  i = sided;
 #ifdef VTK_TANGENT_BATCH_AVX2
   for (; code == BatchCode::AVX512 && i + 8 <= b.Size; i += 8)
   {

@@ -28,7 +28,27 @@ inline Lanes::F LanesDot2(const Lanes::F* x)
   return Lanes::Add(Lanes::Mul(x[0], x[0]), Lanes::Mul(x[1], x[1]));
 }
 
-/// single::ComputeTriangle for triangles [i, i + Lanes::Count).
+/// (x0 y0 + x1 y1) + x2 y2 in double, as glm::dot.
+inline Lanes::D LanesDotDouble(const Lanes::D* x, const Lanes::D* y)
+{
+  return Lanes::AddDouble(
+    Lanes::AddDouble(Lanes::MulDouble(x[0], y[0]), Lanes::MulDouble(x[1], y[1])),
+    Lanes::MulDouble(x[2], y[2]));
+}
+
+/// The lanes where v's largest component is in [2^-400, 2^400] (so normalizing v rescales nothing,
+/// see NormalizeExponent; false for NaN).
+inline unsigned LanesUsable(const Lanes::D* v)
+{
+  using L = Lanes;
+  const Lanes::D m =
+    L::MaxDouble(L::MaxDouble(L::AbsDouble(v[0]), L::AbsDouble(v[1])), L::AbsDouble(v[2]));
+  return L::BitsDouble(
+    L::AndDouble(L::GeDouble(m, L::SetDouble(0x1p-400)), L::LeDouble(m, L::SetDouble(0x1p400))));
+}
+
+/// single::ComputeTriangle for triangles [i, i + Lanes::Count), and with float normals their
+/// corners' sides too (see SidesLanes).
 template<typename NT>
 void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
 {
@@ -178,29 +198,61 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
       SpreadBits(ok & (detPositive >> l)) | (SpreadBits(ok & ~(detPositive >> l)) * 0xff);
     std::memcpy(b.Orientation + i + l, &bytes, 8);
   }
-  for (unsigned rest = ~vectorLanes & ((1u << count) - 1); rest != 0; rest &= rest - 1)
+  constexpr unsigned all = (1u << count) - 1;
+  for (unsigned rest = ~vectorLanes & all; rest != 0; rest &= rest - 1)
   {
     ScalarTriangle(in, b, i + LowestBit(rest));
   }
-}
-
-/// (x0 y0 + x1 y1) + x2 y2 in double, as glm::dot.
-inline Lanes::D LanesDotDouble(const Lanes::D* x, const Lanes::D* y)
-{
-  return Lanes::AddDouble(
-    Lanes::AddDouble(Lanes::MulDouble(x[0], y[0]), Lanes::MulDouble(x[1], y[1])),
-    Lanes::MulDouble(x[2], y[2]));
-}
-
-/// The lanes where v's largest component is in [2^-400, 2^400] (so normalizing v rescales nothing,
-/// see NormalizeExponent; false for NaN).
-inline unsigned LanesUsable(const Lanes::D* v)
-{
-  using L = Lanes;
-  const Lanes::D m =
-    L::MaxDouble(L::MaxDouble(L::AbsDouble(v[0]), L::AbsDouble(v[1])), L::AbsDouble(v[2]));
-  return L::BitsDouble(
-    L::AndDouble(L::GeDouble(m, L::SetDouble(0x1p-400)), L::LeDouble(m, L::SetDouble(0x1p400))));
+  if constexpr (std::is_same<NT, float>::value)
+  {
+    // The sides, as SidesLanes computes them: float normals gathered like the positions, the dot
+    // product with the winding normal in double. Lanes the scalar kernel took, and lanes whose
+    // product is zero or not finite when there are stand-in normals, go to ScalarSide.
+    using D = typename L::D;
+    constexpr int half = L::DoubleCount;
+    D nLow[3], nHigh[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      L::Widen(n[d], nLow[d], nHigh[d]);
+    }
+    const unsigned negativeOrientation = okLanes & ~detPositive;
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType* ids = b.Ids[k] + i;
+      F m[3];
+      if (guarded)
+      {
+        L::template GatherXYZ<true>(in.Normals, ids, in.NumberOfPoints, m);
+      }
+      else
+      {
+        L::template GatherXYZ<false>(in.Normals, ids, in.NumberOfPoints, m);
+      }
+      D mLow[3], mHigh[3];
+      for (int d = 0; d < 3; ++d)
+      {
+        L::Widen(m[d], mLow[d], mHigh[d]);
+      }
+      const D dotLow = LanesDotDouble(mLow, nLow), dotHigh = LanesDotDouble(mHigh, nHigh);
+      const unsigned negative = L::NegativeBits(dotLow) | (L::NegativeBits(dotHigh) << half);
+      unsigned minus = (negative ^ negativeOrientation) & okLanes & all;
+      unsigned scalar = ~vectorLanes & all;
+      if (in.Fallback)
+      {
+        scalar |= ~(L::NonZeroFiniteBits(dotLow) | (L::NonZeroFiniteBits(dotHigh) << half)) & all;
+      }
+      for (; scalar != 0; scalar &= scalar - 1)
+      {
+        const int l = LowestBit(scalar);
+        minus = ScalarSide(in, b, i + l, ids[l]) < 0 ? (minus | (1u << l)) : (minus & ~(1u << l));
+      }
+      for (int l = 0; l < count; l += 8)
+      {
+        const std::uint64_t bytes = SpreadBits(minus >> l);
+        std::memcpy(b.Side[k] + i + l, &bytes, 8);
+      }
+    }
+  }
 }
 
 /// BatchInput::Side for the corners of triangles [i, i + Lanes::DoubleCount), in double.
