@@ -60,7 +60,6 @@ using vtkNormalMapping::detail::FrameBatch;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Cells processed between two progress reports / abort checks (on the calling thread).
-constexpr vtkIdType CellBatch = 1 << 16;
 
 /// Sum of thread-local counters (integer: the order does not matter).
 vtkIdType Total(vtkSMPThreadLocal<vtkIdType>& counter)
@@ -347,10 +346,16 @@ struct Execution
   bool Vector = false;
 
   /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin: runs
-  /// long enough that few triangles straddle two owners (each owner computes such a triangle),
-  /// short enough that every batch of cells has work for every block, since meshes number
+  /// long enough that few triangles straddle two owners (each owner computes such a triangle;
+  /// with 2^12 it was a quarter of a 1000-point-wide grid's), short enough that every batch of
+  /// cells (CellBatch, about two runs per block) has work for every block, since meshes number
   /// their points and cells with the same locality.
-  static constexpr int OwnerShift = 12;
+  static constexpr int OwnerShift = 14;
+  /// Cells scanned between two synchronizations of the blocks (and progress reports).
+  vtkIdType CellBatch() const
+  {
+    return std::max<vtkIdType>(1 << 16, static_cast<vtkIdType>(this->Blocks) << (OwnerShift + 1));
+  }
   /// Blocks is a power of two, so that this is a mask and not a division (it runs several times
   /// per triangle).
   bool Owns(int block, vtkIdType p) const
@@ -390,14 +395,15 @@ struct Execution
       WithCellStorage(cells,
         [&](const auto* offsets, const auto* conn)
         {
-          for (vtkIdType begin = 0; begin < numCells && !aborted; begin += CellBatch)
+          const vtkIdType cellBatch = this->CellBatch();
+          for (vtkIdType begin = 0; begin < numCells && !aborted; begin += cellBatch)
           {
             if (this->Filter->GetAbortExecute())
             {
               aborted = true;
               return;
             }
-            const vtkIdType end = std::min(numCells, begin + CellBatch);
+            const vtkIdType end = std::min(numCells, begin + cellBatch);
             vtkSMPTools::For(0,
               this->Blocks,
               1,
@@ -501,6 +507,32 @@ bool ComputePointNormals(Execution& ex,
   return done;
 }
 
+/// Which corners of a run of triangles a block owns.
+enum class RunOwnership
+{
+  None,
+  Some,
+  All,
+};
+
+/// RunOwnership of the n triangles of `ids` (three each) for `block`, branch-free over the ids
+/// (x is 0 exactly for an owned id; x - 1 then has its sign bit set).
+template<typename IdT>
+RunOwnership Ownership(const IdT* ids, vtkIdType n, int block, const Execution& ex)
+{
+  const std::uint64_t mask = static_cast<std::uint64_t>(ex.Blocks - 1);
+  std::uint64_t others = 0, owned = 0;
+  for (vtkIdType j = 0; j < 3 * n; ++j)
+  {
+    const std::uint64_t id = static_cast<std::uint64_t>(static_cast<std::int64_t>(ids[j]));
+    const std::uint64_t x =
+      ((id >> Execution::OwnerShift) & mask) ^ static_cast<std::uint64_t>(block);
+    others |= x;
+    owned += (x - 1) >> 63;
+  }
+  return others == 0 ? RunOwnership::All : (owned == 0 ? RunOwnership::None : RunOwnership::Some);
+}
+
 /**
  * Visits the triangles, in cell order per block (Execution::OrderedScan), that `accept(block,
  * tri)` takes (every one with an owned corner when `everyTriangle`: then accept is not called);
@@ -590,7 +622,13 @@ bool ScanFrames(Execution& ex,
         __builtin_prefetch(ahead + j);
       }
 #endif
-      if (ex.Blocks > 1 || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
+      const RunOwnership owner = ex.Blocks > 1 ? Ownership(ids, n, block, ex) : RunOwnership::All;
+      if (owner == RunOwnership::None)
+      {
+        c += n; // no corner here, and so no bad id either (every id has an owner)
+        continue;
+      }
+      if (owner == RunOwnership::Some || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
       {
         for (vtkIdType t = 0; t < n; ++t)
         {

@@ -755,14 +755,15 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInAnyCellAreAnErrorForEveryMethod)
 TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThreads)
 {
   // Meshes of triangles only are read as runs of id triples, in one block (one thread) or with
-  // owner checks (several): a bad id anywhere, first or last triangle or in the middle of a
-  // batch, must still give the error and the pass-through.
+  // owner checks (several; a block skips runs it owns no corner of, and the owner of a bad id
+  // checks it): a bad id anywhere, first or last triangle or in the middle of a batch, must
+  // still give the error and the pass-through.
   vtkNormalMapping::TorusOptions options;
-  options.U = 200; // 36,000 triangles, 18,000 points: several blocks with 2 and 8 threads
-  options.V = 90;
+  options.U = 400; // 144,000 triangles, 72,000 points: 2 blocks with 2 threads, 4 with 8
+  options.V = 180;
   const auto torus = vtkNormalMapping::MakeTorus(options);
   const vtkIdType numCells = torus->GetNumberOfPolys();
-  for (const vtkIdType cell : { vtkIdType(0), vtkIdType(1000), numCells - 1 })
+  for (const vtkIdType cell : { vtkIdType(0), vtkIdType(1000), numCells / 2 + 7, numCells - 1 })
   {
     for (const vtkIdType id : { torus->GetNumberOfPoints(), vtkIdType(-1) })
     {
