@@ -690,15 +690,9 @@ struct Lanes
   static F Keep(M m, F x) { return _mm256_and_ps(m, x); }
   static unsigned Bits(M m) { return static_cast<unsigned>(_mm256_movemask_ps(m)); }
 
-  /// x, y, z and the next float of point `id` of an array of `count` xyz points: one 16-byte load,
-  /// or element by element at the array's last point (count 0: always).
-  /// Whether ids[0..n) (n a multiple of 4, ids >= 0) are all below `limit`.
-  static bool Below(const vtkIdType* ids, int n, vtkIdType limit)
+  /// Whether 64-bit ids[0..n) (n a multiple of 4, ids >= 0) are all below `limit`.
+  static bool Below(const std::int64_t* ids, int n, std::int64_t limit)
   {
-    if constexpr (sizeof(vtkIdType) != 8)
-    {
-      return *std::max_element(ids, ids + n) < limit;
-    }
     // The sign bit of every id - limit, and-ed.
     const __m256i l = _mm256_set1_epi64x(limit);
     __m256i below = _mm256_set1_epi64x(-1);
@@ -710,6 +704,8 @@ struct Lanes
     return _mm256_movemask_pd(_mm256_castsi256_pd(below)) == 0xf;
   }
 
+  /// x, y, z and the next float of point `id` of an array of `count` xyz points: one 16-byte load,
+  /// or, when Guarded, element by element at the array's last point (count 0: always).
   template<bool Guarded>
   static __m128 LoadPoint(const float* xyz, vtkIdType id, vtkIdType count)
   {
@@ -899,15 +895,9 @@ struct Lanes
   static F Keep(M m, F x) { return _mm512_maskz_mov_ps(m, x); }
   static unsigned Bits(M m) { return m; }
 
-  /// The x, y and z of 16 points: point 4c + r goes to 128-bit lane c of row r, and a transpose
-  /// within the lanes puts point l in lane l.
-  /// Whether ids[0..n) (n a multiple of 8, ids >= 0) are all below `limit`.
-  static bool Below(const vtkIdType* ids, int n, vtkIdType limit)
+  /// Whether 64-bit ids[0..n) (n a multiple of 8, ids >= 0) are all below `limit`.
+  static bool Below(const std::int64_t* ids, int n, std::int64_t limit)
   {
-    if constexpr (sizeof(vtkIdType) != 8)
-    {
-      return *std::max_element(ids, ids + n) < limit;
-    }
     const __m512i l = _mm512_set1_epi64(limit);
     __m512i below = _mm512_set1_epi64(-1);
     for (int j = 0; j < n; j += 8)
@@ -917,6 +907,8 @@ struct Lanes
     return _mm512_cmplt_epi64_mask(below, _mm512_setzero_si512()) == 0xff;
   }
 
+  /// The x, y and z of 16 points: point 4c + r goes to 128-bit lane c of row r, and a transpose
+  /// within the lanes puts point l in lane l.
   template<bool Guarded>
   static void GatherXYZ(const float* xyz, const vtkIdType* ids, vtkIdType count, F out[3])
   {

@@ -11,8 +11,55 @@
 template<int N>
 VTK_TANGENT_BATCH_ALWAYS_INLINE inline bool IdsBelow(const FrameBatch& b, int i, vtkIdType limit)
 {
-  return Lanes::Below(b.Ids[0] + i, N, limit) && Lanes::Below(b.Ids[1] + i, N, limit) &&
-    Lanes::Below(b.Ids[2] + i, N, limit);
+  bool below = true;
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    if constexpr (sizeof(vtkIdType) == sizeof(std::int64_t))
+    {
+      below = below && Lanes::Below(reinterpret_cast<const std::int64_t*>(ids), N, limit);
+    }
+    else
+    {
+      below = below && *std::max_element(ids, ids + N) < limit;
+    }
+  }
+  return below;
+}
+
+/// Lanes::GatherXYZ (float xyz into float lanes) or GatherNormals (into double lanes), with the
+/// load guard at the array's last point when `guarded`.
+template<bool Guarded>
+VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(const float* xyz,
+  const vtkIdType* ids,
+  vtkIdType count,
+  Lanes::F out[3])
+{
+  Lanes::template GatherXYZ<Guarded>(xyz, ids, count, out);
+}
+template<bool Guarded, typename NT>
+VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(const NT* xyz,
+  const vtkIdType* ids,
+  vtkIdType count,
+  Lanes::D out[3])
+{
+  Lanes::template GatherNormals<Guarded>(xyz, ids, count, out);
+}
+template<typename T, typename V>
+VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(bool guarded,
+  const T* xyz,
+  const vtkIdType* ids,
+  vtkIdType count,
+  V out[3])
+{
+  if (guarded)
+  {
+    GatherLanes<true>(xyz, ids, count, out);
+  }
+  else
+  {
+    GatherLanes<false>(xyz, ids, count, out);
+  }
 }
 
 /// (x0 y0 + x1 y1) + x2 y2, as single::Dot.
@@ -65,14 +112,7 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
-    if (guarded)
-    {
-      L::template GatherXYZ<true>(in.Points, ids, in.NumberOfPoints, p[k]);
-    }
-    else
-    {
-      L::template GatherXYZ<false>(in.Points, ids, in.NumberOfPoints, p[k]);
-    }
+    GatherLanes(guarded, in.Points, ids, in.NumberOfPoints, p[k]);
     if (nc == 2)
     {
       L::GatherUV(in.UVs, ids, uv[k][0], uv[k][1]);
@@ -220,14 +260,7 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
     {
       const vtkIdType* ids = b.Ids[k] + i;
       F m[3];
-      if (guarded)
-      {
-        L::template GatherXYZ<true>(in.Normals, ids, in.NumberOfPoints, m);
-      }
-      else
-      {
-        L::template GatherXYZ<false>(in.Normals, ids, in.NumberOfPoints, m);
-      }
+      GatherLanes(guarded, in.Normals, ids, in.NumberOfPoints, m);
       D mLow[3], mHigh[3];
       for (int d = 0; d < 3; ++d)
       {
@@ -275,14 +308,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
   {
     const vtkIdType* ids = b.Ids[k] + i;
     D m[3];
-    if (guarded)
-    {
-      L::template GatherNormals<true>(in.Normals, ids, in.NumberOfPoints, m);
-    }
-    else
-    {
-      L::template GatherNormals<false>(in.Normals, ids, in.NumberOfPoints, m);
-    }
+    GatherLanes(guarded, in.Normals, ids, in.NumberOfPoints, m);
     const D dot = LanesDotDouble(m, n);
     const unsigned negative = L::NegativeBits(dot);
     // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
@@ -334,14 +360,7 @@ unsigned FinishLanes(const NT* normals,
     ids[l] = p + l;
   }
   D m[3], t[3], n[3], perp[3], unit[3];
-  if (p + count < numPoints)
-  {
-    L::template GatherNormals<false>(normals, ids, numPoints, m);
-  }
-  else
-  {
-    L::template GatherNormals<true>(normals, ids, numPoints, m);
-  }
+  GatherLanes(p + count >= numPoints, normals, ids, numPoints, m);
   L::GatherSums(sums + p, t);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
   const D length = L::SqrtDouble(LanesDotDouble(m, m));
