@@ -39,17 +39,21 @@ vtkStandardNewMacro(vtkPolyDataTangentFrames);
  *
  * 1. Scatter: every triangle of every polygon and strip is visited in cell order; its frame is
  *    computed (in batches, vtkTangentFrameBatch.h, which gives the bits of
- *    vtkNormalMapping::ComputeTriangleFrame or of its float form) and added, weighted, to an
- *    accumulator of
- *    each of its corners, one sum per handedness. The points are split into as many contiguous
- *    blocks as there are threads; each thread scans all cells but only computes and adds for
- *    triangles with a corner in its block. Every point therefore sums its triangles in cell
- *    order whatever the number of threads: the output is bit-identical for any thread count,
- *    without a stored point-to-triangle table or per-triangle frames.
+ *    vtkNormalMapping::ComputeTriangleFrame or of its float form) and added, weighted, to one
+ *    accumulator per corner point, which also records the handednesses its corners have. The
+ *    points are dealt to as many blocks as there are threads (a power of two), in runs of 2^14
+ *    ids; each thread reads all cells but only computes and adds the triangles with a corner in
+ *    its block (a run of triangles with no such corner is skipped, one with only such corners
+ *    taken whole).
+ *    Every point therefore sums its triangles in cell order whatever the number of threads: the
+ *    output is bit-identical for any thread count, without a stored point-to-triangle table or
+ *    per-triangle frames. Points whose corners have both handednesses (mirror seams) get their
+ *    per-handedness sums from a second scan of only the triangles that hold them.
  * 2. Finish: per point, choose or split the handedness, Gram-Schmidt against the normal, write.
  * 3. Only when needed: fallback frames from neighbours (another ordered scan), split points
  *    (cells re-pointed), cell tangents.
- * The accumulators (64 bytes per point) are the only per-point memory besides the outputs.
+ * The accumulators (33 bytes per point; 64 more per seam point) are the only per-point memory
+ * besides the outputs.
  */
 namespace
 {
