@@ -1184,22 +1184,6 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
   return problem;
 }
 
-/// The number of the n normals that IsUsableNormal rejects (zero or non-finite), in one
-/// branch-free pass (x - x is 0 exactly for finite x).
-template<typename T>
-vtkIdType CountUnusableNormals(const T* normals, vtkIdType n)
-{
-  vtkIdType unusable = 0;
-  for (vtkIdType p = 0; p < n; ++p)
-  {
-    const T x = normals[3 * p], y = normals[3 * p + 1], z = normals[3 * p + 2];
-    const bool finite = (x - x) == T(0) && (y - y) == T(0) && (z - z) == T(0);
-    const bool zero = x == T(0) && y == T(0) && z == T(0);
-    unusable += (finite && !zero) ? 0 : 1;
-  }
-  return unusable;
-}
-
 } // namespace
 
 struct vtkPolyDataTangentFrames::Internals
@@ -1489,7 +1473,10 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
           }
         }
 #endif
-        invalid = CountUnusableNormals(n, numPoints);
+        for (vtkIdType p = 0; p < numPoints; ++p)
+        {
+          invalid += IsUsableNormal(glm::dvec3(n[3 * p], n[3 * p + 1], n[3 * p + 2])) ? 0 : 1;
+        }
       });
     self->NumberOfInvalidNormals = invalid;
     if (invalid > 0)

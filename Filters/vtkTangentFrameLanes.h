@@ -461,8 +461,7 @@ inline vtkIdType CountUnusableNormals(const float* normals, vtkIdType count)
   for (; p < count; ++p)
   {
     const float* n = normals + 3 * p;
-    const bool finite = std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]);
-    unusable += finite && !(n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) ? 0 : 1;
+    unusable += IsUsableNormal(glm::dvec3(n[0], n[1], n[2])) ? 0 : 1;
   }
   return unusable;
 }
