@@ -587,10 +587,14 @@ bool ScanFrames(Execution& ex,
     }
 #endif
     ComputeBatch(input, b, code);
+    // Counted in a local: the blocks' counters share a cache line, and adding to them per
+    // triangle made the threads fight over it (two threads were no faster than one).
+    vtkIdType degenerateHere = 0;
     for (int i = 0; i < b.Size; ++i)
     {
-      degenerateByBlock[block] += b.Orientation[i] == 0 && ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
+      degenerateHere += b.Orientation[i] == 0 && ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
     }
+    degenerateByBlock[block] += degenerateHere;
     consume(block, b);
     b.Size = 0;
   };

@@ -49,8 +49,10 @@ enum class BatchWeights
   Angle, ///< the interior angle at each corner (AngleWeighted)
 };
 
-/// Triangles and, once computed, their frames and corner weights (structure of arrays).
-struct FrameBatch
+/// Triangles and, once computed, their frames and corner weights (structure of arrays). Aligned to
+/// a cache line: each block of threads fills its own batch, and adjacent batches must not share a
+/// line (one's Size with the other's Side bytes).
+struct alignas(64) FrameBatch
 {
   static constexpr int Capacity = 64;
   int Size = 0;
