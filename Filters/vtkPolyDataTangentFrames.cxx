@@ -331,6 +331,45 @@ struct SideSums
   double Weight(int side) const { return this->Sum[side][3]; }
 };
 
+/// Triangles per entry of ChunkOwners.
+constexpr vtkIdType OwnerChunk = 64;
+
+/**
+ * For a connectivity of n triangles (three ids each), per chunk of OwnerChunk consecutive
+ * triangles: bit b set when block b owns one of its corners (points are dealt to `blocks`, a power
+ * of two, in runs of 2^ownerShift ids, see Execution). One parallel pass, so that with several
+ * blocks each reads only the chunks it has a corner in, instead of every block reading every id.
+ * Ids are not checked here: an id outside [0, numPoints) still sets some block's bit, and that
+ * block's scan finds it.
+ */
+template<typename IdT>
+std::vector<std::uint64_t> ChunkOwners(const IdT* conn, vtkIdType n, int blocks, int ownerShift)
+{
+  const vtkIdType chunks = (n + OwnerChunk - 1) / OwnerChunk;
+  std::vector<std::uint64_t> owners(static_cast<size_t>(chunks));
+  const std::uint64_t mask = static_cast<std::uint64_t>(blocks - 1);
+  vtkSMPTools::For(0,
+    chunks,
+    256,
+    [&](vtkIdType c0, vtkIdType c1)
+    {
+      for (vtkIdType c = c0; c < c1; ++c)
+      {
+        const IdT* ids = conn + 3 * OwnerChunk * c;
+        const vtkIdType count = 3 * std::min(OwnerChunk, n - OwnerChunk * c);
+        // Branch-free over the ids, so that the compiler vectorizes it.
+        std::uint64_t bits = 0;
+        for (vtkIdType j = 0; j < count; ++j)
+        {
+          const std::uint64_t id = static_cast<std::uint64_t>(static_cast<std::int64_t>(ids[j]));
+          bits |= std::uint64_t{ 1 } << ((id >> ownerShift) & mask);
+        }
+        owners[c] = bits;
+      }
+    });
+  return owners;
+}
+
 /// Everything the passes of one execution share.
 struct Execution
 {
@@ -381,7 +420,8 @@ struct Execution
 
   /**
    * OrderedScan, but when every polygon is a triangle, each block's part of the polygons goes to
-   * runs(block, conn, begin, end) instead, which visits triangles [begin, end) from the
+   * runs(block, conn, begin, end, owners) instead (owners: ChunkOwners of the connectivity with
+   * several blocks, else null), which visits triangles [begin, end) from the
    * connectivity `conn` (three ids each) itself and returns whether one has an id out of range
    * (it must skip those, as ForEachTriangle does).
    */
@@ -399,6 +439,15 @@ struct Execution
       WithCellStorage(cells,
         [&](const auto* offsets, const auto* conn)
         {
+          std::vector<std::uint64_t> owners;
+          if constexpr (!std::is_same<R, std::nullptr_t>::value)
+          {
+            if (kind == 0 && this->TrianglesOnly && this->Blocks > 1)
+            {
+              owners = ChunkOwners(conn, numCells, this->Blocks, OwnerShift);
+            }
+          }
+          const std::uint64_t* chunkOwners = owners.empty() ? nullptr : owners.data();
           const vtkIdType cellBatch = this->CellBatch();
           for (vtkIdType begin = 0; begin < numCells && !aborted; begin += cellBatch)
           {
@@ -421,7 +470,7 @@ struct Execution
                   {
                     if (kind == 0 && this->TrianglesOnly)
                     {
-                      bad[b] |= runs(block, conn, begin, end) ? 1 : 0;
+                      bad[b] |= runs(block, conn, begin, end, chunkOwners) ? 1 : 0;
                       continue;
                     }
                   }
@@ -511,32 +560,6 @@ bool ComputePointNormals(Execution& ex,
   return done;
 }
 
-/// Which corners of a run of triangles a block owns.
-enum class RunOwnership
-{
-  None,
-  Some,
-  All,
-};
-
-/// RunOwnership of the n triangles of `ids` (three each) for `block`, branch-free over the ids
-/// (x is 0 exactly for an owned id; x - 1 then has its sign bit set).
-template<typename IdT>
-RunOwnership Ownership(const IdT* ids, vtkIdType n, int block, const Execution& ex)
-{
-  const std::uint64_t mask = static_cast<std::uint64_t>(ex.Blocks - 1);
-  std::uint64_t others = 0, owned = 0;
-  for (vtkIdType j = 0; j < 3 * n; ++j)
-  {
-    const std::uint64_t id = static_cast<std::uint64_t>(static_cast<std::int64_t>(ids[j]));
-    const std::uint64_t x =
-      ((id >> Execution::OwnerShift) & mask) ^ static_cast<std::uint64_t>(block);
-    others |= x;
-    owned += (x - 1) >> 63;
-  }
-  return others == 0 ? RunOwnership::All : (owned == 0 ? RunOwnership::None : RunOwnership::Some);
-}
-
 /**
  * Visits the triangles, in cell order per block (Execution::OrderedScan), that `accept(block,
  * tri)` takes (every one with an owned corner when `everyTriangle`: then accept is not called);
@@ -612,14 +635,25 @@ bool ScanFrames(Execution& ex,
     }
   };
   // Polygons that are all triangles, when every triangle is wanted: whole runs of ids into the
-  // batch (one block), or the triangles with an owned corner (several).
-  const auto runs = [&](int block, const auto* conn, vtkIdType begin, vtkIdType end)
+  // batch. With one block every triangle is its; with several (`owners`, see ChunkOwners), chunks
+  // the block owns no corner of are skipped unread, chunks it owns every corner of are taken
+  // whole, and the rest triangle by triangle.
+  const auto runs =
+    [&](int block, const auto* conn, vtkIdType begin, vtkIdType end, const std::uint64_t* owners)
   {
     FrameBatch& b = batches[block];
+    const std::uint64_t mine = std::uint64_t{ 1 } << block;
     bool bad = false;
     for (vtkIdType c = begin; c < end;)
     {
-      const vtkIdType n = std::min<vtkIdType>(FrameBatch::Capacity - b.Size, end - c);
+      const vtkIdType chunkEnd = owners ? std::min(end, (c / OwnerChunk + 1) * OwnerChunk) : end;
+      const std::uint64_t chunkOwners = owners ? owners[c / OwnerChunk] : mine;
+      if ((chunkOwners & mine) == 0)
+      {
+        c = chunkEnd; // no corner here, and so no bad id either (every id has an owner)
+        continue;
+      }
+      const vtkIdType n = std::min<vtkIdType>(FrameBatch::Capacity - b.Size, chunkEnd - c);
       const auto* ids = conn + 3 * c;
 #if defined(__GNUC__) || defined(__clang__)
       // The connectivity is read once, run by run with a batch's work in between, which is too
@@ -630,13 +664,7 @@ bool ScanFrames(Execution& ex,
         __builtin_prefetch(ahead + j);
       }
 #endif
-      const RunOwnership owner = ex.Blocks > 1 ? Ownership(ids, n, block, ex) : RunOwnership::All;
-      if (owner == RunOwnership::None)
-      {
-        c += n; // no corner here, and so no bad id either (every id has an owner)
-        continue;
-      }
-      if (owner == RunOwnership::Some || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
+      if (chunkOwners != mine || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
       {
         for (vtkIdType t = 0; t < n; ++t)
         {

@@ -1221,40 +1221,49 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  vtkNormalMapping::TorusOptions options;
-  options.U = 300; // 72,000 triangles: several batches and many SMP chunks
-  options.V = 120;
-  options.MirrorU = true;
-  auto mesh = vtkNormalMapping::MakeTorus(options);
-  for (int method : AllMethods)
+  // The scatter deals points to one block per thread (a power of two), in runs of 2^14 ids, and
+  // never more blocks than runs: 36,000 points make at most 2 blocks, 133,120 points 8, so that
+  // both meshes check the skipped, whole and shared chunks of several blocks.
+  std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+  for (int u : { 300, 520 })
   {
-    std::vector<std::vector<float>> results;
-    for (int threads : { 1, 2, 8 })
-    {
-      NormalMappingTesting::WithThreads(threads,
-        [&]()
-        {
-          // The blocks of the ordered scatter follow the estimated thread count.
-          EXPECT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), threads);
-          auto out = RunFrames(mesh,
-            [&](vtkPolyDataTangentFrames* f)
-            {
-              f->SetMethod(method);
-              f->ComputeBitangentsOn();
-            });
-          std::vector<float> bits;
-          for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
-          {
-            auto* a = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray(name));
-            bits.insert(bits.end(), a->GetPointer(0), a->GetPointer(0) + a->GetDataSize());
-          }
-          results.push_back(bits);
-        });
-    }
-    ASSERT_EQ(results.size(), 3u);
-    EXPECT_EQ(0, std::memcmp(results[0].data(), results[1].data(), results[0].size() * 4));
-    EXPECT_EQ(0, std::memcmp(results[0].data(), results[2].data(), results[0].size() * 4));
+    vtkNormalMapping::TorusOptions options;
+    options.U = u;
+    options.V = u == 300 ? 120 : 256;
+    options.MirrorU = true;
+    meshes.push_back(vtkNormalMapping::MakeTorus(options));
   }
+  for (const auto& mesh : meshes)
+    for (int method : AllMethods)
+    {
+      SCOPED_TRACE(mesh->GetNumberOfPoints());
+      std::vector<std::vector<float>> results;
+      for (int threads : { 1, 2, 8 })
+      {
+        NormalMappingTesting::WithThreads(threads,
+          [&]()
+          {
+            // The blocks of the ordered scatter follow the estimated thread count.
+            EXPECT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), threads);
+            auto out = RunFrames(mesh,
+              [&](vtkPolyDataTangentFrames* f)
+              {
+                f->SetMethod(method);
+                f->ComputeBitangentsOn();
+              });
+            std::vector<float> bits;
+            for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+            {
+              auto* a = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray(name));
+              bits.insert(bits.end(), a->GetPointer(0), a->GetPointer(0) + a->GetDataSize());
+            }
+            results.push_back(bits);
+          });
+      }
+      ASSERT_EQ(results.size(), 3u);
+      EXPECT_EQ(0, std::memcmp(results[0].data(), results[1].data(), results[0].size() * 4));
+      EXPECT_EQ(0, std::memcmp(results[0].data(), results[2].data(), results[0].size() * 4));
+    }
 }
 
 TEST(PolyDataTangentFrames, OutputPrecision)
