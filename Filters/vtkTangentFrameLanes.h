@@ -94,6 +94,18 @@ inline unsigned LanesUsable(const Lanes::D* v)
     L::AndDouble(L::GeDouble(m, L::SetDouble(0x1p-400)), L::LeDouble(m, L::SetDouble(0x1p400))));
 }
 
+/// single::AtanOfReduced, lane by lane with the same operations.
+inline Lanes::F AtanLanes(Lanes::F z, Lanes::F x, Lanes::F x2)
+{
+  using L = Lanes;
+  const float* c = single::AtanMinimax;
+  const Lanes::F low = L::Add(L::Set(c[0]), L::Mul(L::Set(c[1]), x));
+  const Lanes::F high =
+    L::Add(L::Add(L::Set(c[2]), L::Mul(L::Set(c[3]), x)), L::Mul(x2, L::Set(c[4])));
+  const Lanes::F p = L::Add(low, L::Mul(x2, high));
+  return L::Add(z, L::Mul(L::Mul(z, x), p));
+}
+
 /// single::ComputeTriangle for triangles [i, i + Lanes::Count), and with float normals their
 /// corners' sides too (see SidesLanes).
 template<typename NT>
@@ -179,12 +191,11 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
   F w[3];
   if (in.Weights == BatchWeights::Angle)
   {
-    // single::Angle for the three corners; the three series are evaluated together, since each
-    // is a chain of dependent operations.
+    // single::Angle for the three corners, with the same operations.
     const F sine = L::Sqrt(twiceArea2);
     const F c[3] = { LanesDot(e1, e2), L::Negate(LanesDot(e1, e3)), LanesDot(e2, e3) };
     M steep[3], positive[3];
-    F z[3], z2[3], base[3], series[3];
+    F z[3], x[3], base[3], atanZ[3];
     for (int j = 0; j < 3; ++j)
     {
       const F ac = L::Abs(c[j]);
@@ -196,20 +207,15 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
       z[j] =
         L::Div(L::Select(reduce, L::Sub(num, den), num), L::Select(reduce, L::Add(num, den), den));
       base[j] = L::Keep(reduce, L::Set(single::PiOver4));
-      z2[j] = L::Mul(z[j], z[j]);
-      series[j] = L::Set(single::AtanSeries[8]);
-    }
-    for (int k = 7; k >= 0; --k)
-    {
-      const F ck = L::Set(single::AtanSeries[k]);
-      for (int j = 0; j < 3; ++j)
-      {
-        series[j] = L::Add(ck, L::Mul(z2[j], series[j]));
-      }
+      x[j] = L::Mul(z[j], z[j]);
     }
     for (int j = 0; j < 3; ++j)
     {
-      F a = L::Add(base[j], L::Mul(z[j], series[j]));
+      atanZ[j] = AtanLanes(z[j], x[j], L::Mul(x[j], x[j]));
+    }
+    for (int j = 0; j < 3; ++j)
+    {
+      F a = L::Add(base[j], atanZ[j]);
       a = L::Select(steep[j], L::Sub(L::Set(single::PiOver2), a), a);
       a = L::Select(L::Lt(c[j], zero), L::Sub(L::Set(single::Pi), a), a);
       w[j] = L::Keep(positive[j], a);

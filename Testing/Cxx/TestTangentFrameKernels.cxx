@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -374,6 +376,33 @@ TEST(TangentFrameKernels, BatchVectorAndScalarGiveTheSameBits)
         << "double, seed " << seed << ", code " << c;
     }
   }
+}
+
+TEST(TangentFrameKernels, SinglePrecisionAngleIsWithinTwoAndAHalfRoundings)
+{
+  // single::Angle (the float corner angle of AngleWeighted) against atan2 in double, over every
+  // direction and 60 binary orders of magnitude. Its error: the division that reduces the argument
+  // rounds once, the minimax polynomial is within 1.2e-9 (a hundredth of float's epsilon) and its
+  // float evaluation rounds about once more, and the final add of pi/4, pi/2 or pi once more.
+  // 2e7 random pairs measured at most 1.72 FLT_EPSILON relative; 2.5 leaves room for other
+  // seeds without hiding a wrong coefficient (without the last one it measures 80).
+  using vtkNormalMapping::detail::single::Angle;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> direction(0.0, M_PI), exponent(-30.0, 30.0);
+  double worst = 0.0;
+  for (int i = 0; i < 1000000; ++i)
+  {
+    const double a = direction(rng), r = std::exp2(exponent(rng));
+    const float s = static_cast<float>(r * std::sin(a)), c = static_cast<float>(r * std::cos(a));
+    const double exact = std::atan2(static_cast<double>(s), static_cast<double>(c));
+    worst = std::max(worst, std::abs(Angle(s, c) - exact) / (exact * FLT_EPSILON));
+  }
+  EXPECT_LT(worst, 2.5);
+  // The axes and the empty corner exactly.
+  EXPECT_EQ(Angle(0.0f, 2.0f), 0.0f);
+  EXPECT_EQ(Angle(3.0f, 0.0f), static_cast<float>(M_PI / 2));
+  EXPECT_EQ(Angle(0.0f, -2.0f), static_cast<float>(M_PI));
+  EXPECT_EQ(Angle(0.0f, 0.0f), 0.0f);
 }
 
 TEST(TangentFrameKernels, SinglePrecisionPathAgreesWithTheDoubleKernel)
