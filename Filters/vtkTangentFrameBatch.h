@@ -775,6 +775,31 @@ struct Lanes
     _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
   }
 
+  /// The four xyz triples v[0..3) as floats, interleaved into out[0..12).
+  static void StoreXYZ(float* out, const __m256d v[3])
+  {
+    alignas(16) float xyz[3][4];
+    for (int d = 0; d < 3; ++d)
+    {
+      _mm_store_ps(xyz[d], _mm256_cvtpd_ps(v[d]));
+    }
+    for (int l = 0; l < 4; ++l)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        out[3 * l + d] = xyz[d][l];
+      }
+    }
+  }
+  /// out[l] = -1 where bit l of minus is set, else 1, for l < 4.
+  static void StoreSigns(float* out, unsigned minus)
+  {
+    for (int l = 0; l < 4; ++l)
+    {
+      out[l] = ((minus >> l) & 1u) ? -1.0f : 1.0f;
+    }
+  }
+
   using DM = __m256d; // all ones in the lanes where true
   static D SetDouble(double x) { return _mm256_set1_pd(x); }
   static D SubDouble(D x, D y) { return _mm256_sub_pd(x, y); }
@@ -988,6 +1013,27 @@ struct Lanes
     {
       out[d] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[d]), high[d], 1);
     }
+  }
+  /// The eight xyz triples v[0..3) as floats, interleaved into out[0..24): two permutes pick
+  /// them from (x | y) and z, and two stores write them.
+  static void StoreXYZ(float* out, const D v[3])
+  {
+    const __m512d x = _mm512_castps_pd(_mm512_castps256_ps512(_mm512_cvtpd_ps(v[0])));
+    const __m512 xy =
+      _mm512_castpd_ps(_mm512_insertf64x4(x, _mm256_castps_pd(_mm512_cvtpd_ps(v[1])), 1));
+    const __m512 z = _mm512_castps256_ps512(_mm512_cvtpd_ps(v[2]));
+    // Output float i is component i % 3 of point i / 3: x at index p, y at 8 + p, z at 16 + p.
+    const __m512i first = _mm512_setr_epi32(0, 8, 16, 1, 9, 17, 2, 10, 18, 3, 11, 19, 4, 12, 20, 5);
+    const __m512i second = _mm512_setr_epi32(13, 21, 6, 14, 22, 7, 15, 23, 0, 0, 0, 0, 0, 0, 0, 0);
+    _mm512_storeu_ps(out, _mm512_permutex2var_ps(xy, first, z));
+    _mm256_storeu_ps(out + 16, _mm512_castps512_ps256(_mm512_permutex2var_ps(xy, second, z)));
+  }
+  /// out[l] = -1 where bit l of minus is set, else 1, for l < 8.
+  static void StoreSigns(float* out, unsigned minus)
+  {
+    const __m512 signs = _mm512_mask_blend_ps(
+      static_cast<__mmask16>(minus), _mm512_set1_ps(1.0f), _mm512_set1_ps(-1.0f));
+    _mm256_storeu_ps(out, _mm512_castps512_ps256(signs));
   }
   static void Widen(F x, D& low, D& high)
   {

@@ -402,14 +402,22 @@ unsigned FinishLanes(const NT* normals,
       }
     }
   };
-  for (int d = 0; d < 3; ++d)
+  if constexpr (std::is_same<OutT, float>::value)
   {
-    L::StoreDouble(frame[d], unit[d]);
+    L::StoreXYZ(tOut + 3 * p, unit);
+    L::StoreSigns(sOut + p, minus);
   }
-  write(tOut);
-  for (int l = 0; l < count; ++l)
+  else
   {
-    sOut[p + l] = static_cast<OutT>(((minus >> l) & 1u) ? -1.0 : 1.0);
+    for (int d = 0; d < 3; ++d)
+    {
+      L::StoreDouble(frame[d], unit[d]);
+    }
+    write(tOut);
+    for (int l = 0; l < count; ++l)
+    {
+      sOut[p + l] = static_cast<OutT>(((minus >> l) & 1u) ? -1.0 : 1.0);
+    }
   }
   if (bOut)
   {
