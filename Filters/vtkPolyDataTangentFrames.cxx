@@ -6,6 +6,10 @@
 #include "vtkTangentFrameBatch.h"
 #include "vtkTangentFrameKernels.h"
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDoubleArray.h"
@@ -25,7 +29,9 @@
 #include <atomic>
 #include <cfloat>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
+#include <new>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -368,6 +374,35 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn, vtkIdType n, int blocks,
       }
     });
   return owners;
+}
+
+/// Storage for the per-point sums; see AllocatePointSums.
+using PointSumStorage = std::unique_ptr<PointSum[], void (*)(PointSum*)>;
+
+/**
+ * Uninitialized storage for `count` PointSums (null if memory is short). On Linux, arrays of 8 MiB
+ * or more are aligned to 2 MiB and advised to use transparent huge pages, so that their first
+ * touches fault once per 2 MiB instead of once per 4 KiB: on the 1M-triangle torus, zeroing the
+ * 16 MiB of sums took 5.7-8 ms whenever the allocator handed back fresh pages (0.5 ms when it
+ * reused some), and 0.9-1.3 ms with huge pages either way.
+ */
+PointSumStorage AllocatePointSums(vtkIdType count)
+{
+  const size_t n = static_cast<size_t>(std::max<vtkIdType>(count, 1));
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr size_t huge = size_t{ 1 } << 21;
+  const size_t bytes = sizeof(PointSum) * n;
+  // aligned_alloc wants a multiple of the alignment.
+  const size_t alignment = bytes >= 4 * huge ? huge : alignof(PointSum);
+  void* p = std::aligned_alloc(alignment, (bytes + alignment - 1) / alignment * alignment);
+  if (p && alignment == huge)
+  {
+    madvise(p, (bytes + huge - 1) / huge * huge, MADV_HUGEPAGE); // advice: refused, small pages
+  }
+  return PointSumStorage(static_cast<PointSum*>(p), [](PointSum* q) { std::free(q); });
+#else
+  return PointSumStorage(new (std::nothrow) PointSum[n], [](PointSum* q) { delete[] q; });
+#endif
 }
 
 /// Everything the passes of one execution share.
@@ -1554,7 +1589,14 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   }
 
   // 2. Scatter and finish.
-  std::unique_ptr<PointSum[]> acc(new PointSum[numPoints]);
+  PointSumStorage acc = AllocatePointSums(numPoints);
+  if (!acc)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Cannot allocate the per-point sums for " << numPoints << " points.");
+    output->Initialize();
+    return 0;
+  }
   std::unique_ptr<unsigned char[]> sides(new unsigned char[numPoints]);
   vtkSMPTools::For(0,
     numPoints,
