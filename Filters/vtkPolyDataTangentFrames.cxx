@@ -745,13 +745,9 @@ bool ScanFrames(Execution& ex,
   return done;
 }
 
-/// The weighted sums of every point and the handednesses of its corners (the scatter).
+/// The weighted sums of every point and the marks of its corners' handednesses (the scatter).
 template<typename View>
-bool Scatter(Execution& ex,
-  const View& view,
-  PointSum* sums,
-  unsigned char* sides,
-  vtkIdType& degenerate)
+bool Scatter(Execution& ex, const View& view, PointSum* sums, vtkIdType& degenerate)
 {
   return ScanFrames(
     ex,
@@ -763,7 +759,7 @@ bool Scatter(Execution& ex,
     [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
       const vtkNormalMapping::detail::ScatterTarget target{
-        sums, sides, ex.Blocks, block, Execution::OwnerShift
+        sums, ex.Blocks, block, Execution::OwnerShift
       };
       vtkNormalMapping::detail::ScatterBatch(b, target, ex.Vector);
     },
@@ -857,9 +853,10 @@ inline void WriteFrame(vtkIdType p,
   }
 }
 
-/// Per point with one handedness: Gram-Schmidt, write. Points with none are marked FallbackMark
-/// and listed; points with both are listed for FinishConflicts. Runs of points go through the
-/// lane code (vtkTangentFrameLanes.h), which gives the bits of the scalar code below.
+/// Per point, its handedness byte from its sum's marks into `sides` (PlusSide, MinusSide,
+/// BothSides, or FallbackMark when none). One handedness: Gram-Schmidt, write. None: listed in
+/// `fallbacks`; both: listed for FinishConflicts. Runs of points go through the lane code
+/// (vtkTangentFrameLanes.h), which gives the bits of the scalar code below.
 template<typename View, typename OutT>
 void Finish(Execution& ex,
   const View& view,
@@ -876,10 +873,10 @@ void Finish(Execution& ex,
   vtkSMPThreadLocal<std::vector<vtkIdType>> fallbackLists;
   const auto point = [&](vtkIdType p)
   {
-    const unsigned char has = sides[p];
+    const unsigned char has = sums[p].Sides();
+    sides[p] = has == 0 ? FallbackMark : has;
     if (has == 0)
     {
-      sides[p] = FallbackMark;
       fallbackLists.Local().push_back(p);
       return;
     }
@@ -976,11 +973,11 @@ bool FillFallbacks(Execution& ex,
   OutT* sOut,
   OutT* bOut)
 {
-  // Reuse the fallback points' sums: Sum[0..2] adds the neighbours' tangents, Sum[3] their signs.
-  // Only fallback points are written; others are only read.
+  // Reuse the fallback points' sums: Sum adds the neighbours' tangents, Marks counts their signs
+  // (+1 / -1). Only fallback points are written; others are only read.
   for (vtkIdType p : fallbacks)
   {
-    std::fill(acc[p].Sum, acc[p].Sum + 4, 0.0);
+    acc[p] = PointSum{};
   }
   const bool done = ex.OrderedScan(0.80,
     0.85,
@@ -1003,7 +1000,7 @@ bool FillFallbacks(Execution& ex,
             {
               sum[d] += tOut[3 * q + d];
             }
-            sum[3] += sOut[q];
+            acc[p].Marks += sOut[q] < 0 ? -1 : 1;
           }
         }
       }
@@ -1017,7 +1014,7 @@ bool FillFallbacks(Execution& ex,
         const vtkIdType p = fallbacks[i];
         const glm::dvec3 n = view.Normals ? view.Normal(p) : glm::dvec3(0.0);
         const glm::dvec3 t = PerpendicularTangent(n, acc[p].Tangent());
-        WriteFrame(p, n, t, acc[p].Sum[3] < 0.0 ? -1.0 : 1.0, tOut, sOut, bOut);
+        WriteFrame(p, n, t, acc[p].Marks < 0 ? -1.0 : 1.0, tOut, sOut, bOut);
       }
     });
   return done;
@@ -1597,14 +1594,11 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     output->Initialize();
     return 0;
   }
+  // Written by Finish, point by point, from the sums' marks.
   std::unique_ptr<unsigned char[]> sides(new unsigned char[numPoints]);
   vtkSMPTools::For(0,
     numPoints,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      std::fill(acc.get() + b, acc.get() + e, PointSum{ { 0.0, 0.0, 0.0, 0.0 } });
-      std::fill(sides.get() + b, sides.get() + e, static_cast<unsigned char>(0));
-    });
+    [&](vtkIdType b, vtkIdType e) { std::fill(acc.get() + b, acc.get() + e, PointSum{}); });
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {
     auto array = vtkSmartPointer<OutArray>::New();
@@ -1634,7 +1628,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     fallbackNormals,
     [&](const auto& view)
     {
-      done = Scatter(ex, view, acc.get(), sides.get(), self->NumberOfDegenerateTriangles);
+      done = Scatter(ex, view, acc.get(), self->NumberOfDegenerateTriangles);
       if (!done || ex.BadIds)
       {
         return;

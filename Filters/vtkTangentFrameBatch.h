@@ -281,29 +281,46 @@ void ComputeTriangle(const BatchInput<float, float, NT>& in, FrameBatch& b, int 
 }
 } // namespace single
 
-/// Per point: the weighted sum of its triangles' tangents (x, y, z) and of their weights, both
-/// handednesses together (vtkPolyDataTangentFrames' scatter).
-struct alignas(32) PointSum
-{
-  double Sum[4];
-
-  glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
-};
-
 /// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
 /// Both bits: a conflict (a mirror seam); none: a fallback point, which vtkPolyDataTangentFrames
 /// then marks FallbackMark.
 constexpr unsigned char PlusSide = 1, MinusSide = 2, BothSides = 3, FallbackMark = 4;
 
+/// The bits of 1.0, or-ed into every non-zero PointSum::Marks: read as a double (the vector scatter
+/// adds the marks' lane with the sums', then discards it) the marks are then never subnormal.
+constexpr std::int64_t MarkBase = 0x3ff0000000000000LL;
+
+/// The mark of a corner on `side` (0: handedness +1, 1: -1) with weight w: MarkBase with PlusSide
+/// or MinusSide when w > 0, else 0.
+inline std::int64_t CornerMark(int side, double w)
+{
+  return w > 0.0 ? MarkBase | (std::int64_t{ PlusSide } << side) : 0;
+}
+
 /**
- * Where a batch's corners are added: per point, a PointSum and a byte of the handednesses seen (bit
- * 0: +1, bit 1: -1, for positive weights). Only corners whose point `Block` owns are added: points
- * are dealt to `Blocks` (a power of two) in runs of 2^OwnerShift ids, round robin.
+ * Per point, in one 32-byte line (the scatter reads and writes it once per corner): the weighted
+ * sum of its triangles' tangents (x, y, z), both handednesses together, and the or of its
+ * corners' marks (CornerMark).
+ */
+struct alignas(32) PointSum
+{
+  double Sum[3];
+  /// The or of the corners' CornerMarks. FillFallbacks reuses it as a count.
+  std::int64_t Marks;
+
+  glm::dvec3 Tangent() const { return glm::dvec3(this->Sum[0], this->Sum[1], this->Sum[2]); }
+  /// PlusSide, MinusSide, BothSides, or 0 for a point without a marked corner.
+  unsigned char Sides() const { return static_cast<unsigned char>(this->Marks & BothSides); }
+};
+
+/**
+ * Where a batch's corners are added: per point, a PointSum. Only corners whose point `Block` owns
+ * are added: points are dealt to `Blocks` (a power of two) in runs of 2^OwnerShift ids, round
+ * robin.
  */
 struct ScatterTarget
 {
   PointSum* Sums;
-  unsigned char* Sides;
   int Blocks;
   int Block;
   int OwnerShift;
@@ -311,11 +328,6 @@ struct ScatterTarget
   bool Owns(vtkIdType p) const
   {
     return static_cast<int>((p >> this->OwnerShift) & (this->Blocks - 1)) == this->Block;
-  }
-  void Mark(vtkIdType p, int side, double w) const
-  {
-    // PlusSide for side 0, MinusSide for side 1, for a positive weight.
-    this->Sides[p] |= static_cast<unsigned char>(static_cast<unsigned>(w > 0.0) << side);
   }
 };
 
@@ -334,12 +346,11 @@ inline void ScatterBatchScalar(const FrameBatch& b, const ScatterTarget& s)
       if (s.Owns(p))
       {
         const double w = b.Weight[k][i];
-        double* sum = s.Sums[p].Sum;
-        sum[0] += w * b.Tangent[0][i];
-        sum[1] += w * b.Tangent[1][i];
-        sum[2] += w * b.Tangent[2][i];
-        sum[3] += w;
-        s.Mark(p, b.Side[k][i], w);
+        PointSum& sum = s.Sums[p];
+        sum.Sum[0] += w * b.Tangent[0][i];
+        sum.Sum[1] += w * b.Tangent[1][i];
+        sum.Sum[2] += w * b.Tangent[2][i];
+        sum.Marks |= CornerMark(b.Side[k][i], w);
       }
     }
   }
@@ -554,8 +565,14 @@ VTK_TANGENT_BATCH_AVX2_FN void ComputeFour(const BatchInput<PT, UT, NT>& in, Fra
   }
 }
 
-/// ScatterBatchScalar with one 4-lane addition per corner (the same operations: lane 3 adds
-/// w * 1). `EveryPoint`: the target has one block, which owns every point.
+/// CornerMark(side, w) in lane 3 of entry (w > 0) << side, zeros elsewhere.
+alignas(32) constexpr std::int64_t LaneMarks[3][4] = { { 0, 0, 0, 0 },
+  { 0, 0, 0, MarkBase | PlusSide },
+  { 0, 0, 0, MarkBase | MinusSide } };
+
+/// ScatterBatchScalar with one read-modify-write of the 32-byte PointSum per corner: the same
+/// additions in lanes 0-2, the mark or-ed into lane 3. `EveryPoint`: the target has one block,
+/// which owns every point.
 template<bool EveryPoint>
 VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const ScatterTarget& s)
 {
@@ -565,17 +582,19 @@ VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const Scatter
     {
       continue;
     }
-    const V t = _mm256_setr_pd(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i], 1.0);
+    const V t = _mm256_setr_pd(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i], 0.0);
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType p = b.Ids[k][i];
       if (EveryPoint || s.Owns(p))
       {
         const double w = b.Weight[k][i];
-        double* sum = s.Sums[p].Sum;
-        _mm256_store_pd(
-          sum, _mm256_add_pd(_mm256_load_pd(sum), _mm256_mul_pd(_mm256_set1_pd(w), t)));
-        s.Mark(p, b.Side[k][i], w);
+        double* sum = reinterpret_cast<double*>(s.Sums + p);
+        const V old = _mm256_load_pd(sum);
+        const V added = _mm256_add_pd(old, _mm256_mul_pd(_mm256_set1_pd(w), t));
+        const V mark = _mm256_load_pd(
+          reinterpret_cast<const double*>(LaneMarks[static_cast<int>(w > 0.0) << b.Side[k][i]]));
+        _mm256_store_pd(sum, _mm256_blend_pd(added, _mm256_or_pd(old, mark), 0x8));
       }
     }
   }
@@ -621,18 +640,6 @@ inline std::uint64_t SpreadBits(unsigned x)
   const std::uint64_t y =
     (static_cast<std::uint64_t>(x & 0xffu) * 0x0101010101010101ULL) & 0x8040201008040201ULL;
   return ((y + 0x7f7f7f7f7f7f7f7fULL) >> 7) & 0x0101010101010101ULL;
-}
-
-/// Bit l of `plus` / `minus`: byte l of x[0..count) is PlusSide / MinusSide (count <= 8).
-inline void ClassifySides(const unsigned char* x, int count, unsigned& plus, unsigned& minus)
-{
-  std::uint64_t word = 0;
-  std::memcpy(&word, x, static_cast<size_t>(count));
-  const __m128i v = _mm_cvtsi64_si128(static_cast<long long>(word));
-  const unsigned all = (1u << count) - 1;
-  plus = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(PlusSide)))) & all;
-  minus =
-    static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(MinusSide)))) & all;
 }
 
 /// The index of the lowest set bit of x != 0.
@@ -812,16 +819,29 @@ struct Lanes
   static DM LeDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LE_OQ); }
   static DM AndDouble(DM x, DM y) { return _mm256_and_pd(x, y); }
   static unsigned BitsDouble(DM m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
-  /// x, y and z of the four PointSums s[0..4).
-  static void GatherSums(const PointSum* s, D out[3])
+  /// x, y and z of the four PointSums s[0..4), and their Marks (as bits).
+  static void GatherSums(const PointSum* s, D out[4])
   {
-    const D r0 = _mm256_load_pd(s[0].Sum), r1 = _mm256_load_pd(s[1].Sum);
-    const D r2 = _mm256_load_pd(s[2].Sum), r3 = _mm256_load_pd(s[3].Sum);
-    const D xz01 = _mm256_unpacklo_pd(r0, r1), yw01 = _mm256_unpackhi_pd(r0, r1);
-    const D xz23 = _mm256_unpacklo_pd(r2, r3), yw23 = _mm256_unpackhi_pd(r2, r3);
+    D r[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      r[j] = _mm256_load_pd(reinterpret_cast<const double*>(s + j));
+    }
+    const D xz01 = _mm256_unpacklo_pd(r[0], r[1]), yw01 = _mm256_unpackhi_pd(r[0], r[1]);
+    const D xz23 = _mm256_unpacklo_pd(r[2], r[3]), yw23 = _mm256_unpackhi_pd(r[2], r[3]);
     out[0] = _mm256_permute2f128_pd(xz01, xz23, 0x20);
     out[1] = _mm256_permute2f128_pd(yw01, yw23, 0x20);
     out[2] = _mm256_permute2f128_pd(xz01, xz23, 0x31);
+    out[3] = _mm256_permute2f128_pd(yw01, yw23, 0x31);
+  }
+  /// The lanes whose bits have bit 0 set (`first`) and bit 1 set (`second`).
+  static void LowBits(D bits, unsigned& first, unsigned& second)
+  {
+    const __m256i x = _mm256_castpd_si256(bits);
+    first =
+      static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_slli_epi64(x, 63))));
+    second =
+      static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(_mm256_slli_epi64(x, 62))));
   }
   static void Widen(F x, D& low, D& high)
   {
@@ -1003,16 +1023,23 @@ struct Lanes
   static DM LeDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LE_OQ); }
   static DM AndDouble(DM x, DM y) { return static_cast<DM>(x & y); }
   static unsigned BitsDouble(DM m) { return m; }
-  /// x, y and z of the eight PointSums s[0..8).
-  static void GatherSums(const PointSum* s, D out[3])
+  /// x, y and z of the eight PointSums s[0..8), and their Marks (as bits).
+  static void GatherSums(const PointSum* s, D out[4])
   {
-    __m256d low[3], high[3];
+    __m256d low[4], high[4];
     avx2::Lanes::GatherSums(s, low);
     avx2::Lanes::GatherSums(s + 4, high);
-    for (int d = 0; d < 3; ++d)
+    for (int d = 0; d < 4; ++d)
     {
       out[d] = _mm512_insertf64x4(_mm512_castpd256_pd512(low[d]), high[d], 1);
     }
+  }
+  /// The lanes whose bits have bit 0 set (`first`) and bit 1 set (`second`).
+  static void LowBits(D bits, unsigned& first, unsigned& second)
+  {
+    const __m512i x = _mm512_castpd_si512(bits);
+    first = _mm512_test_epi64_mask(x, _mm512_set1_epi64(1));
+    second = _mm512_test_epi64_mask(x, _mm512_set1_epi64(2));
   }
   /// The eight xyz triples v[0..3) as floats, interleaved into out[0..24): two permutes pick
   /// them from (x | y) and z, and two stores write them.

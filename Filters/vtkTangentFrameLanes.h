@@ -337,14 +337,15 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
  * The frames of points [p, p + Lanes::DoubleCount) of the filter's finish, as its scalar code
  * computes and writes them (SafeNormalize, OrthonormalizeTangent, WriteFrame), for the points
  * with one handedness whose normal and tangent sum are in the range where normalizing rescales
- * nothing. Writes every lane's tangent, sign and (when bOut) bitangent; returns the lanes it did
- * not do, whose output the caller's scalar code must write (or that a later pass writes).
+ * nothing. Writes every lane's side byte (PointSum::Sides) and, for the lanes it does, tangent,
+ * sign and (when bOut) bitangent; returns the lanes it did not do, whose output the caller's
+ * scalar code must write (or that a later pass writes).
  */
 template<typename NT, typename OutT>
 unsigned FinishLanes(const NT* normals,
   vtkIdType numPoints,
   const PointSum* sums,
-  const unsigned char* sides,
+  unsigned char* sides,
   vtkIdType p,
   OutT* tOut,
   OutT* sOut,
@@ -354,8 +355,13 @@ unsigned FinishLanes(const NT* normals,
   using D = typename L::D;
   constexpr int count = L::DoubleCount;
   constexpr unsigned all = (1u << count) - 1;
-  unsigned plus, minus;
-  ClassifySides(sides + p, count, plus, minus);
+  D m[3], t[4], n[3], perp[3], unit[3];
+  L::GatherSums(sums + p, t);
+  unsigned plusBit, minusBit;
+  L::LowBits(t[3], plusBit, minusBit);
+  const std::uint64_t bytes = SpreadBits(plusBit) | (SpreadBits(minusBit) << 1);
+  std::memcpy(sides + p, &bytes, count);
+  const unsigned plus = plusBit & ~minusBit, minus = minusBit & ~plusBit;
   if ((plus | minus) == 0)
   {
     return all;
@@ -365,9 +371,7 @@ unsigned FinishLanes(const NT* normals,
   {
     ids[l] = p + l;
   }
-  D m[3], t[3], n[3], perp[3], unit[3];
   GatherLanes(p + count >= numPoints, normals, ids, numPoints, m);
-  L::GatherSums(sums + p, t);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
   const D length = L::SqrtDouble(LanesDotDouble(m, m));
   for (int d = 0; d < 3; ++d)

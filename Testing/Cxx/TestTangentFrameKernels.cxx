@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <set>
 #include <vector>
 
 using namespace vtkNormalMapping;
@@ -378,6 +379,69 @@ TEST(TangentFrameKernels, BatchVectorAndScalarGiveTheSameBits)
   }
 }
 
+TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
+{
+  // A batch whose 64 triangles share 10 points, with triangles without a frame and zero weights:
+  // points 0-2 have only +1 corners, 3-5 only -1 corners, 6-8 both, 9 only zero weights. Expected
+  // per point: the sums added in batch order (the scalar scatter's
+  // operations) and the or of the marks of its corners with a positive weight. The vector scatter
+  // must give the same bits, with one block or with the points dealt to two.
+  constexpr int numPoints = 10;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  detail::FrameBatch b;
+  for (int i = 0; i < detail::FrameBatch::Capacity; ++i)
+  {
+    const vtkIdType tri[3] = { i % numPoints, (3 * i + 1) % numPoints, (7 * i + 2) % numPoints };
+    b.Add(tri);
+    b.Orientation[i] = static_cast<signed char>(i % 9 == 0 ? 0 : (i % 4 == 0 ? -1 : 1));
+    for (int k = 0; k < 3; ++k)
+    {
+      const vtkIdType p = tri[k];
+      b.Tangent[k][i] = d(rng);
+      b.Weight[k][i] = p == 9 || (i + k) % 7 == 0 ? 0.0 : std::abs(d(rng));
+      b.Side[k][i] = static_cast<signed char>(p < 3 ? 0 : (p < 6 ? 1 : (i / 10) % 2));
+    }
+  }
+  std::vector<detail::PointSum> expected(numPoints, detail::PointSum{});
+  for (int i = 0; i < b.Size; ++i)
+  {
+    for (int k = 0; b.Orientation[i] != 0 && k < 3; ++k)
+    {
+      detail::PointSum& e = expected[b.Ids[k][i]];
+      for (int c = 0; c < 3; ++c)
+      {
+        e.Sum[c] += b.Weight[k][i] * b.Tangent[c][i];
+      }
+      if (b.Weight[k][i] > 0.0)
+      {
+        e.Marks |= detail::MarkBase | (b.Side[k][i] == 0 ? detail::PlusSide : detail::MinusSide);
+      }
+    }
+  }
+  // The batch must reach every kind of mark, or the comparison proves less than it says.
+  std::set<unsigned char> kinds;
+  for (const detail::PointSum& e : expected)
+  {
+    kinds.insert(e.Sides());
+  }
+  ASSERT_EQ(kinds.size(), 4u); // 0, PlusSide, MinusSide, BothSides
+  const bool vector = detail::BestBatchCode() >= detail::BatchCode::AVX2;
+  for (bool useVector : { false, vector })
+  {
+    for (int blocks : { 1, 2 })
+    {
+      std::vector<detail::PointSum> sums(numPoints, detail::PointSum{});
+      for (int block = 0; block < blocks; ++block)
+      {
+        detail::ScatterBatch(b, detail::ScatterTarget{ sums.data(), blocks, block, 0 }, useVector);
+      }
+      EXPECT_EQ(0, std::memcmp(sums.data(), expected.data(), sizeof(detail::PointSum) * numPoints))
+        << "vector " << useVector << ", blocks " << blocks;
+    }
+  }
+}
+
 TEST(TangentFrameKernels, SinglePrecisionAngleIsWithinTwoAndAHalfRoundings)
 {
   // single::Angle (the float corner angle of AngleWeighted) against atan2 in double, over every
@@ -463,7 +527,8 @@ void ScalarFrame(const NT* normal, const detail::PointSum& sum, bool minus, OutT
 }
 
 /// FinishLanes (`count` points a call) against ScalarFrame on points with normals and sums over a
-/// wide range of scales, parallel sums, zero normals, NaN sums and every kind of handedness byte.
+/// wide range of scales, parallel sums, zero normals, NaN sums and every kind of handedness mark;
+/// and the side bytes it writes against PointSum::Sides.
 template<typename NT, typename OutT, typename Finish>
 void CheckFinishLanes(int count, Finish finish)
 {
@@ -473,7 +538,7 @@ void CheckFinishLanes(int count, Finish finish)
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   std::vector<NT> normals(3 * numPoints);
   std::vector<detail::PointSum> sums(numPoints);
-  std::vector<unsigned char> sides(numPoints);
+  std::vector<unsigned char> sides(numPoints, detail::FallbackMark);
   for (int i = 0; i < numPoints; ++i)
   {
     // Double normals and all sums: 2^-300 .. 2^300; float normals: 2^-60 .. 2^60.
@@ -484,7 +549,6 @@ void CheckFinishLanes(int count, Finish finish)
       sums[i].Sum[c] = i % 5 == 0 ? normals[3 * i + c] * scale * scale // parallel to the normal
                                   : d(rng) * (wide ? scale : 1.0 / scale);
     }
-    sums[i].Sum[3] = 1.0;
     if (i % 17 == 0)
     {
       std::fill(normals.begin() + 3 * i, normals.begin() + 3 * i + 3, NT(0));
@@ -493,9 +557,10 @@ void CheckFinishLanes(int count, Finish finish)
     {
       sums[i].Sum[1] = std::numeric_limits<double>::quiet_NaN();
     }
-    sides[i] = i % 11 == 0
+    const unsigned char side = i % 11 == 0
       ? 0
       : (i % 13 == 0 ? detail::BothSides : (i % 2 ? detail::PlusSide : detail::MinusSide));
+    sums[i].Marks = side == 0 ? 0 : detail::MarkBase | side;
   }
   std::vector<OutT> t(3 * numPoints), s(numPoints), b(3 * numPoints);
   int done = 0;
@@ -506,6 +571,7 @@ void CheckFinishLanes(int count, Finish finish)
     for (int l = 0; l < count; ++l)
     {
       const int i = p + l;
+      ASSERT_EQ(sides[i], sums[i].Sides()) << i;
       if ((rest >> l) & 1u)
       {
         continue;
