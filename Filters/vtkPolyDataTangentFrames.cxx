@@ -673,9 +673,27 @@ bool ScanFrames(Execution& ex,
   // batch. With one block every triangle is its; with several (`owners`, see ChunkOwners), chunks
   // the block owns no corner of are skipped unread, chunks it owns every corner of are taken
   // whole, and the rest triangle by triangle.
+  // Whole runs of triangles into the batch, with AVX-512 when the ids are 64-bit.
+  const auto takeRun = [&](FrameBatch& b, const auto* ids, vtkIdType n)
+  {
+#ifdef VTK_TANGENT_BATCH_AVX2
+    using IdT = std::remove_const_t<std::remove_pointer_t<decltype(ids)>>;
+    if constexpr (sizeof(IdT) == sizeof(std::int64_t))
+    {
+      if (ex.Code == vtkNormalMapping::detail::BatchCode::AVX512)
+      {
+        return vtkNormalMapping::detail::avx512::TakeTriangles(
+          reinterpret_cast<const std::int64_t*>(ids), static_cast<int>(n), ex.NumberOfPoints, b);
+      }
+    }
+#endif
+    return TakeTriangles(ids, n, ex.NumberOfPoints, b);
+  };
   const auto runs =
     [&](int block, const auto* conn, vtkIdType begin, vtkIdType end, const std::uint64_t* owners)
   {
+    const auto TakeRun = [&](const auto* ids, vtkIdType n)
+    { return takeRun(batches[block], ids, n); };
     FrameBatch& b = batches[block];
     const std::uint64_t mine = std::uint64_t{ 1 } << block;
     bool bad = false;
@@ -699,7 +717,7 @@ bool ScanFrames(Execution& ex,
         __builtin_prefetch(ahead + j);
       }
 #endif
-      if (chunkOwners != mine || !TakeTriangles(ids, n, ex.NumberOfPoints, b))
+      if (chunkOwners != mine || !TakeRun(ids, n))
       {
         for (vtkIdType t = 0; t < n; ++t)
         {

@@ -1109,6 +1109,56 @@ struct Lanes
   }
 };
 #include "vtkTangentFrameLanes.h"
+
+/**
+ * Appends the n triangles of `ids` (three 64-bit ids each) to the batch, which has room, if every
+ * id is in [0, numPoints); else appends nothing and returns false. Eight triangles a step: three
+ * 512-bit loads, a range test and two permutes per corner put the interleaved ids into b.Ids.
+ */
+inline bool TakeTriangles(const std::int64_t* ids, int n, std::int64_t numPoints, FrameBatch& b)
+{
+  // Id j of corner k of the eight triangles of a step is id 3 j + k of the 24: first from the
+  // first two vectors (indices 0-15, the last 2 or 3 lanes unused), then the rest from the third.
+  const __m512i fromAB[3] = { _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0),
+    _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0),
+    _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0) };
+  const __m512i fromC[3] = { _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13),
+    _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14),
+    _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15) };
+  const __m512i limit = _mm512_set1_epi64(numPoints);
+  __mmask8 inRange = 0xff;
+  int t = 0;
+  for (; t + 8 <= n; t += 8)
+  {
+    const std::int64_t* x = ids + 3 * t;
+    const __m512i a = _mm512_loadu_si512(x), bb = _mm512_loadu_si512(x + 8),
+                  c = _mm512_loadu_si512(x + 16);
+    // Unsigned: a negative id is huge.
+    inRange &= _mm512_cmplt_epu64_mask(a, limit) & _mm512_cmplt_epu64_mask(bb, limit) &
+      _mm512_cmplt_epu64_mask(c, limit);
+    for (int k = 0; k < 3; ++k)
+    {
+      const __m512i corner =
+        _mm512_permutex2var_epi64(_mm512_permutex2var_epi64(a, fromAB[k], bb), fromC[k], c);
+      _mm512_storeu_si512(b.Ids[k] + b.Size + t, corner);
+    }
+  }
+  for (; t < n; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t id = ids[3 * t + k];
+      inRange &= static_cast<std::uint64_t>(id) < static_cast<std::uint64_t>(numPoints) ? 0xff : 0;
+      b.Ids[k][b.Size + t] = id;
+    }
+  }
+  if (inRange != 0xff)
+  {
+    return false;
+  }
+  b.Size += n;
+  return true;
+}
 } // namespace avx512
 #if defined(__clang__)
 #pragma clang attribute pop

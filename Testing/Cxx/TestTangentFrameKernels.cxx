@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -648,6 +649,58 @@ TEST(TangentFrameKernels, FinishLanesGiveTheBitsOfTheScalarFinish)
     CheckFinishLanes<float, float>(8, detail::avx512::FinishLanes<float, float>);
     CheckFinishLanes<double, double>(8, detail::avx512::FinishLanes<double, double>);
     CheckFinishLanes<float, double>(8, detail::avx512::FinishLanes<float, double>);
+  }
+}
+
+TEST(TangentFrameKernels, LanesTakeTrianglesDeinterleaveAndRejectBadIds)
+{
+  if (detail::BestBatchCode() != detail::BatchCode::AVX512)
+  {
+    GTEST_SKIP() << "this CPU (or build) has no AVX-512: the filter takes runs with scalar code";
+  }
+  constexpr std::int64_t numPoints = 1000;
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<std::int64_t> id(0, numPoints - 1);
+  // Runs shorter than, equal to and longer than a step of eight, after an empty or part-filled
+  // batch; whole when every id is in range, refused (batch size unchanged) when one is not,
+  // wherever it is: a step's first, second or third vector, or the tail.
+  for (int first : { 0, 5 })
+  {
+    for (int n : { 0, 1, 7, 8, 9, 17, 59 })
+    {
+      if (first + n > detail::FrameBatch::Capacity)
+      {
+        continue;
+      }
+      std::vector<std::int64_t> ids(3 * n);
+      for (auto& x : ids)
+      {
+        x = id(rng);
+      }
+      detail::FrameBatch b;
+      b.Size = first;
+      ASSERT_TRUE(detail::avx512::TakeTriangles(ids.data(), n, numPoints, b));
+      ASSERT_EQ(b.Size, first + n);
+      for (int t = 0; t < n; ++t)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          ASSERT_EQ(b.Ids[k][first + t], ids[3 * t + k]) << "n " << n << " triangle " << t;
+        }
+      }
+      for (int bad = 0; bad < 3 * n; ++bad)
+      {
+        for (std::int64_t value : { numPoints, std::int64_t{ -1 }, INT64_MIN })
+        {
+          std::vector<std::int64_t> hostile = ids;
+          hostile[bad] = value;
+          b.Size = first;
+          EXPECT_FALSE(detail::avx512::TakeTriangles(hostile.data(), n, numPoints, b))
+            << "n " << n << " bad id at " << bad << ": " << value;
+          EXPECT_EQ(b.Size, first);
+        }
+      }
+    }
   }
 }
 #endif
