@@ -376,15 +376,33 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn, vtkIdType n, int blocks,
   return owners;
 }
 
+/// Frees per-point sums: unmaps `MappedBytes` when they came from mmap, else delete[].
+struct PointSumRelease
+{
+  size_t MappedBytes = 0;
+  void operator()(PointSum* p) const
+  {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (this->MappedBytes != 0)
+    {
+      munmap(p, this->MappedBytes);
+      return;
+    }
+#endif
+    delete[] p;
+  }
+};
+
 /// Storage for the per-point sums; see AllocatePointSums.
-using PointSumStorage = std::unique_ptr<PointSum[], void (*)(PointSum*)>;
+using PointSumStorage = std::unique_ptr<PointSum[], PointSumRelease>;
 
 /**
- * Uninitialized storage for `count` PointSums (null if memory is short). On Linux, arrays of 8 MiB
- * or more are aligned to 2 MiB and advised to use transparent huge pages, so that their first
- * touches fault once per 2 MiB instead of once per 4 KiB: on the 1M-triangle torus, zeroing the
- * 16 MiB of sums took 5.7-8 ms whenever the allocator handed back fresh pages (0.5 ms when it
- * reused some), and 0.9-1.3 ms with huge pages either way.
+ * Storage for `count` PointSums, all zero (null if memory is short). On Linux, arrays of 8 MiB or
+ * more are mapped fresh, aligned to 2 MiB and advised to use transparent huge pages: their first
+ * touches then fault once per 2 MiB instead of once per 4 KiB (zeroing the 16 MiB of sums of the
+ * 1M-triangle torus took 5.7-8 ms whenever the allocator handed back fresh small pages, 0.5 ms
+ * when it reused some, 0.9-1.3 ms with huge pages either way), and the kernel's zeroed pages need
+ * no clearing of ours.
  */
 PointSumStorage AllocatePointSums(vtkIdType count)
 {
@@ -392,17 +410,38 @@ PointSumStorage AllocatePointSums(vtkIdType count)
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr size_t huge = size_t{ 1 } << 21;
   const size_t bytes = sizeof(PointSum) * n;
-  // aligned_alloc wants a multiple of the alignment.
-  const size_t alignment = bytes >= 4 * huge ? huge : alignof(PointSum);
-  void* p = std::aligned_alloc(alignment, (bytes + alignment - 1) / alignment * alignment);
-  if (p && alignment == huge)
+  if (bytes >= 4 * huge)
   {
-    madvise(p, (bytes + huge - 1) / huge * huge, MADV_HUGEPAGE); // advice: refused, small pages
+    // Map a huge page more than needed, then unmap the parts before the first 2 MiB boundary and
+    // after the (rounded up) array.
+    const size_t length = (bytes + huge - 1) / huge * huge;
+    void* raw =
+      mmap(nullptr, length + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (raw == MAP_FAILED)
+    {
+      return PointSumStorage(nullptr);
+    }
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(raw);
+    const std::uintptr_t aligned = (start + huge - 1) / huge * huge;
+    const size_t head = aligned - start; // < huge, so the tail is not empty
+    if (head != 0)
+    {
+      munmap(raw, head);
+    }
+    munmap(reinterpret_cast<void*>(aligned + length), huge - head);
+    void* p = reinterpret_cast<void*>(aligned);
+    madvise(p, length, MADV_HUGEPAGE); // advice: refused, small pages
+    return PointSumStorage(static_cast<PointSum*>(p), PointSumRelease{ length });
   }
-  return PointSumStorage(static_cast<PointSum*>(p), [](PointSum* q) { std::free(q); });
-#else
-  return PointSumStorage(new (std::nothrow) PointSum[n], [](PointSum* q) { delete[] q; });
 #endif
+  PointSumStorage sums(new (std::nothrow) PointSum[n]);
+  if (sums)
+  {
+    vtkSMPTools::For(0,
+      static_cast<vtkIdType>(n),
+      [&](vtkIdType b, vtkIdType e) { std::fill(sums.get() + b, sums.get() + e, PointSum{}); });
+  }
+  return sums;
 }
 
 /// Everything the passes of one execution share.
@@ -1614,9 +1653,6 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   }
   // Written by Finish, point by point, from the sums' marks.
   std::unique_ptr<unsigned char[]> sides(new unsigned char[numPoints]);
-  vtkSMPTools::For(0,
-    numPoints,
-    [&](vtkIdType b, vtkIdType e) { std::fill(acc.get() + b, acc.get() + e, PointSum{}); });
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {
     auto array = vtkSmartPointer<OutArray>::New();
