@@ -413,11 +413,14 @@ inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm:
   const int k = detail::NormalizeExponent(tMax);
   const glm::dvec3 ts = k == 0 ? t : detail::ScaleByPowerOfTwo(t, k);
   const glm::dvec3 perp = ts - glm::dot(n, ts) * n;
-  const double len = glm::length(perp);
-  if (!(len > 1e-9 * glm::length(ts)))
+  // |perp| > 1e-9 |ts|, squared: ts's largest component is in [2^-400, 2^400] (NormalizeExponent),
+  // so no square overflows, and none that passes (above 2^-860) underflows.
+  const double len2 = glm::dot(perp, perp);
+  if (!(len2 > 1e-18 * glm::dot(ts, ts)))
   {
     return false;
   }
+  const double len = std::sqrt(len2);
   out = perp / len;
   return true;
 }

@@ -383,14 +383,15 @@ unsigned FinishLanes(const NT* normals,
   {
     perp[d] = L::SubDouble(t[d], L::MulDouble(along, n[d]));
   }
-  const D perpLength = L::SqrtDouble(LanesDotDouble(perp, perp));
-  const unsigned ok = L::BitsDouble(
-    L::GtDouble(perpLength, L::MulDouble(L::SetDouble(1e-9), L::SqrtDouble(LanesDotDouble(t, t)))));
+  const D perp2 = LanesDotDouble(perp, perp);
+  const unsigned ok =
+    L::BitsDouble(L::GtDouble(perp2, L::MulDouble(L::SetDouble(1e-18), LanesDotDouble(t, t))));
   const unsigned done = (plus | minus) & usable & ok;
   if (done == 0)
   {
     return all;
   }
+  const D perpLength = L::SqrtDouble(perp2);
   for (int d = 0; d < 3; ++d)
   {
     unit[d] = L::DivDouble(perp[d], perpLength);

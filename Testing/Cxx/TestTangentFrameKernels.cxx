@@ -189,6 +189,15 @@ TEST(TangentFrameKernels, OrthonormalizeTangent)
   EXPECT_NEAR(glm::length(out), 1.0, UnitTolerance);
   EXPECT_TRUE(OrthonormalizeTangent({ 0, 0, 1 }, { 1e-310, 0, 0 }, out));
   EXPECT_EQ(out, glm::dvec3(1, 0, 0));
+  // The threshold, |perp| > 1e-9 |t|, at every scale (rescaled or not): 2e-9 of t passes and
+  // gives exactly the perpendicular direction, 5e-10 is refused.
+  for (double scale : { 1.0, 1e-100, 1e100, 1e-300, 1e300 })
+  {
+    out = glm::dvec3(7.0);
+    EXPECT_TRUE(OrthonormalizeTangent({ 0, 0, 1 }, { 2e-9 * scale, 0, scale }, out)) << scale;
+    EXPECT_EQ(out, glm::dvec3(1, 0, 0)) << scale;
+    EXPECT_FALSE(OrthonormalizeTangent({ 0, 0, 1 }, { 0, 5e-10 * scale, scale }, out)) << scale;
+  }
 }
 
 TEST(TangentFrameKernels, SafeNormalize)
