@@ -353,12 +353,19 @@ TEST(PolyDataTangentFrames, AnalyticSurfacesConvergeUnderRefinement)
 
 namespace
 {
-void CheckMirroredTorus(int u, int v)
+/// MakeTorus' options for a u x v torus with the mirrored half.
+vtkNormalMapping::TorusOptions MirroredTorusOptions(int u, int v)
 {
   vtkNormalMapping::TorusOptions options;
   options.U = u;
   options.V = v;
   options.MirrorU = true;
+  return options;
+}
+
+void CheckMirroredTorus(int u, int v)
+{
+  const vtkNormalMapping::TorusOptions options = MirroredTorusOptions(u, v);
   auto mesh = vtkNormalMapping::MakeTorus(options);
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(mesh);
@@ -425,17 +432,38 @@ void CheckMirroredTorus(int u, int v)
 TEST(PolyDataTangentFrames, MirroredTorusSplitsSeamsAndSignsMirroredHalf)
 {
   CheckMirroredTorus(64, 16);
-  // 267,537 points: their 8.6 MB of sums are large enough to be mapped fresh on Linux (the
-  // filter then relies on the kernel's zeroed pages; garbage sums would break every frame).
+  // 267,537 points: their 8.6 MB of sums take the huge-page allocation on Linux.
   CheckMirroredTorus(1040, 256);
+}
+
+TEST(PolyDataTangentFrames, RepeatedUpdatesGiveTheSameBits)
+{
+  // Re-executing reuses memory the previous execution freed (glibc hands the per-point sums'
+  // block back from the second or third execution on): every execution must start from zero
+  // sums and give the first one's bits. 267,537 points, so the sums take the huge-page path.
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(vtkNormalMapping::MakeTorus(MirroredTorusOptions(1040, 256)));
+  std::vector<float> first;
+  for (int run = 0; run < 4; ++run)
+  {
+    filter->Modified();
+    filter->Update();
+    auto* t = vtkFloatArray::SafeDownCast(filter->GetOutput()->GetPointData()->GetTangents());
+    ASSERT_NE(t, nullptr);
+    std::vector<float> bits(t->GetPointer(0), t->GetPointer(0) + t->GetDataSize());
+    if (run == 0)
+    {
+      first = bits;
+      continue;
+    }
+    ASSERT_EQ(bits.size(), first.size());
+    EXPECT_EQ(0, std::memcmp(bits.data(), first.data(), 4 * bits.size())) << "run " << run;
+  }
 }
 
 TEST(PolyDataTangentFrames, MirroredTorusWithoutSplittingCountsConflicts)
 {
-  vtkNormalMapping::TorusOptions options;
-  options.U = 64;
-  options.V = 16;
-  options.MirrorU = true;
+  const vtkNormalMapping::TorusOptions options = MirroredTorusOptions(64, 16);
   auto mesh = vtkNormalMapping::MakeTorus(options);
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(mesh);
