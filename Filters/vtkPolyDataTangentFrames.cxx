@@ -661,20 +661,12 @@ bool ScanFrames(Execution& ex,
     ex.Method == TangentMethod::AngleWeighted
       ? BatchWeights::Angle
       : (ex.Method == TangentMethod::AreaWeighted ? BatchWeights::Area : BatchWeights::One),
-    ex.NumberOfPoints };
+    ex.NumberOfPoints,
+    sums };
   const auto code = ex.Code;
   const auto flush = [&](int block)
   {
     FrameBatch& b = batches[block];
-#if defined(__GNUC__) || defined(__clang__)
-    for (int k = 0; sums && k < 3; ++k)
-    {
-      for (int i = 0; i < b.Size; ++i)
-      {
-        __builtin_prefetch(sums + b.Ids[k][i], 1);
-      }
-    }
-#endif
     ComputeBatch(input, b, code);
     // Counted in a local: the blocks' counters share a cache line, and adding to them per
     // triangle made the threads fight over it (two threads were no faster than one).

@@ -77,6 +77,8 @@ struct alignas(64) FrameBatch
 /// Raw inputs of the batch kernels: xyz positions, texture coordinates with `UVComponents`
 /// components (1: v = 0), point normals of any length, and unit stand-ins for points whose
 /// normal is zero or non-finite (or null).
+struct PointSum; // below
+
 template<typename PT, typename UT, typename NT>
 struct BatchInput
 {
@@ -90,6 +92,11 @@ struct BatchInput
   /// The number of points (the vector code reads 16 bytes at a point's xyz except at the last
   /// one); 0 when not known: then every point is read element by element.
   vtkIdType NumberOfPoints = 0;
+  /// Where the batch's corners will be added (ScatterTarget::Sums), or null: ComputeBatch then
+  /// prefetches each corner's entry for writing while it computes the frames, so that the scatter
+  /// finds them in cache. The lane kernels do it next to their position loads, whose ids they
+  /// share.
+  const PointSum* PrefetchSums = nullptr;
 
   /// The handedness a triangle with winding normal (x, y, z) and the given orientation gives at
   /// point p: CornerSign without normalizing the point's normal (only the sign of the dot
@@ -280,6 +287,16 @@ void ComputeTriangle(const BatchInput<float, float, NT>& in, FrameBatch& b, int 
   b.Orientation[i] = posOK && uvOK && tOK ? (det > 0.0f ? 1 : -1) : 0;
 }
 } // namespace single
+
+/// A hint to fetch the cache line at p for writing; nothing where the compiler has no such hint.
+inline void PrefetchForWriting(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p, 1);
+#else
+  (void)p;
+#endif
+}
 
 /// The handednesses a point's corners have (with a positive weight): bit 0 for +1, bit 1 for -1.
 /// Both bits: a conflict (a mirror seam); none: a fallback point, which vtkPolyDataTangentFrames
@@ -1199,7 +1216,18 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode cod
     }
     sided = std::is_same<NT, float>::value ? i : 0;
   }
-  else
+#endif
+  // The triangles the lane kernels did not prefetch for: the rest of the float path, every
+  // triangle of the double path.
+  for (int k = 0; in.PrefetchSums && k < 3; ++k)
+  {
+    for (int j = i; j < b.Size; ++j)
+    {
+      PrefetchForWriting(in.PrefetchSums + b.Ids[k][j]);
+    }
+  }
+#ifdef VTK_TANGENT_BATCH_AVX2
+  if constexpr (!useFloat)
   {
     for (; code >= BatchCode::AVX2 && i + 4 <= b.Size; i += 4)
     {

@@ -124,6 +124,10 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
+    for (int l = 0; in.PrefetchSums && l < count; ++l)
+    {
+      PrefetchForWriting(in.PrefetchSums + ids[l]);
+    }
     GatherLanes(guarded, in.Points, ids, in.NumberOfPoints, p[k]);
     if (nc == 2)
     {
