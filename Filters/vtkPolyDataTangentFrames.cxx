@@ -30,6 +30,7 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <string>
@@ -431,7 +432,12 @@ PointSumStorage AllocatePointSums(vtkIdType count)
   {
     vtkSMPTools::For(0,
       static_cast<vtkIdType>(n),
-      [&](vtkIdType b, vtkIdType e) { std::fill(sums.get() + b, sums.get() + e, PointSum{}); });
+      [&](vtkIdType b, vtkIdType e)
+      {
+        // All bits zero: 0.0 sums and no marks. memset's wide stores clear it faster than a
+        // loop of PointSum copies.
+        std::memset(static_cast<void*>(sums.get() + b), 0, sizeof(PointSum) * (e - b));
+      });
   }
   return sums;
 }
