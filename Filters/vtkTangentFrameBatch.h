@@ -901,6 +901,20 @@ struct Lanes
         _mm256_setr_pd(n[3 * ids[0] + d], n[3 * ids[1] + d], n[3 * ids[2] + d], n[3 * ids[3] + d]);
     }
   }
+  /// The normals of points [p, p + 4) of an array of `count` points, in double.
+  template<typename NT>
+  static void LoadNormalRun(const NT* n, vtkIdType p, vtkIdType count, D out[3])
+  {
+    const vtkIdType ids[4] = { p, p + 1, p + 2, p + 3 };
+    if (p + 4 >= count)
+    {
+      GatherNormals<true>(n, ids, count, out);
+    }
+    else
+    {
+      GatherNormals<false>(n, ids, count, out);
+    }
+  }
 };
 #include "vtkTangentFrameLanes.h"
 } // namespace avx2
@@ -1122,6 +1136,40 @@ struct Lanes
         n[3 * ids[5] + d],
         n[3 * ids[6] + d],
         n[3 * ids[7] + d]);
+    }
+  }
+  /// The normals of points [p, p + 8) (all in the array), in double: two loads of exactly their
+  /// 24 floats and a permute per component.
+  static void LoadNormalRun(const float* normals, vtkIdType p, vtkIdType, D out[3])
+  {
+    const float* n = normals + 3 * p;
+    const __m512 low = _mm512_loadu_ps(n);
+    const __m512 high = _mm512_castps256_ps512(_mm256_loadu_ps(n + 16));
+    for (int d = 0; d < 3; ++d)
+    {
+      // Component d of point l is float 3 l + d: indices 16 and up pick from `high`.
+      const __m512i index = _mm512_setr_epi32(
+        d, 3 + d, 6 + d, 9 + d, 12 + d, 15 + d, 18 + d, 21 + d, 0, 0, 0, 0, 0, 0, 0, 0);
+      out[d] = _mm512_cvtps_pd(_mm512_castps512_ps256(_mm512_permutex2var_ps(low, index, high)));
+    }
+  }
+  /// The same for double normals: three loads, two permutes per component.
+  static void LoadNormalRun(const double* normals, vtkIdType p, vtkIdType, D out[3])
+  {
+    const double* n = normals + 3 * p;
+    const __m512d a = _mm512_loadu_pd(n), b = _mm512_loadu_pd(n + 8), c = _mm512_loadu_pd(n + 16);
+    for (int d = 0; d < 3; ++d)
+    {
+      // Component d of point l is double 3 l + d: from a and b (0-15) first, then from c.
+      const int fromB = 6 - (d + 2) / 3; // how many of the eight lie in a and b: 6, 5, 5
+      alignas(64) std::int64_t first[8], second[8];
+      for (int l = 0; l < 8; ++l)
+      {
+        first[l] = l < fromB ? 3 * l + d : 0;
+        second[l] = l < fromB ? l : 8 + 3 * l + d - 16;
+      }
+      const __m512d ab = _mm512_permutex2var_pd(a, _mm512_load_si512(first), b);
+      out[d] = _mm512_permutex2var_pd(ab, _mm512_load_si512(second), c);
     }
   }
 };

@@ -370,12 +370,7 @@ unsigned FinishLanes(const NT* normals,
   {
     return all;
   }
-  vtkIdType ids[count];
-  for (int l = 0; l < count; ++l)
-  {
-    ids[l] = p + l;
-  }
-  GatherLanes(p + count >= numPoints, normals, ids, numPoints, m);
+  L::LoadNormalRun(normals, p, numPoints, m);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
   const D length = L::SqrtDouble(LanesDotDouble(m, m));
   for (int d = 0; d < 3; ++d)
