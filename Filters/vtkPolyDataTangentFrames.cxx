@@ -698,10 +698,6 @@ bool ScanFrames(Execution& ex,
       flush(block);
     }
   };
-  // Polygons that are all triangles, when every triangle is wanted: whole runs of ids into the
-  // batch. With one block every triangle is its; with several (`owners`, see ChunkOwners), chunks
-  // the block owns no corner of are skipped unread, chunks it owns every corner of are taken
-  // whole, and the rest triangle by triangle.
   // Whole runs of triangles into the batch, with AVX-512 when the ids are 64-bit.
   const auto takeRun = [&](FrameBatch& b, const auto* ids, vtkIdType n)
   {
@@ -718,11 +714,13 @@ bool ScanFrames(Execution& ex,
 #endif
     return TakeTriangles(ids, n, ex.NumberOfPoints, b);
   };
+  // Polygons that are all triangles, when every triangle is wanted: whole runs of ids into the
+  // batch. With one block every triangle is its; with several (`owners`, see ChunkOwners), chunks
+  // the block owns no corner of are skipped unread, chunks it owns every corner of are taken
+  // whole, and the rest triangle by triangle.
   const auto runs =
     [&](int block, const auto* conn, vtkIdType begin, vtkIdType end, const std::uint64_t* owners)
   {
-    const auto TakeRun = [&](const auto* ids, vtkIdType n)
-    { return takeRun(batches[block], ids, n); };
     FrameBatch& b = batches[block];
     const std::uint64_t mine = std::uint64_t{ 1 } << block;
     bool bad = false;
@@ -746,7 +744,7 @@ bool ScanFrames(Execution& ex,
         __builtin_prefetch(ahead + j);
       }
 #endif
-      if (chunkOwners != mine || !TakeRun(ids, n))
+      if (chunkOwners != mine || !takeRun(b, ids, n))
       {
         for (vtkIdType t = 0; t < n; ++t)
         {

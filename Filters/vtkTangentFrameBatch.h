@@ -74,11 +74,11 @@ struct alignas(64) FrameBatch
   bool Full() const { return this->Size == Capacity; }
 };
 
+struct PointSum; // below
+
 /// Raw inputs of the batch kernels: xyz positions, texture coordinates with `UVComponents`
 /// components (1: v = 0), point normals of any length, and unit stand-ins for points whose
 /// normal is zero or non-finite (or null).
-struct PointSum; // below
-
 template<typename PT, typename UT, typename NT>
 struct BatchInput
 {
@@ -1153,23 +1153,31 @@ struct Lanes
       out[d] = _mm512_cvtps_pd(_mm512_castps512_ps256(_mm512_permutex2var_ps(low, index, high)));
     }
   }
-  /// The same for double normals: three loads, two permutes per component.
+  /// Lanes k, k + 3, ..., k + 21 (k < 3) of the 24 64-bit lanes of x[0..3): component k of
+  /// eight interleaved triples. Two permutes: first from x[0] and x[1] (lanes 0-15), then the
+  /// rest from x[2].
+  static __m512i Thirds(const __m512i x[3], int k)
+  {
+    alignas(64) static constexpr std::int64_t fromFirstTwo[3][8] = {
+      { 0, 3, 6, 9, 12, 15, 0, 0 }, { 1, 4, 7, 10, 13, 0, 0, 0 }, { 2, 5, 8, 11, 14, 0, 0, 0 }
+    };
+    alignas(64) static constexpr std::int64_t fromThird[3][8] = {
+      { 0, 1, 2, 3, 4, 5, 10, 13 }, { 0, 1, 2, 3, 4, 8, 11, 14 }, { 0, 1, 2, 3, 4, 9, 12, 15 }
+    };
+    const __m512i firstTwo =
+      _mm512_permutex2var_epi64(x[0], _mm512_load_si512(fromFirstTwo[k]), x[1]);
+    return _mm512_permutex2var_epi64(firstTwo, _mm512_load_si512(fromThird[k]), x[2]);
+  }
+  /// The same for double normals: three loads, Thirds per component.
   static void LoadNormalRun(const double* normals, vtkIdType p, vtkIdType, D out[3])
   {
     const double* n = normals + 3 * p;
-    const __m512d a = _mm512_loadu_pd(n), b = _mm512_loadu_pd(n + 8), c = _mm512_loadu_pd(n + 16);
+    const __m512i x[3] = { _mm512_castpd_si512(_mm512_loadu_pd(n)),
+      _mm512_castpd_si512(_mm512_loadu_pd(n + 8)),
+      _mm512_castpd_si512(_mm512_loadu_pd(n + 16)) };
     for (int d = 0; d < 3; ++d)
     {
-      // Component d of point l is double 3 l + d: from a and b (0-15) first, then from c.
-      const int fromB = 6 - (d + 2) / 3; // how many of the eight lie in a and b: 6, 5, 5
-      alignas(64) std::int64_t first[8], second[8];
-      for (int l = 0; l < 8; ++l)
-      {
-        first[l] = l < fromB ? 3 * l + d : 0;
-        second[l] = l < fromB ? l : 8 + 3 * l + d - 16;
-      }
-      const __m512d ab = _mm512_permutex2var_pd(a, _mm512_load_si512(first), b);
-      out[d] = _mm512_permutex2var_pd(ab, _mm512_load_si512(second), c);
+      out[d] = _mm512_castsi512_pd(Thirds(x, d));
     }
   }
 };
@@ -1178,34 +1186,25 @@ struct Lanes
 /**
  * Appends the n triangles of `ids` (three 64-bit ids each) to the batch, which has room, if every
  * id is in [0, numPoints); else appends nothing and returns false. Eight triangles a step: three
- * 512-bit loads, a range test and two permutes per corner put the interleaved ids into b.Ids.
+ * 512-bit loads, a range test and Lanes::Thirds per corner put the interleaved ids into b.Ids.
  */
 inline bool TakeTriangles(const std::int64_t* ids, int n, std::int64_t numPoints, FrameBatch& b)
 {
-  // Id j of corner k of the eight triangles of a step is id 3 j + k of the 24: first from the
-  // first two vectors (indices 0-15, the last 2 or 3 lanes unused), then the rest from the third.
-  const __m512i fromAB[3] = { _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0),
-    _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0),
-    _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0) };
-  const __m512i fromC[3] = { _mm512_setr_epi64(0, 1, 2, 3, 4, 5, 10, 13),
-    _mm512_setr_epi64(0, 1, 2, 3, 4, 8, 11, 14),
-    _mm512_setr_epi64(0, 1, 2, 3, 4, 9, 12, 15) };
   const __m512i limit = _mm512_set1_epi64(numPoints);
   __mmask8 inRange = 0xff;
   int t = 0;
   for (; t + 8 <= n; t += 8)
   {
-    const std::int64_t* x = ids + 3 * t;
-    const __m512i a = _mm512_loadu_si512(x), bb = _mm512_loadu_si512(x + 8),
-                  c = _mm512_loadu_si512(x + 16);
+    const std::int64_t* from = ids + 3 * t;
+    const __m512i x[3] = {
+      _mm512_loadu_si512(from), _mm512_loadu_si512(from + 8), _mm512_loadu_si512(from + 16)
+    };
     // Unsigned: a negative id is huge.
-    inRange &= _mm512_cmplt_epu64_mask(a, limit) & _mm512_cmplt_epu64_mask(bb, limit) &
-      _mm512_cmplt_epu64_mask(c, limit);
+    inRange &= _mm512_cmplt_epu64_mask(x[0], limit) & _mm512_cmplt_epu64_mask(x[1], limit) &
+      _mm512_cmplt_epu64_mask(x[2], limit);
     for (int k = 0; k < 3; ++k)
     {
-      const __m512i corner =
-        _mm512_permutex2var_epi64(_mm512_permutex2var_epi64(a, fromAB[k], bb), fromC[k], c);
-      _mm512_storeu_si512(b.Ids[k] + b.Size + t, corner);
+      _mm512_storeu_si512(b.Ids[k] + b.Size + t, Lanes::Thirds(x, k)); // corner k
     }
   }
   for (; t < n; ++t)
