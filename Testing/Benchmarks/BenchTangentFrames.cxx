@@ -325,6 +325,71 @@ std::string ConfigurationRows(const std::vector<long long>& sizes,
   return rows.str();
 }
 
+/// The ratios of one tangent filter to VTK's, each from one pair of Updates run back to back.
+struct Paired
+{
+  std::string Name;
+  int Threads = 1;
+  std::vector<double> Ratios; // VTK's time / ours, one per pair
+  double FastestRatio = 0.0;  // VTK's fastest Update / our fastest Update
+  double Quantile(double q) const
+  {
+    std::vector<double> r = this->Ratios;
+    std::sort(r.begin(), r.end());
+    const double x = q * static_cast<double>(r.size() - 1);
+    const size_t i = static_cast<size_t>(x);
+    return i + 1 < r.size() ? r[i] + (x - static_cast<double>(i)) * (r[i + 1] - r[i]) : r.back();
+  }
+};
+
+/**
+ * `pairs` pairs of Updates of VTK's filter and `filter` on the same mesh in this process, with
+ * `threads` threads, each filter re-executed (Modified, Update) as in the timed runs, after one
+ * warm-up Update each; which of the two runs first alternates from pair to pair. Wall-clock time.
+ * A pair's two runs are a few tens of milliseconds apart, so a change of the machine's speed
+ * (other virtual machines, frequency) mostly hits both: the ratio within a pair is steadier than
+ * the ratio of medians over the interleaved repetitions, whose runs are seconds apart.
+ */
+Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int threads, int pairs)
+{
+  Paired result;
+  result.Name = filter.Name;
+  result.Threads = threads;
+  NormalMappingTesting::WithThreads(threads,
+    [&]()
+    {
+      vtkSmartPointer<vtkPolyDataAlgorithm> run[2] = {
+        Bench::MakeTangentFilter({ "vtkPolyDataTangents", Bench::TangentFilter::VTKFilter }),
+        Bench::MakeTangentFilter(filter)
+      };
+      const auto seconds = [](vtkPolyDataAlgorithm* f)
+      {
+        f->Modified();
+        const auto t0 = std::chrono::steady_clock::now();
+        f->Update();
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      };
+      for (auto& f : run)
+      {
+        f->SetInputData(mesh);
+        seconds(f);
+      }
+      double fastest[2] = { 1e300, 1e300 };
+      for (int i = 0; i < pairs; ++i)
+      {
+        double t[2];
+        const int first = i % 2;
+        t[first] = seconds(run[first]);
+        t[1 - first] = seconds(run[1 - first]);
+        result.Ratios.push_back(t[0] / t[1]);
+        fastest[0] = std::min(fastest[0], t[0]);
+        fastest[1] = std::min(fastest[1], t[1]);
+      }
+      result.FastestRatio = fastest[0] / fastest[1];
+    });
+  return result;
+}
+
 std::string MemoryCell(const Measured& m)
 {
   if (m.PeakBytes < 0)
@@ -449,6 +514,32 @@ int main(int argc, char** argv)
             << " s" << (peakAvailable ? "" : " (VmHWM cannot be reset here: not measured)")
             << std::endl;
 
+  // Paired runs against VTK's filter: the summary mesh (see below), float input.
+  long long summarySize = sizes.front();
+  for (long long size : sizes)
+  {
+    if (std::abs(std::log(size / 1e6)) < std::abs(std::log(summarySize / 1e6)))
+    {
+      summarySize = size;
+    }
+  }
+  const int pairs = smoke ? 3 : 40;
+  const auto pairedStart = std::chrono::steady_clock::now();
+  std::vector<Paired> paired;
+  for (int threads : { 1, 2 })
+  {
+    for (const Bench::TangentFilter& f : Bench::TangentFilters())
+    {
+      if (!f.IsVTK())
+      {
+        paired.push_back(MeasurePaired(f, Torus(summarySize, false), threads, pairs));
+      }
+    }
+  }
+  std::cout << "paired runs in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
+            << " s" << std::endl;
+
   // The tables.
   const auto find = [&](Config c, const std::string& name) -> const Measured&
   {
@@ -472,14 +563,6 @@ int main(int argc, char** argv)
   }
 
   // The summary: the size nearest to one million, float input.
-  long long summarySize = sizes.front();
-  for (long long size : sizes)
-  {
-    if (std::abs(std::log(size / 1e6)) < std::abs(std::log(summarySize / 1e6)))
-    {
-      summarySize = size;
-    }
-  }
   md << "## Filter: throughput and peak memory\n\n"
      << "Generated tori (`vtkNormalMapping::MakeTorus`: points, normals and texture coordinates "
         "in the stated precision, u and v seams, no mirroring), "
@@ -512,6 +595,38 @@ int main(int argc, char** argv)
     const Measured& m = results[Config{ s, false, 1, summarySize }.Key()];
     md << " | " << MemoryCell(m) << " | " << Bench::Format(m.OutputBytes / BenchMemory::MiB)
        << " MiB |\n";
+  }
+
+  md << "\n### Paired runs: "
+     << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
+     << " triangles, float input\n\n"
+     << "Each filter and `vtkPolyDataTangents` updated alternately, " << pairs
+     << " pairs after one warm-up Update each, the order within a pair alternating (wall-clock "
+        "time). A pair's two runs are milliseconds apart, so a change in the machine's speed "
+        "mostly hits both, which the medians above (repetitions seconds apart) do not assure. "
+        "Each cell: the median over the pairs of `vtkPolyDataTangents`' time / the filter's "
+        "(above 1: faster than VTK's), with the first and third quartiles, and the ratio of "
+        "the two filters' fastest runs.\n\n"
+     << "| filter | 1 thread: median [quartiles] | fastest runs | 2 threads: median [quartiles] "
+        "| fastest runs |\n"
+     << "|---|---:|---:|---:|---:|\n";
+  for (const Paired& one : paired)
+  {
+    if (one.Threads != 1)
+    {
+      continue;
+    }
+    md << "| " << one.Name;
+    for (const Paired& p : paired)
+    {
+      if (p.Name == one.Name)
+      {
+        md << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
+           << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
+           << "] | " << Bench::Format(p.FastestRatio, 3);
+      }
+    }
+    md << " |\n";
   }
 
   md << "\n### Throughput, every configuration\n\n"
