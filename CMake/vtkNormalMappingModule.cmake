@@ -18,6 +18,7 @@ set(_nm_sources
   Filters/vtkNormalMappingMeshes.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx)
 set(_nm_private_headers
+  Filters/vtkNormalMappingHugePages.h
   Filters/vtkNormalMappingPrivate.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
   Filters/vtkTangentFrameBatch.h

@@ -30,6 +30,8 @@
 
 #include "vtkMikkTSpaceKernel.h"
 
+#include "vtkNormalMappingHugePages.h"
+
 #include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
 
@@ -143,21 +145,8 @@ inline bool Finite(float f)
 // Uninitialised array for large temporaries. On Linux, large blocks are mapped 2 MB-aligned
 // with MADV_HUGEPAGE: first-touch page faults are a large part of the run time otherwise
 // (~100 MB of temporaries per million triangles, 4 KB pages).
-#if defined(__linux__)
-constexpr size_t kHugePage = size_t(2) << 20;
-inline void AdviseHugePages(void* ptr, size_t bytes)
-{
-  const uintptr_t b = (reinterpret_cast<uintptr_t>(ptr) + kHugePage - 1) & ~(kHugePage - 1);
-  const uintptr_t e = (reinterpret_cast<uintptr_t>(ptr) + bytes) & ~(kHugePage - 1);
-  if (e > b)
-  {
-    madvise(reinterpret_cast<void*>(b), e - b, MADV_HUGEPAGE);
-  }
-}
-#else
-constexpr size_t kHugePage = size_t(2) << 20;
-inline void AdviseHugePages(void*, size_t) {}
-#endif
+constexpr size_t kHugePage = vtkNormalMapping::detail::HugePageBytes;
+using vtkNormalMapping::detail::AdviseHugePages;
 
 // Bump allocator for the smaller temporaries of one call: 4 MB chunks mapped 2 MB-aligned with
 // MADV_HUGEPAGE, so that a small mesh's temporaries fault in as a few huge pages instead of

@@ -1,6 +1,7 @@
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkMikkTSpaceKernel.h"
+#include "vtkNormalMappingHugePages.h"
 #include "vtkNormalMappingPrivate.h"
 #include "vtkPolyDataTangentFramesMikkTSpace.h"
 #include "vtkTangentFrameBatch.h"
@@ -412,7 +413,7 @@ PointSumStorage AllocatePointSums(vtkIdType count)
   const size_t n = static_cast<size_t>(std::max<vtkIdType>(count, 1));
   PointSumStorage sums;
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr size_t huge = size_t{ 1 } << 21;
+  constexpr size_t huge = vtkNormalMapping::detail::HugePageBytes;
   const size_t bytes = sizeof(PointSum) * n;
   if (bytes >= 4 * huge)
   {
@@ -422,7 +423,7 @@ PointSumStorage AllocatePointSums(vtkIdType count)
       return sums;
     }
     const std::uintptr_t aligned = (reinterpret_cast<std::uintptr_t>(raw) + huge - 1) / huge * huge;
-    madvise(reinterpret_cast<void*>(aligned), bytes / huge * huge, MADV_HUGEPAGE); // advice
+    vtkNormalMapping::detail::AdviseHugePages(reinterpret_cast<void*>(aligned), bytes);
     sums = PointSumStorage(reinterpret_cast<PointSum*>(aligned), PointSumRelease{ raw });
   }
 #endif
@@ -459,7 +460,7 @@ bool AllocateOnHugePages(ArrayT* array, vtkIdType tuples)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   using T = typename ArrayT::ValueType;
-  constexpr size_t huge = size_t{ 1 } << 21;
+  constexpr size_t huge = vtkNormalMapping::detail::HugePageBytes;
   const vtkIdType values = tuples * array->GetNumberOfComponents();
   const size_t bytes = sizeof(T) * static_cast<size_t>(values);
   void* p = nullptr;
@@ -467,7 +468,7 @@ bool AllocateOnHugePages(ArrayT* array, vtkIdType tuples)
   {
     return false;
   }
-  madvise(p, bytes / huge * huge, MADV_HUGEPAGE); // advice: nothing to do if it fails
+  vtkNormalMapping::detail::AdviseHugePages(p, bytes);
   array->SetArray(static_cast<T*>(p), values, 0, ArrayT::VTK_DATA_ARRAY_FREE);
   return true;
 #else
