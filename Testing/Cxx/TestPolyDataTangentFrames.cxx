@@ -802,7 +802,7 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThre
   // checks it): a bad id anywhere, first or last triangle or in the middle of a batch, must
   // still give the error and the pass-through.
   vtkNormalMapping::TorusOptions options;
-  options.U = 400; // 144,000 triangles, 72,000 points: 2 blocks with 2 threads, 4 with 8
+  options.U = 400; // 144,000 triangles, 72,000 points: 4 blocks with 2 or 8 threads
   options.V = 180;
   const auto torus = vtkNormalMapping::MakeTorus(options);
   const vtkIdType numCells = torus->GetNumberOfPolys();
