@@ -351,7 +351,11 @@ constexpr vtkIdType OwnerChunk = 64;
  * block's scan finds it.
  */
 template<typename IdT>
-std::vector<std::uint64_t> ChunkOwners(const IdT* conn, vtkIdType n, int blocks, int ownerShift)
+std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
+  vtkIdType n,
+  int blocks,
+  int ownerShift,
+  vtkNormalMapping::detail::BatchCode code)
 {
   const vtkIdType chunks = (n + OwnerChunk - 1) / OwnerChunk;
   std::vector<std::uint64_t> owners(static_cast<size_t>(chunks));
@@ -365,6 +369,21 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn, vtkIdType n, int blocks,
       {
         const IdT* ids = conn + 3 * OwnerChunk * c;
         const vtkIdType count = 3 * std::min(OwnerChunk, n - OwnerChunk * c);
+#ifdef VTK_TANGENT_BATCH_AVX2
+        if constexpr (sizeof(IdT) == sizeof(std::int64_t))
+        {
+          if (code == vtkNormalMapping::detail::BatchCode::AVX512)
+          {
+            owners[c] = vtkNormalMapping::detail::avx512::OwnerBits(
+              reinterpret_cast<const std::int64_t*>(ids),
+              static_cast<int>(count),
+              blocks,
+              ownerShift);
+            continue;
+          }
+        }
+#endif
+        (void)code;
         // Branch-free over the ids, so that the compiler vectorizes it.
         std::uint64_t bits = 0;
         for (vtkIdType j = 0; j < count; ++j)
@@ -552,7 +571,7 @@ struct Execution
           {
             if (kind == 0 && this->TrianglesOnly && this->Blocks > 1)
             {
-              owners = ChunkOwners(conn, numCells, this->Blocks, OwnerShift);
+              owners = ChunkOwners(conn, numCells, this->Blocks, OwnerShift, this->Code);
             }
           }
           const std::uint64_t* chunkOwners = owners.empty() ? nullptr : owners.data();

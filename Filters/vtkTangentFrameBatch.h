@@ -1223,6 +1223,34 @@ inline bool TakeTriangles(const std::int64_t* ids, int n, std::int64_t numPoints
   b.Size += n;
   return true;
 }
+
+/**
+ * Bit b set for each block b, of `blocks` (a power of two), that owns one of the `count` 64-bit
+ * ids: (id >> ownerShift) & (blocks - 1) == b. Eight ids per step, no check of the ids (see
+ * ChunkOwners in vtkPolyDataTangentFrames.cxx, whose scalar loop the compiler does not vectorize
+ * for the baseline instruction set: it has no variable 64-bit shift).
+ */
+inline std::uint64_t OwnerBits(const std::int64_t* ids, int count, int blocks, int ownerShift)
+{
+  const __m512i mask = _mm512_set1_epi64(blocks - 1);
+  const __m512i one = _mm512_set1_epi64(1);
+  const __m128i shift = _mm_cvtsi32_si128(ownerShift);
+  __m512i bits = _mm512_setzero_si512();
+  int j = 0;
+  for (; j + 8 <= count; j += 8)
+  {
+    const __m512i owner =
+      _mm512_and_si512(_mm512_srl_epi64(_mm512_loadu_si512(ids + j), shift), mask);
+    bits = _mm512_or_si512(bits, _mm512_sllv_epi64(one, owner));
+  }
+  std::uint64_t result = static_cast<std::uint64_t>(_mm512_reduce_or_epi64(bits));
+  for (; j < count; ++j)
+  {
+    result |= std::uint64_t{ 1 } << ((static_cast<std::uint64_t>(ids[j]) >> ownerShift) &
+                static_cast<std::uint64_t>(blocks - 1));
+  }
+  return result;
+}
 } // namespace avx512
 #if defined(__clang__)
 #pragma clang attribute pop
