@@ -802,8 +802,11 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThre
   // checks it): a bad id anywhere, first or last triangle or in the middle of a batch, must
   // still give the error and the pass-through.
   vtkNormalMapping::TorusOptions options;
-  options.U = 400; // 144,000 triangles, 72,000 points: 4 blocks with 2 or 8 threads
-  options.V = 180;
+  // 145,162 triangles, 72,581 points: 4 blocks with 2 or 8 threads. The last chunk of 64
+  // triangles holds 10, so that the last cell's bad id is among the ids the AVX-512 owner pass
+  // leaves to its scalar tail (30 ids, 24 read eight at a time).
+  options.U = 401;
+  options.V = 181;
   const auto torus = vtkNormalMapping::MakeTorus(options);
   const vtkIdType numCells = torus->GetNumberOfPolys();
   for (const vtkIdType cell : { vtkIdType(0), vtkIdType(1000), numCells / 2 + 7, numCells - 1 })
@@ -1264,15 +1267,17 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // The scatter deals points to one block per thread (a power of two), in runs of 2^14 ids, and
-  // never more blocks than runs: 36,000 points make at most 2 blocks, 133,120 points 8, so that
-  // both meshes check the skipped, whole and shared chunks of several blocks.
+  // The scatter deals points to four blocks per thread with several threads (a power of two), in
+  // runs of 2^14 ids, and never more blocks than runs: 36,000 points make 2 blocks, 133,897
+  // points 8, so that both meshes check the skipped, whole and shared chunks of several blocks.
+  // The second has 267,794 triangles: its last chunk of 64 holds 18 (54 ids, not a multiple of
+  // the 8 that the AVX-512 owner pass reads at once).
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
-  for (int u : { 300, 520 })
+  for (int u : { 300, 521 })
   {
     vtkNormalMapping::TorusOptions options;
     options.U = u;
-    options.V = u == 300 ? 120 : 256;
+    options.V = u == 300 ? 120 : 257;
     options.MirrorU = true;
     meshes.push_back(vtkNormalMapping::MakeTorus(options));
   }

@@ -712,4 +712,50 @@ TEST(TangentFrameKernels, LanesTakeTrianglesDeinterleaveAndRejectBadIds)
     }
   }
 }
+
+TEST(TangentFrameKernels, LanesOwnerBitsMatchTheOwnerRule)
+{
+  if (detail::BestBatchCode() != detail::BatchCode::AVX512)
+  {
+    GTEST_SKIP() << "this CPU (or build) has no AVX-512: the filter finds owners with scalar code";
+  }
+  // Every block count the filter uses (powers of two up to 64), owner runs of 2^14 ids and a
+  // shorter one, ids anywhere (negative and huge ones included: ids are not checked here), and
+  // counts with and without a tail shorter than a step of eight, each id alone in its run so
+  // that a missed id is a missed bit.
+  std::mt19937 rng(7);
+  for (int shift : { 3, 14 })
+  {
+    for (int blocks = 1; blocks <= 64; blocks *= 2)
+    {
+      for (int count : { 0, 1, 7, 8, 9, 30, 54, 192 })
+      {
+        for (int trial = 0; trial < 20; ++trial)
+        {
+          std::vector<std::int64_t> ids(count);
+          std::uint64_t expected = 0;
+          for (int j = 0; j < count; ++j)
+          {
+            const std::int64_t run = static_cast<std::int64_t>(rng() % 200);
+            ids[j] = trial == 0 && j == count - 1
+              ? std::int64_t{ -1 }
+              : (run << shift) + static_cast<std::int64_t>(rng() % (1u << shift));
+            expected |= std::uint64_t{ 1 } << ((static_cast<std::uint64_t>(ids[j]) >> shift) &
+                          static_cast<std::uint64_t>(blocks - 1));
+          }
+          EXPECT_EQ(detail::avx512::OwnerBits(ids.data(), count, blocks, shift), expected)
+            << "shift " << shift << " blocks " << blocks << " count " << count;
+          // Each id's own bit, alone: the single-id runs the tail and the steps both see.
+          for (int j = 0; j < count; ++j)
+          {
+            const std::uint64_t own = std::uint64_t{ 1 }
+              << ((static_cast<std::uint64_t>(ids[j]) >> shift) &
+                   static_cast<std::uint64_t>(blocks - 1));
+            ASSERT_EQ(detail::avx512::OwnerBits(ids.data() + j, 1, blocks, shift), own);
+          }
+        }
+      }
+    }
+  }
+}
 #endif
