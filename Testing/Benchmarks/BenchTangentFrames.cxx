@@ -17,7 +17,8 @@
 // repetitions only); the median of the repetitions is reported, and its spread.
 // Paired runs (MeasurePaired): each of our methods and VTK's filter updated alternately on the
 // million-triangle float mesh, 1 and 2 threads, the median and quartiles of the per-pair ratios;
-// once with memory the allocator reuses, once with fresh pages (after the peak memory).
+// once with memory the allocator reuses, once with fresh pages (after the peak memory). Scaling
+// (MeasureScaling): each filter alone, updated alternately with one and with two threads.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
 #include "BenchMemory.h"
@@ -328,14 +329,15 @@ std::string ConfigurationRows(const std::vector<long long>& sizes,
   return rows.str();
 }
 
-/// The ratios of one tangent filter to VTK's, each from one pair of Updates run back to back.
+/// Ratios of Update times, each from one pair of Updates run back to back: a tangent filter's to
+/// VTK's (MeasurePaired) or a filter's with two threads to its own with one (MeasureScaling).
 struct Paired
 {
   std::string Name;
   int Threads = 1;
   bool FreshPages = false;    // every large block fresh from the kernel (see main)
-  std::vector<double> Ratios; // VTK's time / ours, one per pair
-  double FastestRatio = 0.0;  // VTK's fastest Update / our fastest Update
+  std::vector<double> Ratios; // the first run's time / the second's, one per pair
+  double FastestRatio = 0.0;  // the first's fastest Update / the second's fastest Update
   double Quantile(double q) const
   {
     std::vector<double> r = this->Ratios;
@@ -346,14 +348,45 @@ struct Paired
   }
 };
 
+/// Re-executes the filter (Modified, Update) and returns the wall-clock seconds it took.
+double TimedUpdate(vtkPolyDataAlgorithm* f)
+{
+  f->Modified();
+  const auto t0 = std::chrono::steady_clock::now();
+  f->Update();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 /**
- * `pairs` pairs of Updates of VTK's filter and `filter` on the same mesh in this process, with
- * `threads` threads, each filter re-executed (Modified, Update) as in the timed runs, after one
- * warm-up Update each; which of the two runs first alternates from pair to pair. Wall-clock time.
- * A pair's two runs are a few tens of milliseconds apart, so a change of the machine's speed
- * (other virtual machines, frequency) mostly hits both: the ratio within a pair is steadier than
- * the ratio of medians over the interleaved repetitions, whose runs are seconds apart.
+ * `pairs` pairs of timed runs run[0]() and run[1]() (each returns seconds) back to back, which of
+ * the two goes first alternating from pair to pair, after one warm-up run each: the per-pair
+ * ratios run[0] / run[1] and the ratio of the fastest runs go into `result`. A pair's two runs
+ * are a few tens of milliseconds apart, so a change of the machine's speed (other virtual
+ * machines, frequency) mostly hits both: the ratio within a pair is steadier than the ratio of
+ * medians over the interleaved repetitions, whose runs are seconds apart.
  */
+template<typename R0, typename R1>
+void AlternatePairs(const R0& run0, const R1& run1, int pairs, Paired& result)
+{
+  const auto run = [&](int which) { return which == 0 ? run0() : run1(); };
+  run(0);
+  run(1);
+  double fastest[2] = { 1e300, 1e300 };
+  for (int i = 0; i < pairs; ++i)
+  {
+    double t[2];
+    const int first = i % 2;
+    t[first] = run(first);
+    t[1 - first] = run(1 - first);
+    result.Ratios.push_back(t[0] / t[1]);
+    fastest[0] = std::min(fastest[0], t[0]);
+    fastest[1] = std::min(fastest[1], t[1]);
+  }
+  result.FastestRatio = fastest[0] / fastest[1];
+}
+
+/// `pairs` pairs of Updates of VTK's filter and `filter` on the same mesh in this process, with
+/// `threads` threads (AlternatePairs): VTK's time / the filter's.
 Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int threads, int pairs)
 {
   Paired result;
@@ -366,31 +399,35 @@ Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int 
         Bench::MakeTangentFilter({ "vtkPolyDataTangents", Bench::TangentFilter::VTKFilter }),
         Bench::MakeTangentFilter(filter)
       };
-      const auto seconds = [](vtkPolyDataAlgorithm* f)
-      {
-        f->Modified();
-        const auto t0 = std::chrono::steady_clock::now();
-        f->Update();
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      };
       for (auto& f : run)
       {
         f->SetInputData(mesh);
-        seconds(f);
       }
-      double fastest[2] = { 1e300, 1e300 };
-      for (int i = 0; i < pairs; ++i)
-      {
-        double t[2];
-        const int first = i % 2;
-        t[first] = seconds(run[first]);
-        t[1 - first] = seconds(run[1 - first]);
-        result.Ratios.push_back(t[0] / t[1]);
-        fastest[0] = std::min(fastest[0], t[0]);
-        fastest[1] = std::min(fastest[1], t[1]);
-      }
-      result.FastestRatio = fastest[0] / fastest[1];
+      AlternatePairs([&]() { return TimedUpdate(run[0]); },
+        [&]() { return TimedUpdate(run[1]); },
+        pairs,
+        result);
     });
+  return result;
+}
+
+/// `pairs` pairs of Updates of one `filter` on the same mesh, one with one thread and one with
+/// two (AlternatePairs): the one-thread time / the two-thread time, the speed-up of the second
+/// thread. The thread count is set outside the timed Update.
+Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int pairs)
+{
+  Paired result;
+  result.Name = filter.Name;
+  result.Threads = 2;
+  auto f = Bench::MakeTangentFilter(filter);
+  f->SetInputData(mesh);
+  const auto with = [&](int threads)
+  {
+    double seconds = 0.0;
+    NormalMappingTesting::WithThreads(threads, [&]() { seconds = TimedUpdate(f); });
+    return seconds;
+  };
+  AlternatePairs([&]() { return with(1); }, [&]() { return with(2); }, pairs, result);
   return result;
 }
 
@@ -531,6 +568,17 @@ int main(int argc, char** argv)
       << " s" << std::endl;
   };
   runPaired(false);
+  // Two threads against one, each filter alone (memory reused).
+  std::vector<Paired> scaling;
+  const auto scalingStart = std::chrono::steady_clock::now();
+  for (const Bench::TangentFilter& f : Bench::TangentFilters())
+  {
+    scaling.push_back(MeasureScaling(f, Torus(summarySize, false), pairs));
+  }
+  std::cout
+    << "two threads against one in "
+    << std::chrono::duration<double>(std::chrono::steady_clock::now() - scalingStart).count()
+    << " s" << std::endl;
 
   // Peak memory, after the timing (whose allocations keep glibc's usual behaviour, as in an
   // application): large blocks from mmap from now on; each subject runs once on the smallest
@@ -645,6 +693,25 @@ int main(int argc, char** argv)
       }
     }
     md << " |\n";
+  }
+
+  md << "\n### Two threads against one: paired runs, "
+     << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
+     << " triangles, float input\n\n"
+     << "Each filter alone, updated alternately with one thread and with two (the thread count "
+        "set between the timed Updates), "
+     << pairs
+     << " pairs after one warm-up Update each, the order within a pair alternating, memory "
+        "reused (wall-clock time). Each cell: the median over the pairs of the one-thread time / "
+        "the two-thread time (the speed-up of the second thread; 2 is perfect scaling, below 1 "
+        "slower), with the first and third quartiles, and the ratio of the fastest runs.\n\n"
+     << "| filter | two threads against one: median [quartiles] | fastest runs |\n"
+     << "|---|---:|---:|\n";
+  for (const Paired& p : scaling)
+  {
+    md << "| " << p.Name << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
+       << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3) << "] | "
+       << Bench::Format(p.FastestRatio, 3) << " |\n";
   }
 
   md << "\n### Throughput, every configuration\n\n"
