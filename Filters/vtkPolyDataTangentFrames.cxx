@@ -392,7 +392,8 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
         }
 #endif
         (void)code;
-        // Branch-free over the ids, so that the compiler vectorizes it.
+        // Branch-free over the ids. The baseline instruction set has no variable 64-bit shift,
+        // so this stays scalar: 64-bit ids take OwnerBits above when the CPU has AVX-512.
         std::uint64_t bits = 0;
         for (vtkIdType j = 0; j < count; ++j)
         {
