@@ -367,7 +367,6 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
 {
   const vtkIdType chunks = (n + OwnerChunk - 1) / OwnerChunk;
   std::vector<std::uint64_t> owners(static_cast<size_t>(chunks));
-  const std::uint64_t mask = static_cast<std::uint64_t>(blocks - 1);
   vtkSMPTools::For(0,
     chunks,
     256,
@@ -392,15 +391,7 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
         }
 #endif
         (void)code;
-        // Branch-free over the ids. The baseline instruction set has no variable 64-bit shift,
-        // so this stays scalar: 64-bit ids take OwnerBits above when the CPU has AVX-512.
-        std::uint64_t bits = 0;
-        for (vtkIdType j = 0; j < count; ++j)
-        {
-          const std::uint64_t id = static_cast<std::uint64_t>(static_cast<std::int64_t>(ids[j]));
-          bits |= std::uint64_t{ 1 } << ((id >> ownerShift) & mask);
-        }
-        owners[c] = bits;
+        owners[c] = vtkNormalMapping::detail::ScalarOwnerBits(ids, count, blocks, ownerShift);
       }
     });
   return owners;

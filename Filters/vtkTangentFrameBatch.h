@@ -331,6 +331,25 @@ struct alignas(32) PointSum
 };
 
 /**
+ * Bit b set for each block b, of `blocks` (a power of two), that owns one of the `count` ids:
+ * (id >> ownerShift) & (blocks - 1) == b (see ScatterTarget). No check of the ids; a negative id
+ * is read as unsigned. Branch-free, but scalar for 64-bit ids: the baseline instruction set has no
+ * variable 64-bit shift (avx512::OwnerBits does eight at a time).
+ */
+template<typename IdT>
+inline std::uint64_t ScalarOwnerBits(const IdT* ids, vtkIdType count, int blocks, int ownerShift)
+{
+  const std::uint64_t mask = static_cast<std::uint64_t>(blocks - 1);
+  std::uint64_t bits = 0;
+  for (vtkIdType j = 0; j < count; ++j)
+  {
+    const std::uint64_t id = static_cast<std::uint64_t>(static_cast<std::int64_t>(ids[j]));
+    bits |= std::uint64_t{ 1 } << ((id >> ownerShift) & mask);
+  }
+  return bits;
+}
+
+/**
  * Where a batch's corners are added: per point, a PointSum. Only corners whose point `Block` owns
  * are added: points are dealt to `Blocks` (a power of two) in runs of 2^OwnerShift ids, round
  * robin.
@@ -1226,9 +1245,7 @@ inline bool TakeTriangles(const std::int64_t* ids, int n, std::int64_t numPoints
 
 /**
  * Bit b set for each block b, of `blocks` (a power of two), that owns one of the `count` 64-bit
- * ids: (id >> ownerShift) & (blocks - 1) == b. Eight ids per step, no check of the ids (see
- * ChunkOwners in vtkPolyDataTangentFrames.cxx, whose scalar loop the compiler does not vectorize
- * for the baseline instruction set: it has no variable 64-bit shift).
+ * ids: ScalarOwnerBits, eight ids per step (the rest through ScalarOwnerBits).
  */
 inline std::uint64_t OwnerBits(const std::int64_t* ids, int count, int blocks, int ownerShift)
 {
@@ -1243,13 +1260,8 @@ inline std::uint64_t OwnerBits(const std::int64_t* ids, int count, int blocks, i
       _mm512_and_si512(_mm512_srl_epi64(_mm512_loadu_si512(ids + j), shift), mask);
     bits = _mm512_or_si512(bits, _mm512_sllv_epi64(one, owner));
   }
-  std::uint64_t result = static_cast<std::uint64_t>(_mm512_reduce_or_epi64(bits));
-  for (; j < count; ++j)
-  {
-    result |= std::uint64_t{ 1 } << ((static_cast<std::uint64_t>(ids[j]) >> ownerShift) &
-                static_cast<std::uint64_t>(blocks - 1));
-  }
-  return result;
+  return static_cast<std::uint64_t>(_mm512_reduce_or_epi64(bits)) |
+    ScalarOwnerBits(ids + j, count - j, blocks, ownerShift);
 }
 } // namespace avx512
 #if defined(__clang__)
