@@ -164,6 +164,12 @@ constexpr double AtanSeries[13] = { 1.0,
   -1.0 / 23,
   1.0 / 25 };
 
+/// The constants of AngleFromSineCosine (the float path has its own, single::TanPiOver8 ...).
+constexpr double TanPiOver8 = 0.41421356237309504880;
+constexpr double PiOver4 = 0.78539816339744830962;
+constexpr double PiOver2 = 1.5707963267948966192;
+constexpr double Pi = 3.14159265358979323846;
+
 /**
  * atan2(s, c) for s >= 0, in [0, pi], without a library call: reduce to z = min/max in [0, 1],
  * then to |z'| <= tan(pi/8) with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and sum the odd
@@ -181,15 +187,10 @@ inline double AngleFromSineCosine(double s, double c)
   {
     return 0.0;
   }
-  double z = num / den;
-  double base = 0.0;
-  constexpr double TanPiOver8 = 0.41421356237309504880;
-  constexpr double PiOver4 = 0.78539816339744830962;
-  if (z > TanPiOver8)
-  {
-    z = (z - 1.0) / (z + 1.0);
-    base = PiOver4;
-  }
+  // One division either way: (num - den) / (num + den) is (z - 1) / (z + 1) for z = num / den.
+  const bool reduce = num > TanPiOver8 * den;
+  const double z = reduce ? (num - den) / (num + den) : num / den;
+  const double base = reduce ? PiOver4 : 0.0;
   const double z2 = z * z;
   double series = AtanSeries[12];
   for (int k = 11; k >= 0; --k)
@@ -197,8 +198,8 @@ inline double AngleFromSineCosine(double s, double c)
     series = AtanSeries[k] + z2 * series;
   }
   double angle = base + z * series; // atan(num / den) in [0, pi/4] .. [0, pi/2]
-  angle = steep ? 1.5707963267948966192 - angle : angle;
-  return c < 0.0 ? 3.14159265358979323846 - angle : angle;
+  angle = steep ? PiOver2 - angle : angle;
+  return c < 0.0 ? Pi - angle : angle;
 }
 
 /**

@@ -27,7 +27,7 @@ VTK_TANGENT_BATCH_ALWAYS_INLINE inline bool IdsBelow(const FrameBatch& b, int i,
   return below;
 }
 
-/// Lanes::GatherXYZ (float xyz into float lanes) or GatherNormals (into double lanes), with the
+/// Lanes::GatherXYZ (float xyz into float lanes) or GatherXYZDouble (into double lanes), with the
 /// load guard at the array's last point when `guarded`.
 template<bool Guarded>
 VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(const float* xyz,
@@ -43,7 +43,7 @@ VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(const NT* xyz,
   vtkIdType count,
   Lanes::D out[3])
 {
-  Lanes::template GatherNormals<Guarded>(xyz, ids, count, out);
+  Lanes::template GatherXYZDouble<Guarded>(xyz, ids, count, out);
 }
 template<typename T, typename V>
 VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(bool guarded,
@@ -62,25 +62,106 @@ VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(bool guarded,
   }
 }
 
-/// (x0 y0 + x1 y1) + x2 y2, as single::Dot.
+/// Lanes' float lanes (F, for S = float) or double lanes (D, for S = double) under one set of
+/// names, for the code the two precisions share; the constants are those of single::Angle or
+/// AngleFromSineCosine. (Keyed on the scalar type: a vector type as a template argument loses its
+/// attributes.)
+template<typename S>
+struct Ops;
+
+template<>
+struct Ops<float>
+{
+  using L = Lanes;
+  using V = L::F;
+  using M = L::M;
+  using S = float;
+  static constexpr S TanPiOver8 = single::TanPiOver8, PiOver4 = single::PiOver4,
+                     PiOver2 = single::PiOver2, Pi = single::Pi;
+  static V Zero() { return L::Zero(); }
+  static V Set(S x) { return L::Set(x); }
+  static V Add(V x, V y) { return L::Add(x, y); }
+  static V Sub(V x, V y) { return L::Sub(x, y); }
+  static V Mul(V x, V y) { return L::Mul(x, y); }
+  static V Div(V x, V y) { return L::Div(x, y); }
+  static V Sqrt(V x) { return L::Sqrt(x); }
+  static V Max(V x, V y) { return L::Max(x, y); }
+  static V Abs(V x) { return L::Abs(x); }
+  static V Negate(V x) { return L::Negate(x); }
+  static V NegateWhere(M m, V x) { return L::NegateWhere(m, x); }
+  static M Gt(V x, V y) { return L::Gt(x, y); }
+  static M Ge(V x, V y) { return L::Ge(x, y); }
+  static M Le(V x, V y) { return L::Le(x, y); }
+  static M Lt(V x, V y) { return L::Lt(x, y); }
+  static M Finite(V x) { return L::Finite(x); }
+  static M And(M x, M y) { return L::And(x, y); }
+  static V Select(M m, V x, V y) { return L::Select(m, x, y); }
+  static V Keep(M m, V x) { return L::Keep(m, x); }
+  static unsigned Bits(M m) { return L::Bits(m); }
+  /// The lanes widened to double, at out[0..Count).
+  static void Store(double* out, V x) { L::StoreWide(out, x); }
+};
+
+template<>
+struct Ops<double>
+{
+  using L = Lanes;
+  using V = L::D;
+  using M = L::DM;
+  using S = double;
+  static constexpr S TanPiOver8 = detail::TanPiOver8, PiOver4 = detail::PiOver4,
+                     PiOver2 = detail::PiOver2, Pi = detail::Pi;
+  static V Zero() { return L::ZeroDouble(); }
+  static V Set(S x) { return L::SetDouble(x); }
+  static V Add(V x, V y) { return L::AddDouble(x, y); }
+  static V Sub(V x, V y) { return L::SubDouble(x, y); }
+  static V Mul(V x, V y) { return L::MulDouble(x, y); }
+  static V Div(V x, V y) { return L::DivDouble(x, y); }
+  static V Sqrt(V x) { return L::SqrtDouble(x); }
+  static V Max(V x, V y) { return L::MaxDouble(x, y); }
+  static V Abs(V x) { return L::AbsDouble(x); }
+  static V Negate(V x) { return L::NegateDouble(x); }
+  static V NegateWhere(M m, V x) { return L::NegateWhereDouble(m, x); }
+  static M Gt(V x, V y) { return L::GtDouble(x, y); }
+  static M Ge(V x, V y) { return L::GeDouble(x, y); }
+  static M Le(V x, V y) { return L::LeDouble(x, y); }
+  static M Lt(V x, V y) { return L::LtDouble(x, y); }
+  static M Finite(V x) { return L::FiniteDouble(x); }
+  static M And(M x, M y) { return L::AndDouble(x, y); }
+  static V Select(M m, V x, V y) { return L::SelectDouble(m, x, y); }
+  static V Keep(M m, V x) { return L::KeepDouble(m, x); }
+  static unsigned Bits(M m) { return L::BitsDouble(m); }
+  static void Store(double* out, V x) { L::StoreDouble(out, x); }
+};
+
+/// (x0 y0 + x1 y1) + x2 y2, as single::Dot and glm::dot, with the operations O.
+template<typename O>
+inline typename O::V DotOf(const typename O::V* x, const typename O::V* y)
+{
+  return O::Add(O::Add(O::Mul(x[0], y[0]), O::Mul(x[1], y[1])), O::Mul(x[2], y[2]));
+}
 inline Lanes::F LanesDot(const Lanes::F* x, const Lanes::F* y)
 {
-  return Lanes::Add(
-    Lanes::Add(Lanes::Mul(x[0], y[0]), Lanes::Mul(x[1], y[1])), Lanes::Mul(x[2], y[2]));
+  return DotOf<Ops<float>>(x, y);
+}
+inline Lanes::D LanesDot(const Lanes::D* x, const Lanes::D* y)
+{
+  return DotOf<Ops<double>>(x, y);
 }
 
 /// x0 x0 + x1 x1.
+template<typename O>
+inline typename O::V Dot2Of(const typename O::V* x)
+{
+  return O::Add(O::Mul(x[0], x[0]), O::Mul(x[1], x[1]));
+}
 inline Lanes::F LanesDot2(const Lanes::F* x)
 {
-  return Lanes::Add(Lanes::Mul(x[0], x[0]), Lanes::Mul(x[1], x[1]));
+  return Dot2Of<Ops<float>>(x);
 }
-
-/// (x0 y0 + x1 y1) + x2 y2 in double, as glm::dot.
-inline Lanes::D LanesDotDouble(const Lanes::D* x, const Lanes::D* y)
+inline Lanes::D LanesDot2(const Lanes::D* x)
 {
-  return Lanes::AddDouble(
-    Lanes::AddDouble(Lanes::MulDouble(x[0], y[0]), Lanes::MulDouble(x[1], y[1])),
-    Lanes::MulDouble(x[2], y[2]));
+  return Dot2Of<Ops<double>>(x);
 }
 
 /// The lanes where v's largest component is in [2^-400, 2^400] (so normalizing v rescales nothing,
@@ -106,6 +187,219 @@ inline Lanes::F AtanLanes(Lanes::F z, Lanes::F x, Lanes::F x2)
   return L::Add(z, L::Mul(L::Mul(z, x), p));
 }
 
+/// atan of the three reduced arguments of TriangleLanes<float>::Angles: single::AtanOfReduced.
+struct AtanFloatLanes
+{
+  void operator()(const Lanes::F z[3], Lanes::F atanZ[3]) const
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      const Lanes::F x = Lanes::Mul(z[j], z[j]);
+      atanZ[j] = AtanLanes(z[j], x, Lanes::Mul(x, x));
+    }
+  }
+};
+
+/// The same for TriangleLanes<double>::Angles: z times AtanSeries in z^2, as AngleFromSineCosine.
+/// The three chains are interleaved: each is 24 dependent operations, so one at a time would leave
+/// the CPU waiting on latency.
+struct AtanDoubleLanes
+{
+  void operator()(const Lanes::D z[3], Lanes::D atanZ[3]) const
+  {
+    using L = Lanes;
+    Lanes::D z2[3], series[3];
+    for (int j = 0; j < 3; ++j)
+    {
+      z2[j] = L::MulDouble(z[j], z[j]);
+      series[j] = L::SetDouble(AtanSeries[12]);
+    }
+    for (int k = 11; k >= 0; --k)
+    {
+      const Lanes::D ck = L::SetDouble(AtanSeries[k]);
+      for (int j = 0; j < 3; ++j)
+      {
+        series[j] = L::AddDouble(ck, L::MulDouble(z2[j], series[j]));
+      }
+    }
+    for (int j = 0; j < 3; ++j)
+    {
+      atanZ[j] = L::MulDouble(z[j], series[j]);
+    }
+  }
+};
+
+/// A triangle kernel's lanes up to the weights: edges, winding normal, unit tangent and the lane
+/// masks, as both precisions compute them (TriangleLanes::Solve), in float or double lanes.
+template<typename S>
+struct TriangleLanes
+{
+  using O = Ops<S>;
+  using V = typename O::V;
+  V E1[3], E2[3], E3[3];
+  V Normal[3];          ///< e1 x e2, the winding normal
+  V TwiceArea2;         ///< |e1 x e2|^2
+  V Tangent[3];         ///< unit
+  unsigned Vector;      ///< the lanes the vector code takes; the others go to ScalarTriangle
+  unsigned Usable;      ///< the lanes with a frame
+  unsigned DetPositive; ///< the lanes whose UV determinant is positive
+
+  /**
+   * ComputeTriangleFrame's solve (single::ComputeTriangle's for float) for positions p[corner][xyz]
+   * and texture coordinates uv[corner][uv]: lanes whose largest edge or UV delta component is
+   * outside [safeMinimum, safeMaximum] or not finite are left to the scalar kernel; a lane has a
+   * frame when its area is above tolP2 (the squared position tolerance) times the longest edge
+   * squared squared, its UV area above tolUV times the longest UV edge squared, and its tangent is
+   * finite and not zero.
+   */
+  VTK_TANGENT_BATCH_ALWAYS_INLINE void Solve(const V p[3][3],
+    const V uv[3][2],
+    S safeMinimum,
+    S safeMaximum,
+    S tolP2,
+    S tolUV)
+  {
+    const V zero = O::Zero();
+    V d1[2], d2[2], d3[2];
+    V maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
+    for (int d = 0; d < 3; ++d)
+    {
+      this->E1[d] = O::Sub(p[1][d], p[0][d]);
+      this->E2[d] = O::Sub(p[2][d], p[0][d]);
+      this->E3[d] = O::Sub(this->E2[d], this->E1[d]);
+      maxE = O::Max(maxE, O::Max(O::Abs(this->E1[d]), O::Abs(this->E2[d])));
+      sumE = O::Add(sumE, O::Add(this->E1[d], this->E2[d]));
+    }
+    for (int d = 0; d < 2; ++d)
+    {
+      d1[d] = O::Sub(uv[1][d], uv[0][d]);
+      d2[d] = O::Sub(uv[2][d], uv[0][d]);
+      d3[d] = O::Sub(d2[d], d1[d]);
+      maxUV = O::Max(maxUV, O::Max(O::Abs(d1[d]), O::Abs(d2[d])));
+      sumUV = O::Add(sumUV, O::Add(d1[d], d2[d]));
+    }
+    // Every component finite (a sum of finite numbers can overflow: then the scalar kernel
+    // decides) and both largest components in the safe range.
+    const V lo = O::Set(safeMinimum), hi = O::Set(safeMaximum);
+    auto vector = O::And(O::Finite(sumE), O::Finite(sumUV));
+    vector = O::And(vector, O::And(O::Ge(maxE, lo), O::Le(maxE, hi)));
+    vector = O::And(vector, O::And(O::Ge(maxUV, lo), O::Le(maxUV, hi)));
+    this->Vector = O::Bits(vector);
+
+    const V* e1 = this->E1;
+    const V* e2 = this->E2;
+    V* n = this->Normal;
+    n[0] = O::Sub(O::Mul(e1[1], e2[2]), O::Mul(e2[1], e1[2]));
+    n[1] = O::Sub(O::Mul(e1[2], e2[0]), O::Mul(e2[2], e1[0]));
+    n[2] = O::Sub(O::Mul(e1[0], e2[1]), O::Mul(e2[0], e1[1]));
+    this->TwiceArea2 = LanesDot(n, n);
+    const V longest2 = O::Max(O::Max(LanesDot(e1, e1), LanesDot(e2, e2)), LanesDot(E3, E3));
+    const auto posOK = O::Gt(this->TwiceArea2, O::Mul(O::Mul(O::Set(tolP2), longest2), longest2));
+    const V det = O::Sub(O::Mul(d1[0], d2[1]), O::Mul(d2[0], d1[1]));
+    const V longestUV2 = O::Max(O::Max(LanesDot2(d1), LanesDot2(d2)), LanesDot2(d3));
+    const auto uvOK = O::Gt(O::Abs(det), O::Mul(O::Set(tolUV), longestUV2));
+    const auto flip = O::Lt(det, zero);
+    V t[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      t[d] = O::NegateWhere(flip, O::Sub(O::Mul(d2[1], e1[d]), O::Mul(d1[1], e2[d])));
+    }
+    const V tLength = O::Sqrt(LanesDot(t, t));
+    const auto tOK = O::And(O::Gt(tLength, zero), O::Finite(tLength));
+    const V inverse = O::Div(O::Set(1), tLength);
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Tangent[d] = O::Mul(t[d], inverse);
+    }
+    this->Usable = O::Bits(O::And(O::And(posOK, uvOK), tOK));
+    this->DetPositive = O::Bits(O::Gt(det, zero));
+  }
+
+  /**
+   * The corner angles (single::Angle, or AngleFromSineCosine for double), from the sine |e1 x e2|
+   * and each corner's cosine term; `atan(z, out)` gives atan of the three reduced arguments.
+   */
+  template<typename Atan>
+  VTK_TANGENT_BATCH_ALWAYS_INLINE void Angles(Atan&& atan, V angle[3]) const
+  {
+    using M = typename O::M;
+    const V zero = O::Zero();
+    const V sine = O::Sqrt(this->TwiceArea2);
+    const V c[3] = { LanesDot(E1, E2), O::Negate(LanesDot(E1, E3)), LanesDot(E2, E3) };
+    M steep[3], positive[3];
+    V z[3], base[3], atanZ[3];
+    for (int j = 0; j < 3; ++j)
+    {
+      const V ac = O::Abs(c[j]);
+      steep[j] = O::Gt(sine, ac);
+      const V num = O::Select(steep[j], ac, sine);
+      const V den = O::Select(steep[j], sine, ac);
+      positive[j] = O::Gt(den, zero);
+      // One division either way: (num - den) / (num + den) is (z - 1) / (z + 1) for num / den.
+      const M reduce = O::Gt(num, O::Mul(O::Set(O::TanPiOver8), den));
+      z[j] =
+        O::Div(O::Select(reduce, O::Sub(num, den), num), O::Select(reduce, O::Add(num, den), den));
+      base[j] = O::Keep(reduce, O::Set(O::PiOver4));
+    }
+    atan(z, atanZ);
+    for (int j = 0; j < 3; ++j)
+    {
+      V a = O::Add(base[j], atanZ[j]);
+      a = O::Select(steep[j], O::Sub(O::Set(O::PiOver2), a), a);
+      a = O::Select(O::Lt(c[j], zero), O::Sub(O::Set(O::Pi), a), a);
+      angle[j] = O::Keep(positive[j], a);
+    }
+  }
+
+  /// Stores the lanes' frames and weights w as triangles [i, i + Count) of the batch, with their
+  /// orientation bytes (1 or -1 where the frame is usable, else 0); then the lanes the vector
+  /// code does not take, with the scalar kernel.
+  template<int Count, typename PT, typename UT, typename NT>
+  void Write(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i, const V w[3]) const
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      O::Store(b.Tangent[d] + i, this->Tangent[d]);
+      O::Store(b.Normal[d] + i, this->Normal[d]);
+      O::Store(b.Weight[d] + i, w[d]);
+    }
+    constexpr int chunk = Count < 8 ? Count : 8;
+    for (int l = 0; l < Count; l += chunk)
+    {
+      const unsigned ok = this->Usable >> l, positive = this->DetPositive >> l;
+      const std::uint64_t bytes = SpreadBits(ok & positive) | (SpreadBits(ok & ~positive) * 0xff);
+      std::memcpy(b.Orientation + i + l, &bytes, chunk);
+    }
+    constexpr unsigned all = (1u << Count) - 1;
+    for (unsigned rest = ~this->Vector & all; rest != 0; rest &= rest - 1)
+    {
+      ScalarTriangle(in, b, i + LowestBit(rest));
+    }
+  }
+};
+
+/// The weights of `in.Weights` for the solved lanes r; `atan` as for TriangleLanes::Angles.
+template<typename S, typename PT, typename UT, typename NT, typename Atan>
+VTK_TANGENT_BATCH_ALWAYS_INLINE inline void WeightLanes(const BatchInput<PT, UT, NT>& in,
+  const TriangleLanes<S>& r,
+  Atan&& atan,
+  typename Ops<S>::V w[3])
+{
+  using O = Ops<S>;
+  if (in.Weights == BatchWeights::Angle)
+  {
+    r.Angles(atan, w);
+  }
+  else if (in.Weights == BatchWeights::Area)
+  {
+    w[0] = w[1] = w[2] = O::Mul(O::Set(0.5), O::Sqrt(r.TwiceArea2));
+  }
+  else
+  {
+    w[0] = w[1] = w[2] = O::Set(1);
+  }
+}
+
 /// single::ComputeTriangle for triangles [i, i + Lanes::Count), and with float normals their
 /// corners' sides too (see SidesLanes).
 template<typename NT>
@@ -113,9 +407,7 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
 {
   using L = Lanes;
   using F = typename L::F;
-  using M = typename L::M;
   constexpr int count = L::Count;
-  const F zero = L::Zero();
 
   F p[3][3], uv[3][2];
   const int nc = in.UVComponents;
@@ -144,115 +436,17 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
     uv[k][0] = L::Load(u[0]);
     uv[k][1] = L::Load(u[1]);
   }
-  F e1[3], e2[3], e3[3], d1[2], d2[2], d3[2];
-  F maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
-  for (int d = 0; d < 3; ++d)
-  {
-    e1[d] = L::Sub(p[1][d], p[0][d]);
-    e2[d] = L::Sub(p[2][d], p[0][d]);
-    e3[d] = L::Sub(e2[d], e1[d]);
-    maxE = L::Max(maxE, L::Max(L::Abs(e1[d]), L::Abs(e2[d])));
-    sumE = L::Add(sumE, L::Add(e1[d], e2[d]));
-  }
-  for (int d = 0; d < 2; ++d)
-  {
-    d1[d] = L::Sub(uv[1][d], uv[0][d]);
-    d2[d] = L::Sub(uv[2][d], uv[0][d]);
-    d3[d] = L::Sub(d2[d], d1[d]);
-    maxUV = L::Max(maxUV, L::Max(L::Abs(d1[d]), L::Abs(d2[d])));
-    sumUV = L::Add(sumUV, L::Add(d1[d], d2[d]));
-  }
-  const F lo = L::Set(single::SafeMinimum), hi = L::Set(single::SafeMaximum);
-  M vector = L::And(L::Finite(sumE), L::Finite(sumUV));
-  vector = L::And(vector, L::And(L::Ge(maxE, lo), L::Le(maxE, hi)));
-  vector = L::And(vector, L::And(L::Ge(maxUV, lo), L::Le(maxUV, hi)));
-  const unsigned vectorLanes = L::Bits(vector);
-
-  F n[3];
-  n[0] = L::Sub(L::Mul(e1[1], e2[2]), L::Mul(e2[1], e1[2]));
-  n[1] = L::Sub(L::Mul(e1[2], e2[0]), L::Mul(e2[2], e1[0]));
-  n[2] = L::Sub(L::Mul(e1[0], e2[1]), L::Mul(e2[0], e1[1]));
-  const F twiceArea2 = LanesDot(n, n);
-  const F longest2 = L::Max(L::Max(LanesDot(e1, e1), LanesDot(e2, e2)), LanesDot(e3, e3));
+  TriangleLanes<float> r;
   const float tolP = static_cast<float>(in.Tolerance.Position);
-  const M posOK = L::Gt(twiceArea2, L::Mul(L::Mul(L::Set(tolP * tolP), longest2), longest2));
-  const F det = L::Sub(L::Mul(d1[0], d2[1]), L::Mul(d2[0], d1[1]));
-  const F longestUV2 = L::Max(L::Max(LanesDot2(d1), LanesDot2(d2)), LanesDot2(d3));
-  const M uvOK =
-    L::Gt(L::Abs(det), L::Mul(L::Set(static_cast<float>(in.Tolerance.UV)), longestUV2));
-  const M flip = L::Lt(det, zero);
-  F t[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    t[d] = L::NegateWhere(flip, L::Sub(L::Mul(d2[1], e1[d]), L::Mul(d1[1], e2[d])));
-  }
-  const F tLength = L::Sqrt(LanesDot(t, t));
-  const M tOK = L::And(L::Gt(tLength, zero), L::Finite(tLength));
-  const F inverse = L::Div(L::Set(1.0f), tLength);
-  const unsigned okLanes = L::Bits(L::And(L::And(posOK, uvOK), tOK));
-  const unsigned detPositive = L::Bits(L::Gt(det, zero));
-
+  r.Solve(p,
+    uv,
+    single::SafeMinimum,
+    single::SafeMaximum,
+    tolP * tolP,
+    static_cast<float>(in.Tolerance.UV));
   F w[3];
-  if (in.Weights == BatchWeights::Angle)
-  {
-    // single::Angle for the three corners, with the same operations.
-    const F sine = L::Sqrt(twiceArea2);
-    const F c[3] = { LanesDot(e1, e2), L::Negate(LanesDot(e1, e3)), LanesDot(e2, e3) };
-    M steep[3], positive[3];
-    F z[3], x[3], base[3], atanZ[3];
-    for (int j = 0; j < 3; ++j)
-    {
-      const F ac = L::Abs(c[j]);
-      steep[j] = L::Gt(sine, ac);
-      const F num = L::Select(steep[j], ac, sine);
-      const F den = L::Select(steep[j], sine, ac);
-      positive[j] = L::Gt(den, zero);
-      const M reduce = L::Gt(num, L::Mul(L::Set(single::TanPiOver8), den));
-      z[j] =
-        L::Div(L::Select(reduce, L::Sub(num, den), num), L::Select(reduce, L::Add(num, den), den));
-      base[j] = L::Keep(reduce, L::Set(single::PiOver4));
-      x[j] = L::Mul(z[j], z[j]);
-    }
-    for (int j = 0; j < 3; ++j)
-    {
-      atanZ[j] = AtanLanes(z[j], x[j], L::Mul(x[j], x[j]));
-    }
-    for (int j = 0; j < 3; ++j)
-    {
-      F a = L::Add(base[j], atanZ[j]);
-      a = L::Select(steep[j], L::Sub(L::Set(single::PiOver2), a), a);
-      a = L::Select(L::Lt(c[j], zero), L::Sub(L::Set(single::Pi), a), a);
-      w[j] = L::Keep(positive[j], a);
-    }
-  }
-  else if (in.Weights == BatchWeights::Area)
-  {
-    w[0] = w[1] = w[2] = L::Mul(L::Set(0.5f), L::Sqrt(twiceArea2));
-  }
-  else
-  {
-    w[0] = w[1] = w[2] = L::Set(1.0f);
-  }
-  for (int d = 0; d < 3; ++d)
-  {
-    L::StoreWide(b.Tangent[d] + i, L::Mul(t[d], inverse));
-    L::StoreWide(b.Normal[d] + i, n[d]);
-    L::StoreWide(b.Weight[d] + i, w[d]);
-  }
-  // Orientation bytes: 1 or -1 where the frame is usable, else 0. Then the lanes the vector code
-  // does not take, with the scalar kernel.
-  for (int l = 0; l < count; l += 8)
-  {
-    const unsigned ok = okLanes >> l;
-    const std::uint64_t bytes =
-      SpreadBits(ok & (detPositive >> l)) | (SpreadBits(ok & ~(detPositive >> l)) * 0xff);
-    std::memcpy(b.Orientation + i + l, &bytes, 8);
-  }
-  constexpr unsigned all = (1u << count) - 1;
-  for (unsigned rest = ~vectorLanes & all; rest != 0; rest &= rest - 1)
-  {
-    ScalarTriangle(in, b, i + LowestBit(rest));
-  }
+  WeightLanes(in, r, AtanFloatLanes{}, w);
+  r.template Write<count>(in, b, i, w);
   if constexpr (std::is_same<NT, float>::value)
   {
     // The sides, as SidesLanes computes them: float normals gathered like the positions, the dot
@@ -260,12 +454,13 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
     // product is zero or not finite when there are stand-in normals, go to ScalarSide.
     using D = typename L::D;
     constexpr int half = L::DoubleCount;
+    constexpr unsigned all = (1u << count) - 1;
     D nLow[3], nHigh[3];
     for (int d = 0; d < 3; ++d)
     {
-      L::Widen(n[d], nLow[d], nHigh[d]);
+      L::Widen(r.Normal[d], nLow[d], nHigh[d]);
     }
-    const unsigned negativeOrientation = okLanes & ~detPositive;
+    const unsigned negativeOrientation = r.Usable & ~r.DetPositive;
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType* ids = b.Ids[k] + i;
@@ -276,10 +471,10 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
       {
         L::Widen(m[d], mLow[d], mHigh[d]);
       }
-      const D dotLow = LanesDotDouble(mLow, nLow), dotHigh = LanesDotDouble(mHigh, nHigh);
+      const D dotLow = LanesDot(mLow, nLow), dotHigh = LanesDot(mHigh, nHigh);
       const unsigned negative = L::NegativeBits(dotLow) | (L::NegativeBits(dotHigh) << half);
-      unsigned minus = (negative ^ negativeOrientation) & okLanes & all;
-      unsigned scalar = ~vectorLanes & all;
+      unsigned minus = (negative ^ negativeOrientation) & r.Usable & all;
+      unsigned scalar = ~r.Vector & all;
       if (in.Fallback)
       {
         scalar |= ~(L::NonZeroFiniteBits(dotLow) | (L::NonZeroFiniteBits(dotHigh) << half)) & all;
@@ -296,6 +491,47 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
       }
     }
   }
+}
+
+/// ComputeBatchTriangle for triangles [i, i + Lanes::DoubleCount) of the double-precision path
+/// (any input but float positions with float texture coordinates), lane by lane with the same
+/// operations. The sides are SidesLanes' work.
+template<typename PT, typename UT, typename NT>
+void ComputeDoubleLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
+{
+  using L = Lanes;
+  using D = typename L::D;
+  constexpr int count = L::DoubleCount;
+
+  D p[3][3], uv[3][2];
+  const int nc = in.UVComponents;
+  // The 32-byte loads of double positions must not read past the last point.
+  const bool guarded = !IdsBelow<count>(b, i, in.NumberOfPoints - 1);
+  for (int k = 0; k < 3; ++k)
+  {
+    const vtkIdType* ids = b.Ids[k] + i;
+    GatherLanes(guarded, in.Points, ids, in.NumberOfPoints, p[k]);
+    if constexpr (std::is_same<UT, double>::value)
+    {
+      if (nc == 2)
+      {
+        L::GatherUVDouble(in.UVs, ids, uv[k][0], uv[k][1]);
+        continue;
+      }
+    }
+    uv[k][0] = L::GatherDouble(in.UVs, nc, ids, 0);
+    uv[k][1] = nc > 1 ? L::GatherDouble(in.UVs, nc, ids, 1) : L::ZeroDouble();
+  }
+  TriangleLanes<double> r;
+  r.Solve(p,
+    uv,
+    SafeMinimum,
+    SafeMaximum,
+    in.Tolerance.Position * in.Tolerance.Position,
+    in.Tolerance.UV);
+  D w[3];
+  WeightLanes(in, r, AtanDoubleLanes{}, w);
+  r.template Write<count>(in, b, i, w);
 }
 
 /// BatchInput::Side for the corners of triangles [i, i + Lanes::DoubleCount), in double.
@@ -319,7 +555,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
     const vtkIdType* ids = b.Ids[k] + i;
     D m[3];
     GatherLanes(guarded, in.Normals, ids, in.NumberOfPoints, m);
-    const D dot = LanesDotDouble(m, n);
+    const D dot = LanesDot(m, n);
     const unsigned negative = L::NegativeBits(dot);
     // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
     unsigned minus = (negative ^ negativeOrientation) & ~zeroOrientation & all;
@@ -372,19 +608,19 @@ unsigned FinishLanes(const NT* normals,
   }
   L::LoadNormalRun(normals, p, numPoints, m);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
-  const D length = L::SqrtDouble(LanesDotDouble(m, m));
+  const D length = L::SqrtDouble(LanesDot(m, m));
   for (int d = 0; d < 3; ++d)
   {
     n[d] = L::DivDouble(m[d], length);
   }
-  const D along = LanesDotDouble(n, t);
+  const D along = LanesDot(n, t);
   for (int d = 0; d < 3; ++d)
   {
     perp[d] = L::SubDouble(t[d], L::MulDouble(along, n[d]));
   }
-  const D perp2 = LanesDotDouble(perp, perp);
+  const D perp2 = LanesDot(perp, perp);
   const unsigned ok =
-    L::BitsDouble(L::GtDouble(perp2, L::MulDouble(L::SetDouble(1e-18), LanesDotDouble(t, t))));
+    L::BitsDouble(L::GtDouble(perp2, L::MulDouble(L::SetDouble(1e-18), LanesDot(t, t))));
   const unsigned done = (plus | minus) & usable & ok;
   if (done == 0)
   {

@@ -418,12 +418,29 @@ TEST(TangentFramesStability, SameBitsWithEveryInstructionSet)
     meshes.push_back(Transformed(Torus(true), 1.0, 0.0, 1.0, dbl));
     meshes.push_back(Transformed(Torus(false), 1e-30, 0.0, 1e10, dbl));
   }
-  auto broken = Transformed(Torus(true), 1.0, 0.0, 1.0, false);
-  vtkDataArray* normals = broken->GetPointData()->GetNormals();
-  normals->SetTuple3(3, 0.0, 0.0, 0.0);
-  normals->SetTuple3(40, std::nan(""), 0.0, 1.0);
-  broken->GetPoints()->SetPoint(77, std::nan(""), 0.0, 0.0);
-  meshes.push_back(broken);
+  for (bool dbl : { false, true })
+  {
+    auto broken = Transformed(Torus(true), 1.0, 0.0, 1.0, dbl);
+    vtkDataArray* normals = broken->GetPointData()->GetNormals();
+    normals->SetTuple3(3, 0.0, 0.0, 0.0);
+    normals->SetTuple3(40, std::nan(""), 0.0, 1.0);
+    broken->GetPoints()->SetPoint(77, std::nan(""), 0.0, 0.0);
+    meshes.push_back(broken);
+  }
+  // Mixed precisions take the double-precision kernels, which read each array with its own type
+  // and stride: float positions with double three-component texture coordinates.
+  auto mixed = Transformed(Torus(true), 1.0, 0.0, 1.0, false);
+  vtkNew<vtkDoubleArray> uvw;
+  uvw->SetNumberOfComponents(3);
+  uvw->SetNumberOfTuples(mixed->GetNumberOfPoints());
+  uvw->SetName("UVW");
+  vtkDataArray* uv = mixed->GetPointData()->GetTCoords();
+  for (vtkIdType p = 0; p < mixed->GetNumberOfPoints(); ++p)
+  {
+    uvw->SetTuple3(p, uv->GetComponent(p, 0), uv->GetComponent(p, 1), 0.5);
+  }
+  mixed->GetPointData()->SetTCoords(uvw);
+  meshes.push_back(mixed);
   const mikk::InstructionSet sets[] = {
     mikk::InstructionSet::Baseline, mikk::InstructionSet::AVX2, mikk::InstructionSet::AVX512
   };
