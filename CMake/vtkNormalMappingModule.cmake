@@ -13,13 +13,18 @@ set(_nm_nowrap_headers
   Filters/vtkMikkTSpaceKernel.h
   Filters/vtkTangentFrameKernels.h
   Filters/vtkNormalMappingMeshes.h)
+# vtkPolyDataTangentFrames' execution is instantiated for float and double output in two
+# translation units of their own (RunFloat, RunDouble), which compile in parallel.
 set(_nm_sources
   Filters/vtkMikkTSpaceKernel.cxx
   Filters/vtkNormalMappingMeshes.cxx
-  Filters/vtkPolyDataTangentFramesMikkTSpace.cxx)
+  Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
+  Filters/vtkPolyDataTangentFramesRunDouble.cxx
+  Filters/vtkPolyDataTangentFramesRunFloat.cxx)
 set(_nm_private_headers
   Filters/vtkNormalMappingHugePages.h
   Filters/vtkNormalMappingPrivate.h
+  Filters/vtkPolyDataTangentFramesInternals.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
   Filters/vtkTangentFrameBatch.h
   Filters/vtkTangentFrameLanes.h)
