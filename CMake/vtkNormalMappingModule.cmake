@@ -18,6 +18,7 @@ set(_nm_nowrap_headers
 set(_nm_sources
   Filters/vtkMikkTSpaceKernel.cxx
   Filters/vtkNormalMappingMeshes.cxx
+  Filters/vtkNormalMappingPrivate.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
   Filters/vtkPolyDataTangentFramesRunDouble.cxx
   Filters/vtkPolyDataTangentFramesRunFloat.cxx)

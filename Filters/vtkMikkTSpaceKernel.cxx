@@ -31,6 +31,7 @@
 #include "vtkMikkTSpaceKernel.h"
 
 #include "vtkNormalMappingHugePages.h"
+#include "vtkNormalMappingPrivate.h"
 
 #include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
@@ -147,6 +148,7 @@ inline bool Finite(float f)
 // (~100 MB of temporaries per million triangles, 4 KB pages).
 constexpr size_t kHugePage = vtkNormalMapping::detail::HugePageBytes;
 using vtkNormalMapping::detail::AdviseHugePages;
+using vtkNormalMapping::detail::ParallelFor;
 
 // Bump allocator for the smaller temporaries of one call: 4 MB chunks mapped 2 MB-aligned with
 // MADV_HUGEPAGE, so that a small mesh's temporaries fault in as a few huge pages instead of
@@ -962,8 +964,7 @@ void Kernel::Weld()
   const float* N = In.Normals;
   const float* U = In.TCoords;
   vtkSMPThreadLocal<unsigned char> sawNaN;
-  vtkSMPTools::For(0,
-    np,
+  ParallelFor(np,
     16384,
     [&](vtkIdType b, vtkIdType e)
     {
@@ -1260,8 +1261,7 @@ void Kernel::BuildTriangles()
   ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
   std::vector<uint8_t> chunkIdentity(size_t(NumFaceChunks), 1),
     chunkMulti(size_t(NumFaceChunks), 0);
-  vtkSMPTools::For(0,
-    NumFaceChunks,
+  ParallelFor(NumFaceChunks,
     1,
     [&](vtkIdType cb, vtkIdType ce)
     {
@@ -1322,8 +1322,7 @@ void Kernel::BuildTriangles()
 #ifdef VTK_MIKK_AVX2
   const bool simd8 = UseAVX2;
 #endif
-  vtkSMPTools::For(0,
-    NumFaceChunks,
+  ParallelFor(NumFaceChunks,
     1,
     [&](vtkIdType cb, vtkIdType ce)
     {
@@ -1514,8 +1513,7 @@ void Kernel::BuildFans()
   Idx* const countData = counts.data();
   auto forEachBlockTriangle = [&](const auto& visit)
   {
-    vtkSMPTools::For(0,
-      nb,
+    ParallelFor(nb,
       1,
       [&](vtkIdType bb, vtkIdType be)
       {
@@ -2539,7 +2537,7 @@ void Kernel::ProcessVertices()
     Side.Assign(3 * size_t(NumTris), SideFrame{ {}, -1, 0 }, &Pool);
   }
   VertexWorker worker(*this);
-  vtkSMPTools::For(0, NumVerts, 4 * VertexWorker::kBlock, worker);
+  ParallelFor(NumVerts, 4 * VertexWorker::kBlock, worker);
 }
 
 //------------------------------------------------------------------------------
@@ -2547,8 +2545,7 @@ void Kernel::ProcessVertices()
 // group creation order (then triangle order); the sign is that of the last group.
 void Kernel::MergeMultiWriters()
 {
-  vtkSMPTools::For(0,
-    NumFaceChunks,
+  ParallelFor(NumFaceChunks,
     1,
     [&](vtkIdType cb, vtkIdType ce)
     {
@@ -2617,8 +2614,7 @@ void Kernel::MergeMultiWriters()
 // triangles, which this pass never writes.
 void Kernel::CopyDegenerates()
 {
-  vtkSMPTools::For(0,
-    NumFaceChunks,
+  ParallelFor(NumFaceChunks,
     1,
     [&](vtkIdType cb, vtkIdType ce)
     {
@@ -2707,8 +2703,7 @@ void Kernel::Finish(Result& res)
   const size_t numChunks = (ns + chunk - 1) / chunk;
   std::vector<long long> defaults(numChunks, 0), nonFinite(numChunks, 0);
   CornerFrame* out = Out;
-  vtkSMPTools::For(0,
-    vtkIdType(numChunks),
+  ParallelFor(vtkIdType(numChunks),
     1,
     [&](vtkIdType cb, vtkIdType ce)
     {

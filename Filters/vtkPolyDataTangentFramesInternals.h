@@ -78,6 +78,7 @@ namespace frames
 using vtkNormalMapping::detail::CopyWithAppendedPoints;
 using vtkNormalMapping::detail::ExtendPointArray;
 using vtkNormalMapping::detail::FrameBatch;
+using vtkNormalMapping::detail::ParallelFor;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Sum of thread-local counters (integer: the order does not matter).
@@ -97,7 +98,7 @@ template<typename Count>
 vtkIdType ParallelCount(vtkIdType n, vtkIdType grain, const Count& count)
 {
   vtkSMPThreadLocal<vtkIdType> counter(0);
-  vtkSMPTools::For(0, n, grain, [&](vtkIdType b, vtkIdType e) { counter.Local() += count(b, e); });
+  ParallelFor(n, grain, [&](vtkIdType b, vtkIdType e) { counter.Local() += count(b, e); });
   return Total(counter);
 }
 
@@ -376,8 +377,7 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
 {
   const vtkIdType chunks = (n + OwnerChunk - 1) / OwnerChunk;
   std::vector<std::uint64_t> owners(static_cast<size_t>(chunks));
-  vtkSMPTools::For(0,
-    chunks,
+  ParallelFor(chunks,
     256,
     [&](vtkIdType c0, vtkIdType c1)
     {
@@ -461,8 +461,7 @@ inline PointSumStorage AllocatePointSums(vtkIdType count)
   }
   if (sums)
   {
-    vtkSMPTools::For(0,
-      static_cast<vtkIdType>(n),
+    ParallelFor(static_cast<vtkIdType>(n),
       [&](vtkIdType b, vtkIdType e)
       {
         // All bits zero: 0.0 sums and no marks. memset's wide stores clear it faster than a
@@ -593,8 +592,7 @@ struct Execution
               return;
             }
             const vtkIdType end = std::min(numCells, begin + cellBatch);
-            vtkSMPTools::For(0,
-              this->Blocks,
+            ParallelFor(this->Blocks,
               1,
               [&](vtkIdType b0, vtkIdType b1)
               {
@@ -679,8 +677,7 @@ bool ComputePointNormals(Execution& ex,
         }
       }
     });
-  vtkSMPTools::For(0,
-    ex.NumberOfPoints,
+  ParallelFor(ex.NumberOfPoints,
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType p = b; p < e; ++p)
@@ -835,8 +832,7 @@ bool ScanFrames(Execution& ex,
   bool done = everyTriangle ? ex.OrderedScan(p0, p1, visit, runs) : ex.OrderedScan(p0, p1, visit);
   if (done)
   {
-    vtkSMPTools::For(0,
-      ex.Blocks,
+    ParallelFor(ex.Blocks,
       1,
       [&](vtkIdType b0, vtkIdType b1)
       {
@@ -1003,8 +999,7 @@ void Finish(Execution& ex,
       sOut,
       bOut);
   };
-  vtkSMPTools::For(0,
-    ex.NumberOfPoints,
+  ParallelFor(ex.NumberOfPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
       vtkIdType p = begin;
@@ -1114,8 +1109,7 @@ bool FillFallbacks(Execution& ex,
         }
       }
     });
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(fallbacks.size()),
+  ParallelFor(static_cast<vtkIdType>(fallbacks.size()),
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType i = b; i < e; ++i)
@@ -1141,8 +1135,7 @@ void RepointCells(const Execution& ex,
   bool strip)
 {
   const vtkIdType firstNew = ex.NumberOfPoints;
-  vtkSMPTools::For(0,
-    numCells,
+  ParallelFor(numCells,
     [&](vtkIdType begin, vtkIdType end)
     {
       std::vector<TriangleFrame> frames;
@@ -1222,8 +1215,7 @@ void ComputeCellTangentArray(const Execution& ex,
     WithCellStorage(cells,
       [&](const auto* offsets, const auto* conn)
       {
-        vtkSMPTools::For(0,
-          cells->GetNumberOfCells(),
+        ParallelFor(cells->GetNumberOfCells(),
           [&](vtkIdType begin, vtkIdType end)
           {
             for (vtkIdType c = begin; c < end; ++c)

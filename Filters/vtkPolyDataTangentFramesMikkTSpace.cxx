@@ -73,6 +73,7 @@ namespace detail
 namespace
 {
 using mikk::CornerFrame;
+using vtkNormalMapping::detail::ParallelFor;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
@@ -158,8 +159,7 @@ struct ConvertTuples
   {
     const auto tuples = vtk::DataArrayTupleRange(array, 0, n);
     const int copy = std::min(array->GetNumberOfComponents(), outComps);
-    vtkSMPTools::For(0,
-      n,
+    ParallelFor(n,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType i = b; i < e; ++i)
@@ -241,8 +241,7 @@ struct ContractNormals
 vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
 {
   std::atomic<vtkIdType> count(0);
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(frames.size()),
+  ParallelFor(static_cast<vtkIdType>(frames.size()),
     [&](vtkIdType b, vtkIdType e)
     {
       vtkIdType local = 0;
@@ -267,8 +266,7 @@ struct GatherTriples
   {
     const auto tuples = vtk::DataArrayTupleRange<3>(array);
     const vtkIdType n = numIn + static_cast<vtkIdType>(source.size());
-    vtkSMPTools::For(0,
-      n,
+    ParallelFor(n,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType i = b; i < e; ++i)
@@ -395,8 +393,7 @@ bool BuildSurface(vtkCellArray* polys,
         // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
         // points (rare) are noted: their corners get no frame.
         std::atomic<bool> small(false), decreasing(false);
-        vtkSMPTools::For(0,
-          s.NumPolys,
+        ParallelFor(s.NumPolys,
           [&](vtkIdType b, vtkIdType e)
           {
             bool anySmall = false, anyDecreasing = false;
@@ -464,8 +461,7 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(polys,
       [&](auto* off, auto* ids)
       {
-        vtkSMPTools::For(0,
-          s.NumPolys,
+        ParallelFor(s.NumPolys,
           [&](vtkIdType b, vtkIdType e)
           {
             for (vtkIdType k = b; k < e; ++k)
@@ -486,8 +482,7 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(strips,
       [&](auto*, auto* ids)
       {
-        vtkSMPTools::For(0,
-          s.NumStrips,
+        ParallelFor(s.NumStrips,
           [&](vtkIdType b, vtkIdType e)
           {
             for (vtkIdType k = b; k < e; ++k)
@@ -559,8 +554,7 @@ void FirstCornersAndDifferences(const Surface& s,
   {
     std::unique_ptr<std::atomic<long long>[]> first(
       new std::atomic<long long>[static_cast<size_t>(numPoints)]);
-    vtkSMPTools::For(0,
-      numPoints,
+    ParallelFor(numPoints,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType p = b; p < e; ++p)
@@ -568,8 +562,7 @@ void FirstCornersAndDifferences(const Surface& s,
           first[p].store(kNoCorner, std::memory_order_relaxed);
         }
       });
-    vtkSMPTools::For(0,
-      numCorners,
+    ParallelFor(numCorners,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType c = b; c < e; ++c)
@@ -586,8 +579,7 @@ void FirstCornersAndDifferences(const Surface& s,
         }
       });
     a.FirstCorner.resize(static_cast<size_t>(numPoints));
-    vtkSMPTools::For(0,
-      numPoints,
+    ParallelFor(numPoints,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType p = b; p < e; ++p)
@@ -597,8 +589,7 @@ void FirstCornersAndDifferences(const Surface& s,
       });
   }
 
-  vtkSMPTools::For(0,
-    numChunks,
+  ParallelFor(numChunks,
     1,
     [&](vtkIdType b, vtkIdType e)
     {
@@ -684,8 +675,7 @@ void Assign(const Surface& s,
   // 3. Strip corners whose strip triangles disagree.
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
   std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
-  vtkSMPTools::For(0,
-    numStripChunks,
+  ParallelFor(numStripChunks,
     1,
     [&](vtkIdType b, vtkIdType e)
     {
@@ -869,8 +859,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
   OutT* tOut = tangents->GetPointer(0);
   OutT* sOut = signs->GetPointer(0);
   OutT* bOut = bitangents ? bitangents->GetPointer(0) : nullptr;
-  vtkSMPTools::For(0,
-    numOut,
+  ParallelFor(numOut,
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType p = b; p < e; ++p)
@@ -929,8 +918,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
     cellTangents->SetNumberOfTuples(numCells);
     OutT* cOut = cellTangents->GetPointer(0);
     std::fill(cOut, cOut + 3 * numCells, OutT(0));
-    vtkSMPTools::For(0,
-      s.NumPolys + s.NumStrips,
+    ParallelFor(s.NumPolys + s.NumStrips,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType cell = b; cell < e; ++cell)
