@@ -501,7 +501,8 @@ inline void ClassifyBytes(const signed char* x, int count, unsigned& negative, u
 #endif
 namespace avx2
 {
-/// Eight float lanes, four double lanes. AVX2 has no FMA, so nothing is fused.
+/// Eight float lanes (F), four double lanes (D); each operation is overloaded for both, so that
+/// code written once serves both precisions (LaneTypes). AVX2 has no FMA, so nothing is fused.
 struct Lanes
 {
   static constexpr int Count = 8;
@@ -608,7 +609,7 @@ struct Lanes
       1);
   }
   /// The lanes widened to double, stored at out[0..8).
-  static void StoreWide(double* out, F x)
+  static void Store(double* out, F x)
   {
     _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(x)));
     _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
@@ -640,17 +641,17 @@ struct Lanes
   }
 
   using DM = __m256d; // all ones in the lanes where true
-  static D SetDouble(double x) { return _mm256_set1_pd(x); }
-  static D SubDouble(D x, D y) { return _mm256_sub_pd(x, y); }
-  static D DivDouble(D x, D y) { return _mm256_div_pd(x, y); }
-  static D SqrtDouble(D x) { return _mm256_sqrt_pd(x); }
-  static D MaxDouble(D x, D y) { return _mm256_max_pd(x, y); }
-  static D AbsDouble(D x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
-  static DM GtDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GT_OQ); }
-  static DM GeDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GE_OQ); }
-  static DM LeDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LE_OQ); }
-  static DM AndDouble(DM x, DM y) { return _mm256_and_pd(x, y); }
-  static unsigned BitsDouble(DM m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
+  static D Set(double x) { return _mm256_set1_pd(x); }
+  static D Sub(D x, D y) { return _mm256_sub_pd(x, y); }
+  static D Div(D x, D y) { return _mm256_div_pd(x, y); }
+  static D Sqrt(D x) { return _mm256_sqrt_pd(x); }
+  static D Max(D x, D y) { return _mm256_max_pd(x, y); }
+  static D Abs(D x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
+  static DM Gt(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GT_OQ); }
+  static DM Ge(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_GE_OQ); }
+  static DM Le(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LE_OQ); }
+  static DM And(DM x, DM y) { return _mm256_and_pd(x, y); }
+  static unsigned Bits(DM m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
   /// x, y and z of the four PointSums s[0..4), and their Marks (as bits).
   static void GatherSums(const PointSum* s, D out[4])
   {
@@ -685,19 +686,19 @@ struct Lanes
     low = _mm256_cvtps_pd(_mm256_castps256_ps128(x));
     high = _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1));
   }
-  static D LoadDouble(const double* x) { return _mm256_loadu_pd(x); }
-  static void StoreDouble(double* out, D x) { _mm256_storeu_pd(out, x); }
-  static D AddDouble(D x, D y) { return _mm256_add_pd(x, y); }
-  static D MulDouble(D x, D y) { return _mm256_mul_pd(x, y); }
+  static D Load(const double* x) { return _mm256_loadu_pd(x); }
+  static void Store(double* out, D x) { _mm256_storeu_pd(out, x); }
+  static D Add(D x, D y) { return _mm256_add_pd(x, y); }
+  static D Mul(D x, D y) { return _mm256_mul_pd(x, y); }
   static D ZeroDouble() { return _mm256_setzero_pd(); }
-  static DM LtDouble(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LT_OQ); }
-  static DM FiniteDouble(D x) { return LeDouble(AbsDouble(x), _mm256_set1_pd(DBL_MAX)); }
+  static DM Lt(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LT_OQ); }
+  static DM Finite(D x) { return Le(Abs(x), _mm256_set1_pd(DBL_MAX)); }
   /// m ? x : y
-  static D SelectDouble(DM m, D x, D y) { return _mm256_blendv_pd(y, x, m); }
+  static D Select(DM m, D x, D y) { return _mm256_blendv_pd(y, x, m); }
   /// m ? x : 0
-  static D KeepDouble(DM m, D x) { return _mm256_and_pd(m, x); }
-  static D NegateDouble(D x) { return _mm256_xor_pd(x, _mm256_set1_pd(-0.0)); }
-  static D NegateWhereDouble(DM m, D x)
+  static D Keep(DM m, D x) { return _mm256_and_pd(m, x); }
+  static D Negate(D x) { return _mm256_xor_pd(x, _mm256_set1_pd(-0.0)); }
+  static D NegateWhere(DM m, D x)
   {
     return _mm256_xor_pd(x, _mm256_and_pd(m, _mm256_set1_pd(-0.0)));
   }
@@ -906,7 +907,7 @@ struct Lanes
     u = _mm512_permutex2var_ps(halves[0], evens, halves[1]);
     v = _mm512_permutex2var_ps(halves[0], odds, halves[1]);
   }
-  static void StoreWide(double* out, F x)
+  static void Store(double* out, F x)
   {
     const __m512d bits = _mm512_castps_pd(x);
     _mm512_storeu_pd(out, _mm512_cvtps_pd(_mm512_castps512_ps256(x)));
@@ -914,17 +915,17 @@ struct Lanes
   }
 
   using DM = __mmask8;
-  static D SetDouble(double x) { return _mm512_set1_pd(x); }
-  static D SubDouble(D x, D y) { return _mm512_sub_round_pd(x, y, Nearest); }
-  static D DivDouble(D x, D y) { return _mm512_div_round_pd(x, y, Nearest); }
-  static D SqrtDouble(D x) { return _mm512_sqrt_round_pd(x, Nearest); }
-  static D MaxDouble(D x, D y) { return _mm512_max_pd(x, y); }
-  static D AbsDouble(D x) { return _mm512_abs_pd(x); }
-  static DM GtDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GT_OQ); }
-  static DM GeDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GE_OQ); }
-  static DM LeDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LE_OQ); }
-  static DM AndDouble(DM x, DM y) { return static_cast<DM>(x & y); }
-  static unsigned BitsDouble(DM m) { return m; }
+  static D Set(double x) { return _mm512_set1_pd(x); }
+  static D Sub(D x, D y) { return _mm512_sub_round_pd(x, y, Nearest); }
+  static D Div(D x, D y) { return _mm512_div_round_pd(x, y, Nearest); }
+  static D Sqrt(D x) { return _mm512_sqrt_round_pd(x, Nearest); }
+  static D Max(D x, D y) { return _mm512_max_pd(x, y); }
+  static D Abs(D x) { return _mm512_abs_pd(x); }
+  static DM Gt(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GT_OQ); }
+  static DM Ge(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_GE_OQ); }
+  static DM Le(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LE_OQ); }
+  static DM And(DM x, DM y) { return static_cast<DM>(x & y); }
+  static unsigned Bits(DM m) { return m; }
   /// x, y and z of the eight PointSums s[0..8), and their Marks (as bits).
   static void GatherSums(const PointSum* s, D out[4])
   {
@@ -969,19 +970,19 @@ struct Lanes
     low = _mm512_cvtps_pd(_mm512_castps512_ps256(x));
     high = _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(x), 1)));
   }
-  static D LoadDouble(const double* x) { return _mm512_loadu_pd(x); }
-  static void StoreDouble(double* out, D x) { _mm512_storeu_pd(out, x); }
-  static D AddDouble(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
-  static D MulDouble(D x, D y) { return _mm512_mul_round_pd(x, y, Nearest); }
+  static D Load(const double* x) { return _mm512_loadu_pd(x); }
+  static void Store(double* out, D x) { _mm512_storeu_pd(out, x); }
+  static D Add(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
+  static D Mul(D x, D y) { return _mm512_mul_round_pd(x, y, Nearest); }
   static D ZeroDouble() { return _mm512_setzero_pd(); }
-  static DM LtDouble(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LT_OQ); }
-  static DM FiniteDouble(D x) { return LeDouble(AbsDouble(x), _mm512_set1_pd(DBL_MAX)); }
+  static DM Lt(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LT_OQ); }
+  static DM Finite(D x) { return Le(Abs(x), _mm512_set1_pd(DBL_MAX)); }
   /// m ? x : y
-  static D SelectDouble(DM m, D x, D y) { return _mm512_mask_blend_pd(m, y, x); }
+  static D Select(DM m, D x, D y) { return _mm512_mask_blend_pd(m, y, x); }
   /// m ? x : 0
-  static D KeepDouble(DM m, D x) { return _mm512_maskz_mov_pd(m, x); }
-  static D NegateDouble(D x) { return NegateWhereDouble(0xff, x); }
-  static D NegateWhereDouble(DM m, D x)
+  static D Keep(DM m, D x) { return _mm512_maskz_mov_pd(m, x); }
+  static D Negate(D x) { return NegateWhere(0xff, x); }
+  static D NegateWhere(DM m, D x)
   {
     const __m512i bits = _mm512_castpd_si512(x);
     return _mm512_castsi512_pd(_mm512_mask_xor_epi64(bits, m, bits, _mm512_set1_epi64(INT64_MIN)));

@@ -62,106 +62,62 @@ VTK_TANGENT_BATCH_ALWAYS_INLINE inline void GatherLanes(bool guarded,
   }
 }
 
-/// Lanes' float lanes (F, for S = float) or double lanes (D, for S = double) under one set of
-/// names, for the code the two precisions share; the constants are those of single::Angle or
-/// AngleFromSineCosine. (Keyed on the scalar type: a vector type as a template argument loses its
-/// attributes.)
+/// The lane types for scalar type S, float (Lanes::F and its mask M) or double (Lanes::D and DM),
+/// and the constants of single::Angle or AngleFromSineCosine: the code both precisions share
+/// calls Lanes' operations, overloaded for both. (Keyed on the scalar type: a vector type as a
+/// template argument loses its attributes.)
 template<typename S>
-struct Ops;
+struct LaneTypes;
 
 template<>
-struct Ops<float>
+struct LaneTypes<float>
 {
-  using L = Lanes;
-  using V = L::F;
-  using M = L::M;
-  using S = float;
-  static constexpr S TanPiOver8 = single::TanPiOver8, PiOver4 = single::PiOver4,
-                     PiOver2 = single::PiOver2, Pi = single::Pi;
-  static V Zero() { return L::Zero(); }
-  static V Set(S x) { return L::Set(x); }
-  static V Add(V x, V y) { return L::Add(x, y); }
-  static V Sub(V x, V y) { return L::Sub(x, y); }
-  static V Mul(V x, V y) { return L::Mul(x, y); }
-  static V Div(V x, V y) { return L::Div(x, y); }
-  static V Sqrt(V x) { return L::Sqrt(x); }
-  static V Max(V x, V y) { return L::Max(x, y); }
-  static V Abs(V x) { return L::Abs(x); }
-  static V Negate(V x) { return L::Negate(x); }
-  static V NegateWhere(M m, V x) { return L::NegateWhere(m, x); }
-  static M Gt(V x, V y) { return L::Gt(x, y); }
-  static M Ge(V x, V y) { return L::Ge(x, y); }
-  static M Le(V x, V y) { return L::Le(x, y); }
-  static M Lt(V x, V y) { return L::Lt(x, y); }
-  static M Finite(V x) { return L::Finite(x); }
-  static M And(M x, M y) { return L::And(x, y); }
-  static V Select(M m, V x, V y) { return L::Select(m, x, y); }
-  static V Keep(M m, V x) { return L::Keep(m, x); }
-  static unsigned Bits(M m) { return L::Bits(m); }
-  /// The lanes widened to double, at out[0..Count).
-  static void Store(double* out, V x) { L::StoreWide(out, x); }
+  using V = Lanes::F;
+  using M = Lanes::M;
+  static constexpr float TanPiOver8 = single::TanPiOver8, PiOver4 = single::PiOver4,
+                         PiOver2 = single::PiOver2, Pi = single::Pi;
 };
 
 template<>
-struct Ops<double>
+struct LaneTypes<double>
 {
-  using L = Lanes;
-  using V = L::D;
-  using M = L::DM;
-  using S = double;
-  static constexpr S TanPiOver8 = detail::TanPiOver8, PiOver4 = detail::PiOver4,
-                     PiOver2 = detail::PiOver2, Pi = detail::Pi;
-  static V Zero() { return L::ZeroDouble(); }
-  static V Set(S x) { return L::SetDouble(x); }
-  static V Add(V x, V y) { return L::AddDouble(x, y); }
-  static V Sub(V x, V y) { return L::SubDouble(x, y); }
-  static V Mul(V x, V y) { return L::MulDouble(x, y); }
-  static V Div(V x, V y) { return L::DivDouble(x, y); }
-  static V Sqrt(V x) { return L::SqrtDouble(x); }
-  static V Max(V x, V y) { return L::MaxDouble(x, y); }
-  static V Abs(V x) { return L::AbsDouble(x); }
-  static V Negate(V x) { return L::NegateDouble(x); }
-  static V NegateWhere(M m, V x) { return L::NegateWhereDouble(m, x); }
-  static M Gt(V x, V y) { return L::GtDouble(x, y); }
-  static M Ge(V x, V y) { return L::GeDouble(x, y); }
-  static M Le(V x, V y) { return L::LeDouble(x, y); }
-  static M Lt(V x, V y) { return L::LtDouble(x, y); }
-  static M Finite(V x) { return L::FiniteDouble(x); }
-  static M And(M x, M y) { return L::AndDouble(x, y); }
-  static V Select(M m, V x, V y) { return L::SelectDouble(m, x, y); }
-  static V Keep(M m, V x) { return L::KeepDouble(m, x); }
-  static unsigned Bits(M m) { return L::BitsDouble(m); }
-  static void Store(double* out, V x) { L::StoreDouble(out, x); }
+  using V = Lanes::D;
+  using M = Lanes::DM;
+  static constexpr double TanPiOver8 = detail::TanPiOver8, PiOver4 = detail::PiOver4,
+                          PiOver2 = detail::PiOver2, Pi = detail::Pi;
 };
 
-/// (x0 y0 + x1 y1) + x2 y2, as single::Dot and glm::dot, with the operations O.
-template<typename O>
-inline typename O::V DotOf(const typename O::V* x, const typename O::V* y)
+/// (x0 y0 + x1 y1) + x2 y2, as single::Dot and glm::dot, in the lanes of scalar type S.
+template<typename S>
+inline typename LaneTypes<S>::V DotOf(const typename LaneTypes<S>::V* x,
+  const typename LaneTypes<S>::V* y)
 {
-  return O::Add(O::Add(O::Mul(x[0], y[0]), O::Mul(x[1], y[1])), O::Mul(x[2], y[2]));
+  using L = Lanes;
+  return L::Add(L::Add(L::Mul(x[0], y[0]), L::Mul(x[1], y[1])), L::Mul(x[2], y[2]));
 }
 inline Lanes::F LanesDot(const Lanes::F* x, const Lanes::F* y)
 {
-  return DotOf<Ops<float>>(x, y);
+  return DotOf<float>(x, y);
 }
 inline Lanes::D LanesDot(const Lanes::D* x, const Lanes::D* y)
 {
-  return DotOf<Ops<double>>(x, y);
+  return DotOf<double>(x, y);
 }
 
 /// x0 x0 + x1 x1.
-template<typename O>
-inline typename O::V Dot2Of(const typename O::V* x)
+template<typename S>
+inline typename LaneTypes<S>::V Dot2Of(const typename LaneTypes<S>::V* x)
 {
-  return O::Add(O::Mul(x[0], x[0]), O::Mul(x[1], x[1]));
+  using L = Lanes;
+  return L::Add(L::Mul(x[0], x[0]), L::Mul(x[1], x[1]));
 }
 inline Lanes::F LanesDot2(const Lanes::F* x)
 {
-  return Dot2Of<Ops<float>>(x);
+  return Dot2Of<float>(x);
 }
 inline Lanes::D LanesDot2(const Lanes::D* x)
 {
-  return Dot2Of<Ops<double>>(x);
+  return Dot2Of<double>(x);
 }
 
 /// The lanes where v's largest component is in [2^-400, 2^400] (so normalizing v rescales nothing,
@@ -169,10 +125,8 @@ inline Lanes::D LanesDot2(const Lanes::D* x)
 inline unsigned LanesUsable(const Lanes::D* v)
 {
   using L = Lanes;
-  const Lanes::D m =
-    L::MaxDouble(L::MaxDouble(L::AbsDouble(v[0]), L::AbsDouble(v[1])), L::AbsDouble(v[2]));
-  return L::BitsDouble(
-    L::AndDouble(L::GeDouble(m, L::SetDouble(0x1p-400)), L::LeDouble(m, L::SetDouble(0x1p400))));
+  const Lanes::D m = L::Max(L::Max(L::Abs(v[0]), L::Abs(v[1])), L::Abs(v[2]));
+  return L::Bits(L::And(L::Ge(m, L::Set(0x1p-400)), L::Le(m, L::Set(0x1p400))));
 }
 
 /// single::AtanOfReduced, lane by lane with the same operations.
@@ -211,20 +165,20 @@ struct AtanDoubleLanes
     Lanes::D z2[3], series[3];
     for (int j = 0; j < 3; ++j)
     {
-      z2[j] = L::MulDouble(z[j], z[j]);
-      series[j] = L::SetDouble(AtanSeries[12]);
+      z2[j] = L::Mul(z[j], z[j]);
+      series[j] = L::Set(AtanSeries[12]);
     }
     for (int k = 11; k >= 0; --k)
     {
-      const Lanes::D ck = L::SetDouble(AtanSeries[k]);
+      const Lanes::D ck = L::Set(AtanSeries[k]);
       for (int j = 0; j < 3; ++j)
       {
-        series[j] = L::AddDouble(ck, L::MulDouble(z2[j], series[j]));
+        series[j] = L::Add(ck, L::Mul(z2[j], series[j]));
       }
     }
     for (int j = 0; j < 3; ++j)
     {
-      atanZ[j] = L::MulDouble(z[j], series[j]);
+      atanZ[j] = L::Mul(z[j], series[j]);
     }
   }
 };
@@ -234,7 +188,8 @@ struct AtanDoubleLanes
 template<typename S>
 struct TriangleLanes
 {
-  using O = Ops<S>;
+  using L = Lanes;
+  using O = LaneTypes<S>;
   using V = typename O::V;
   V E1[3], E2[3], E3[3];
   V Normal[3];          ///< e1 x e2, the winding normal
@@ -259,60 +214,60 @@ struct TriangleLanes
     S tolP2,
     S tolUV)
   {
-    const V zero = O::Zero();
+    const V zero = L::Set(S(0));
     V d1[2], d2[2], d3[2];
     V maxE = zero, sumE = zero, maxUV = zero, sumUV = zero;
     for (int d = 0; d < 3; ++d)
     {
-      this->E1[d] = O::Sub(p[1][d], p[0][d]);
-      this->E2[d] = O::Sub(p[2][d], p[0][d]);
-      this->E3[d] = O::Sub(this->E2[d], this->E1[d]);
-      maxE = O::Max(maxE, O::Max(O::Abs(this->E1[d]), O::Abs(this->E2[d])));
-      sumE = O::Add(sumE, O::Add(this->E1[d], this->E2[d]));
+      this->E1[d] = L::Sub(p[1][d], p[0][d]);
+      this->E2[d] = L::Sub(p[2][d], p[0][d]);
+      this->E3[d] = L::Sub(this->E2[d], this->E1[d]);
+      maxE = L::Max(maxE, L::Max(L::Abs(this->E1[d]), L::Abs(this->E2[d])));
+      sumE = L::Add(sumE, L::Add(this->E1[d], this->E2[d]));
     }
     for (int d = 0; d < 2; ++d)
     {
-      d1[d] = O::Sub(uv[1][d], uv[0][d]);
-      d2[d] = O::Sub(uv[2][d], uv[0][d]);
-      d3[d] = O::Sub(d2[d], d1[d]);
-      maxUV = O::Max(maxUV, O::Max(O::Abs(d1[d]), O::Abs(d2[d])));
-      sumUV = O::Add(sumUV, O::Add(d1[d], d2[d]));
+      d1[d] = L::Sub(uv[1][d], uv[0][d]);
+      d2[d] = L::Sub(uv[2][d], uv[0][d]);
+      d3[d] = L::Sub(d2[d], d1[d]);
+      maxUV = L::Max(maxUV, L::Max(L::Abs(d1[d]), L::Abs(d2[d])));
+      sumUV = L::Add(sumUV, L::Add(d1[d], d2[d]));
     }
     // Every component finite (a sum of finite numbers can overflow: then the scalar kernel
     // decides) and both largest components in the safe range.
-    const V lo = O::Set(safeMinimum), hi = O::Set(safeMaximum);
-    auto vector = O::And(O::Finite(sumE), O::Finite(sumUV));
-    vector = O::And(vector, O::And(O::Ge(maxE, lo), O::Le(maxE, hi)));
-    vector = O::And(vector, O::And(O::Ge(maxUV, lo), O::Le(maxUV, hi)));
-    this->Vector = O::Bits(vector);
+    const V lo = L::Set(safeMinimum), hi = L::Set(safeMaximum);
+    auto vector = L::And(L::Finite(sumE), L::Finite(sumUV));
+    vector = L::And(vector, L::And(L::Ge(maxE, lo), L::Le(maxE, hi)));
+    vector = L::And(vector, L::And(L::Ge(maxUV, lo), L::Le(maxUV, hi)));
+    this->Vector = L::Bits(vector);
 
     const V* e1 = this->E1;
     const V* e2 = this->E2;
     V* n = this->Normal;
-    n[0] = O::Sub(O::Mul(e1[1], e2[2]), O::Mul(e2[1], e1[2]));
-    n[1] = O::Sub(O::Mul(e1[2], e2[0]), O::Mul(e2[2], e1[0]));
-    n[2] = O::Sub(O::Mul(e1[0], e2[1]), O::Mul(e2[0], e1[1]));
+    n[0] = L::Sub(L::Mul(e1[1], e2[2]), L::Mul(e2[1], e1[2]));
+    n[1] = L::Sub(L::Mul(e1[2], e2[0]), L::Mul(e2[2], e1[0]));
+    n[2] = L::Sub(L::Mul(e1[0], e2[1]), L::Mul(e2[0], e1[1]));
     this->TwiceArea2 = LanesDot(n, n);
-    const V longest2 = O::Max(O::Max(LanesDot(e1, e1), LanesDot(e2, e2)), LanesDot(E3, E3));
-    const auto posOK = O::Gt(this->TwiceArea2, O::Mul(O::Mul(O::Set(tolP2), longest2), longest2));
-    const V det = O::Sub(O::Mul(d1[0], d2[1]), O::Mul(d2[0], d1[1]));
-    const V longestUV2 = O::Max(O::Max(LanesDot2(d1), LanesDot2(d2)), LanesDot2(d3));
-    const auto uvOK = O::Gt(O::Abs(det), O::Mul(O::Set(tolUV), longestUV2));
-    const auto flip = O::Lt(det, zero);
+    const V longest2 = L::Max(L::Max(LanesDot(e1, e1), LanesDot(e2, e2)), LanesDot(E3, E3));
+    const auto posOK = L::Gt(this->TwiceArea2, L::Mul(L::Mul(L::Set(tolP2), longest2), longest2));
+    const V det = L::Sub(L::Mul(d1[0], d2[1]), L::Mul(d2[0], d1[1]));
+    const V longestUV2 = L::Max(L::Max(LanesDot2(d1), LanesDot2(d2)), LanesDot2(d3));
+    const auto uvOK = L::Gt(L::Abs(det), L::Mul(L::Set(tolUV), longestUV2));
+    const auto flip = L::Lt(det, zero);
     V t[3];
     for (int d = 0; d < 3; ++d)
     {
-      t[d] = O::NegateWhere(flip, O::Sub(O::Mul(d2[1], e1[d]), O::Mul(d1[1], e2[d])));
+      t[d] = L::NegateWhere(flip, L::Sub(L::Mul(d2[1], e1[d]), L::Mul(d1[1], e2[d])));
     }
-    const V tLength = O::Sqrt(LanesDot(t, t));
-    const auto tOK = O::And(O::Gt(tLength, zero), O::Finite(tLength));
-    const V inverse = O::Div(O::Set(1), tLength);
+    const V tLength = L::Sqrt(LanesDot(t, t));
+    const auto tOK = L::And(L::Gt(tLength, zero), L::Finite(tLength));
+    const V inverse = L::Div(L::Set(S(1)), tLength);
     for (int d = 0; d < 3; ++d)
     {
-      this->Tangent[d] = O::Mul(t[d], inverse);
+      this->Tangent[d] = L::Mul(t[d], inverse);
     }
-    this->Usable = O::Bits(O::And(O::And(posOK, uvOK), tOK));
-    this->DetPositive = O::Bits(O::Gt(det, zero));
+    this->Usable = L::Bits(L::And(L::And(posOK, uvOK), tOK));
+    this->DetPositive = L::Bits(L::Gt(det, zero));
   }
 
   /**
@@ -323,31 +278,31 @@ struct TriangleLanes
   VTK_TANGENT_BATCH_ALWAYS_INLINE void Angles(Atan&& atan, V angle[3]) const
   {
     using M = typename O::M;
-    const V zero = O::Zero();
-    const V sine = O::Sqrt(this->TwiceArea2);
-    const V c[3] = { LanesDot(E1, E2), O::Negate(LanesDot(E1, E3)), LanesDot(E2, E3) };
+    const V zero = L::Set(S(0));
+    const V sine = L::Sqrt(this->TwiceArea2);
+    const V c[3] = { LanesDot(E1, E2), L::Negate(LanesDot(E1, E3)), LanesDot(E2, E3) };
     M steep[3], positive[3];
     V z[3], base[3], atanZ[3];
     for (int j = 0; j < 3; ++j)
     {
-      const V ac = O::Abs(c[j]);
-      steep[j] = O::Gt(sine, ac);
-      const V num = O::Select(steep[j], ac, sine);
-      const V den = O::Select(steep[j], sine, ac);
-      positive[j] = O::Gt(den, zero);
+      const V ac = L::Abs(c[j]);
+      steep[j] = L::Gt(sine, ac);
+      const V num = L::Select(steep[j], ac, sine);
+      const V den = L::Select(steep[j], sine, ac);
+      positive[j] = L::Gt(den, zero);
       // One division either way: (num - den) / (num + den) is (z - 1) / (z + 1) for num / den.
-      const M reduce = O::Gt(num, O::Mul(O::Set(O::TanPiOver8), den));
+      const M reduce = L::Gt(num, L::Mul(L::Set(O::TanPiOver8), den));
       z[j] =
-        O::Div(O::Select(reduce, O::Sub(num, den), num), O::Select(reduce, O::Add(num, den), den));
-      base[j] = O::Keep(reduce, O::Set(O::PiOver4));
+        L::Div(L::Select(reduce, L::Sub(num, den), num), L::Select(reduce, L::Add(num, den), den));
+      base[j] = L::Keep(reduce, L::Set(O::PiOver4));
     }
     atan(z, atanZ);
     for (int j = 0; j < 3; ++j)
     {
-      V a = O::Add(base[j], atanZ[j]);
-      a = O::Select(steep[j], O::Sub(O::Set(O::PiOver2), a), a);
-      a = O::Select(O::Lt(c[j], zero), O::Sub(O::Set(O::Pi), a), a);
-      angle[j] = O::Keep(positive[j], a);
+      V a = L::Add(base[j], atanZ[j]);
+      a = L::Select(steep[j], L::Sub(L::Set(O::PiOver2), a), a);
+      a = L::Select(L::Lt(c[j], zero), L::Sub(L::Set(O::Pi), a), a);
+      angle[j] = L::Keep(positive[j], a);
     }
   }
 
@@ -359,9 +314,9 @@ struct TriangleLanes
   {
     for (int d = 0; d < 3; ++d)
     {
-      O::Store(b.Tangent[d] + i, this->Tangent[d]);
-      O::Store(b.Normal[d] + i, this->Normal[d]);
-      O::Store(b.Weight[d] + i, w[d]);
+      L::Store(b.Tangent[d] + i, this->Tangent[d]);
+      L::Store(b.Normal[d] + i, this->Normal[d]);
+      L::Store(b.Weight[d] + i, w[d]);
     }
     constexpr int chunk = Count < 8 ? Count : 8;
     for (int l = 0; l < Count; l += chunk)
@@ -383,20 +338,20 @@ template<typename S, typename PT, typename UT, typename NT, typename Atan>
 VTK_TANGENT_BATCH_ALWAYS_INLINE inline void WeightLanes(const BatchInput<PT, UT, NT>& in,
   const TriangleLanes<S>& r,
   Atan&& atan,
-  typename Ops<S>::V w[3])
+  typename LaneTypes<S>::V w[3])
 {
-  using O = Ops<S>;
+  using L = Lanes;
   if (in.Weights == BatchWeights::Angle)
   {
     r.Angles(atan, w);
   }
   else if (in.Weights == BatchWeights::Area)
   {
-    w[0] = w[1] = w[2] = O::Mul(O::Set(0.5), O::Sqrt(r.TwiceArea2));
+    w[0] = w[1] = w[2] = L::Mul(L::Set(S(0.5)), L::Sqrt(r.TwiceArea2));
   }
   else
   {
-    w[0] = w[1] = w[2] = O::Set(1);
+    w[0] = w[1] = w[2] = L::Set(S(1));
   }
 }
 
@@ -545,7 +500,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
   D n[3];
   for (int d = 0; d < 3; ++d)
   {
-    n[d] = L::LoadDouble(b.Normal[d] + i);
+    n[d] = L::Load(b.Normal[d] + i);
   }
   const bool guarded = !IdsBelow<count>(b, i, in.NumberOfPoints - 1);
   unsigned negativeOrientation, zeroOrientation;
@@ -608,28 +563,27 @@ unsigned FinishLanes(const NT* normals,
   }
   L::LoadNormalRun(normals, p, numPoints, m);
   const unsigned usable = LanesUsable(m) & LanesUsable(t);
-  const D length = L::SqrtDouble(LanesDot(m, m));
+  const D length = L::Sqrt(LanesDot(m, m));
   for (int d = 0; d < 3; ++d)
   {
-    n[d] = L::DivDouble(m[d], length);
+    n[d] = L::Div(m[d], length);
   }
   const D along = LanesDot(n, t);
   for (int d = 0; d < 3; ++d)
   {
-    perp[d] = L::SubDouble(t[d], L::MulDouble(along, n[d]));
+    perp[d] = L::Sub(t[d], L::Mul(along, n[d]));
   }
   const D perp2 = LanesDot(perp, perp);
-  const unsigned ok =
-    L::BitsDouble(L::GtDouble(perp2, L::MulDouble(L::SetDouble(1e-18), LanesDot(t, t))));
+  const unsigned ok = L::Bits(L::Gt(perp2, L::Mul(L::Set(1e-18), LanesDot(t, t))));
   const unsigned done = (plus | minus) & usable & ok;
   if (done == 0)
   {
     return all;
   }
-  const D perpLength = L::SqrtDouble(perp2);
+  const D perpLength = L::Sqrt(perp2);
   for (int d = 0; d < 3; ++d)
   {
-    unit[d] = L::DivDouble(perp[d], perpLength);
+    unit[d] = L::Div(perp[d], perpLength);
   }
   alignas(64) double frame[3][count];
   const auto write = [&](OutT* out)
@@ -651,7 +605,7 @@ unsigned FinishLanes(const NT* normals,
   {
     for (int d = 0; d < 3; ++d)
     {
-      L::StoreDouble(frame[d], unit[d]);
+      L::Store(frame[d], unit[d]);
     }
     write(tOut);
     for (int l = 0; l < count; ++l)
@@ -662,12 +616,12 @@ unsigned FinishLanes(const NT* normals,
   if (bOut)
   {
     // sign * cross(n, t), as glm computes the cross product; the sign is exact.
-    const D cross[3] = { L::SubDouble(L::MulDouble(n[1], unit[2]), L::MulDouble(unit[1], n[2])),
-      L::SubDouble(L::MulDouble(n[2], unit[0]), L::MulDouble(unit[2], n[0])),
-      L::SubDouble(L::MulDouble(n[0], unit[1]), L::MulDouble(unit[0], n[1])) };
+    const D cross[3] = { L::Sub(L::Mul(n[1], unit[2]), L::Mul(unit[1], n[2])),
+      L::Sub(L::Mul(n[2], unit[0]), L::Mul(unit[2], n[0])),
+      L::Sub(L::Mul(n[0], unit[1]), L::Mul(unit[0], n[1])) };
     for (int d = 0; d < 3; ++d)
     {
-      L::StoreDouble(frame[d], cross[d]);
+      L::Store(frame[d], cross[d]);
     }
     for (int l = 0; l < count; ++l)
     {
