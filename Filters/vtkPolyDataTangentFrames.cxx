@@ -72,8 +72,7 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
         std::uint64_t Negative = 0, Below3 = 0, NotThree = 0;
       };
       vtkSMPThreadLocal<Counts> local;
-      vtkSMPTools::For(0,
-        numCells,
+      ParallelFor(numCells,
         1 << 16,
         [&](vtkIdType begin, vtkIdType end)
         {

@@ -690,7 +690,6 @@ struct Lanes
   static void Store(double* out, D x) { _mm256_storeu_pd(out, x); }
   static D Add(D x, D y) { return _mm256_add_pd(x, y); }
   static D Mul(D x, D y) { return _mm256_mul_pd(x, y); }
-  static D ZeroDouble() { return _mm256_setzero_pd(); }
   static DM Lt(D x, D y) { return _mm256_cmp_pd(x, y, _CMP_LT_OQ); }
   static DM Finite(D x) { return Le(Abs(x), _mm256_set1_pd(DBL_MAX)); }
   /// m ? x : y
@@ -974,7 +973,6 @@ struct Lanes
   static void Store(double* out, D x) { _mm512_storeu_pd(out, x); }
   static D Add(D x, D y) { return _mm512_add_round_pd(x, y, Nearest); }
   static D Mul(D x, D y) { return _mm512_mul_round_pd(x, y, Nearest); }
-  static D ZeroDouble() { return _mm512_setzero_pd(); }
   static DM Lt(D x, D y) { return _mm512_cmp_pd_mask(x, y, _CMP_LT_OQ); }
   static DM Finite(D x) { return Le(Abs(x), _mm512_set1_pd(DBL_MAX)); }
   /// m ? x : y

@@ -475,7 +475,7 @@ void ComputeDoubleLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
       }
     }
     uv[k][0] = L::GatherDouble(in.UVs, nc, ids, 0);
-    uv[k][1] = nc > 1 ? L::GatherDouble(in.UVs, nc, ids, 1) : L::ZeroDouble();
+    uv[k][1] = nc > 1 ? L::GatherDouble(in.UVs, nc, ids, 1) : L::Set(0.0);
   }
   TriangleLanes<double> r;
   r.Solve(p,
