@@ -17,7 +17,8 @@
 // repetitions only); the median of the repetitions is reported, and its spread.
 // Paired runs (MeasurePaired): each of our methods and VTK's filter updated alternately on the
 // million-triangle float mesh, 1 and 2 threads, the median and quartiles of the per-pair ratios;
-// once with memory the allocator reuses, once with fresh pages (after the peak memory). Scaling
+// once with memory the allocator reuses, once with fresh pages (after the peak memory); and on
+// the double-precision mesh, memory reused. Scaling
 // (MeasureScaling): each filter alone, updated alternately with one and with two threads.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
@@ -568,6 +569,23 @@ int main(int argc, char** argv)
       << " s" << std::endl;
   };
   runPaired(false);
+  // The same against VTK's filter with double input (memory reused): the double-precision path
+  // has kernels of its own.
+  std::vector<Paired> pairedDouble;
+  const auto doubleStart = std::chrono::steady_clock::now();
+  for (int threads : { 1, 2 })
+  {
+    for (const Bench::TangentFilter& f : Bench::TangentFilters())
+    {
+      if (!f.IsVTK())
+      {
+        pairedDouble.push_back(MeasurePaired(f, Torus(summarySize, true), threads, pairs));
+      }
+    }
+  }
+  std::cout << "paired runs (double input) in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - doubleStart).count()
+            << " s" << std::endl;
   // Two threads against one, each filter alone (memory reused).
   std::vector<Paired> scaling;
   const auto scalingStart = std::chrono::steady_clock::now();
@@ -686,6 +704,33 @@ int main(int argc, char** argv)
     for (const Paired& p : paired)
     {
       if (p.Name == one.Name && p.FreshPages == one.FreshPages)
+      {
+        md << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
+           << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
+           << "] | " << Bench::Format(p.FastestRatio, 3);
+      }
+    }
+    md << " |\n";
+  }
+
+  md << "\n### Paired runs, double input: "
+     << Bench::Count(find({ {}, true, 1, summarySize }, "floor").Triangles)
+     << " triangles, memory reused\n\n"
+     << "As above with the double-precision torus (points, normals and texture coordinates in "
+        "double), memory reused.\n\n"
+     << "| filter | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
+        "[quartiles] | fastest runs |\n"
+     << "|---|---:|---:|---:|---:|\n";
+  for (const Paired& one : pairedDouble)
+  {
+    if (one.Threads != 1)
+    {
+      continue;
+    }
+    md << "| " << one.Name;
+    for (const Paired& p : pairedDouble)
+    {
+      if (p.Name == one.Name)
       {
         md << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
            << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
