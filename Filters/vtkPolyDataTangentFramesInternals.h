@@ -738,9 +738,9 @@ bool ScanFrames(Execution& ex,
     // Counted in a local: the blocks' counters share a cache line, and adding to them per
     // triangle made the threads fight over it (two threads were no faster than one).
     vtkIdType degenerateHere = 0;
-    for (int i = 0; i < b.Size; ++i)
+    for (std::uint64_t unframed = b.UnframedTriangles(); unframed != 0; unframed &= unframed - 1)
     {
-      degenerateHere += b.Orientation[i] == 0 && ex.Owns(block, b.Ids[0][i]) ? 1 : 0;
+      degenerateHere += ex.Owns(block, b.Ids[0][LowestBit64(unframed)]) ? 1 : 0;
     }
     degenerateByBlock[block] += degenerateHere;
     consume(block, b);
@@ -902,9 +902,10 @@ bool SumSides(Execution& ex,
     },
     [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
-      for (int i = 0; i < b.Size; ++i)
+      for (std::uint64_t framed = b.FramedTriangles(); framed != 0; framed &= framed - 1)
       {
-        for (int k = 0; k < 3 && b.Orientation[i] != 0; ++k)
+        const int i = vtkNormalMapping::detail::LowestBit64(framed);
+        for (int k = 0; k < 3; ++k)
         {
           const vtkIdType p = b.Ids[k][i];
           if (sides[p] != BothSides || !ex.Owns(block, p))
@@ -912,7 +913,7 @@ bool SumSides(Execution& ex,
             continue;
           }
           const auto it = std::lower_bound(conflicted.begin(), conflicted.end(), p);
-          double* sum = out[it - conflicted.begin()].Sum[b.Side[k][i]];
+          double* sum = out[it - conflicted.begin()].Sum[b.Side(k, i)];
           const double w = b.Weight[k][i];
           sum[0] += w * b.Tangent[0][i];
           sum[1] += w * b.Tangent[1][i];

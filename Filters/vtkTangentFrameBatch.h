@@ -49,9 +49,24 @@ enum class BatchWeights
   Angle, ///< the interior angle at each corner (AngleWeighted)
 };
 
-/// Triangles and, once computed, their frames and corner weights (structure of arrays). Aligned to
-/// a cache line: each block of threads fills its own batch, and adjacent batches must not share a
-/// line (one's Size with the other's Side bytes).
+/// The index of the lowest set bit of x != 0.
+inline int LowestBit64(std::uint64_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_ctzll(x);
+#else
+  int i = 0;
+  for (; (x & 1u) == 0; x >>= 1)
+  {
+    ++i;
+  }
+  return i;
+#endif
+}
+
+/// Triangles and, once computed, their frames and corner weights (structure of arrays), with one
+/// bit per triangle for its orientation and for each corner's side. Aligned to a cache line: each
+/// block of threads fills its own batch, and adjacent batches must not share a line.
 struct alignas(64) FrameBatch
 {
   static constexpr int Capacity = 64;
@@ -60,9 +75,13 @@ struct alignas(64) FrameBatch
   double Tangent[3][Capacity];
   double Normal[3][Capacity];
   double Weight[3][Capacity];
-  signed char Orientation[Capacity];
-  /// Which of its point's two sums each corner goes to: 0 for handedness +1, 1 for -1.
-  signed char Side[3][Capacity];
+  /// Bit i: triangle i has a frame (orientation +1 or -1; without one, 0).
+  std::uint64_t Framed = 0;
+  /// Bit i: triangle i's orientation is -1 (where Framed).
+  std::uint64_t Mirrored = 0;
+  /// Bit i of Minus[k]: corner k of triangle i goes to its point's handedness -1 (see
+  /// BatchInput::Side); clear: +1.
+  std::uint64_t Minus[3] = { 0, 0, 0 };
 
   void Add(const vtkIdType* tri)
   {
@@ -72,6 +91,48 @@ struct alignas(64) FrameBatch
     ++this->Size;
   }
   bool Full() const { return this->Size == Capacity; }
+
+  /// 1, -1, or 0 for a triangle without a frame.
+  int Orientation(int i) const
+  {
+    return ((this->Framed >> i) & 1u) == 0 ? 0 : (((this->Mirrored >> i) & 1u) != 0 ? -1 : 1);
+  }
+  void SetOrientation(int i, int orientation)
+  {
+    SetBits(this->Framed, i, 1, orientation != 0 ? 1u : 0u);
+    SetBits(this->Mirrored, i, 1, orientation < 0 ? 1u : 0u);
+  }
+  /// The orientations of triangles [i, i + count): `framed` lanes have one, positive where
+  /// `positive`.
+  void SetOrientations(int i, int count, unsigned framed, unsigned positive)
+  {
+    SetBits(this->Framed, i, count, framed);
+    SetBits(this->Mirrored, i, count, framed & ~positive);
+  }
+  /// 0 for handedness +1, 1 for -1 (the index of the corner's sum).
+  int Side(int k, int i) const { return static_cast<int>((this->Minus[k] >> i) & 1u); }
+  /// The sides of corner k of triangles [i, i + count): -1 where `minus`.
+  void SetSides(int k, int i, int count, unsigned minus)
+  {
+    SetBits(this->Minus[k], i, count, minus);
+  }
+  /// Bit i for each triangle i < Size with a frame.
+  std::uint64_t FramedTriangles() const { return this->Framed & this->Triangles(); }
+  /// Bit i for each triangle i < Size without one.
+  std::uint64_t UnframedTriangles() const { return ~this->Framed & this->Triangles(); }
+
+private:
+  /// Bits [0, Size).
+  std::uint64_t Triangles() const
+  {
+    return this->Size == Capacity ? ~std::uint64_t{ 0 } : (std::uint64_t{ 1 } << this->Size) - 1;
+  }
+  /// Bits [i, i + count) of `word` (count <= 32) set to those of `bits`.
+  static void SetBits(std::uint64_t& word, int i, int count, unsigned bits)
+  {
+    const std::uint64_t mask = ((std::uint64_t{ 1 } << count) - 1) << i;
+    word = (word & ~mask) | ((static_cast<std::uint64_t>(bits) << i) & mask);
+  }
 };
 
 struct PointSum; // below
@@ -140,7 +201,7 @@ void ComputeBatchTriangle(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i
     b.Normal[c][i] = f.Normal[c];
     b.Weight[c][i] = area ? f.Area : angles[c];
   }
-  b.Orientation[i] = f.Orientation;
+  b.SetOrientation(i, f.Orientation);
 }
 
 /**
@@ -284,7 +345,7 @@ void ComputeTriangle(const BatchInput<float, float, NT>& in, FrameBatch& b, int 
     b.Normal[d][i] = n[d];
     b.Weight[d][i] = w[d];
   }
-  b.Orientation[i] = posOK && uvOK && tOK ? (det > 0.0f ? 1 : -1) : 0;
+  b.SetOrientation(i, posOK && uvOK && tOK ? (det > 0.0f ? 1 : -1) : 0);
 }
 } // namespace single
 
@@ -370,12 +431,9 @@ struct ScatterTarget
 /// Adds the corners of the batch's triangles that have a frame, in order.
 inline void ScatterBatchScalar(const FrameBatch& b, const ScatterTarget& s)
 {
-  for (int i = 0; i < b.Size; ++i)
+  for (std::uint64_t framed = b.FramedTriangles(); framed != 0; framed &= framed - 1)
   {
-    if (b.Orientation[i] == 0)
-    {
-      continue;
-    }
+    const int i = LowestBit64(framed);
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType p = b.Ids[k][i];
@@ -386,7 +444,7 @@ inline void ScatterBatchScalar(const FrameBatch& b, const ScatterTarget& s)
         sum.Sum[0] += w * b.Tangent[0][i];
         sum.Sum[1] += w * b.Tangent[1][i];
         sum.Sum[2] += w * b.Tangent[2][i];
-        sum.Marks |= CornerMark(b.Side[k][i], w);
+        sum.Marks |= CornerMark(b.Side(k, i), w);
       }
     }
   }
@@ -408,12 +466,9 @@ alignas(32) constexpr std::int64_t LaneMarks[3][4] = { { 0, 0, 0, 0 },
 template<bool EveryPoint>
 VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const ScatterTarget& s)
 {
-  for (int i = 0; i < b.Size; ++i)
+  for (std::uint64_t framed = b.FramedTriangles(); framed != 0; framed &= framed - 1)
   {
-    if (b.Orientation[i] == 0)
-    {
-      continue;
-    }
+    const int i = LowestBit64(framed);
     const V t = _mm256_setr_pd(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i], 0.0);
     for (int k = 0; k < 3; ++k)
     {
@@ -425,7 +480,7 @@ VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const Scatter
         const V old = _mm256_load_pd(sum);
         const V added = _mm256_add_pd(old, _mm256_mul_pd(_mm256_set1_pd(w), t));
         const V mark = _mm256_load_pd(
-          reinterpret_cast<const double*>(LaneMarks[static_cast<int>(w > 0.0) << b.Side[k][i]]));
+          reinterpret_cast<const double*>(LaneMarks[static_cast<int>(w > 0.0) << b.Side(k, i)]));
         _mm256_store_pd(sum, _mm256_blend_pd(added, _mm256_or_pd(old, mark), 0x8));
       }
     }
@@ -461,7 +516,7 @@ VTK_TANGENT_BATCH_NOINLINE int ScalarSide(const BatchInput<PT, UT, NT>& in,
   int i,
   vtkIdType p)
 {
-  return in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], b.Orientation[i], p);
+  return in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], b.Orientation(i), p);
 }
 
 /// Byte l of the result is bit l of x (l < 8), as 0 or 1: a bit mask to bytes without a loop.
@@ -478,17 +533,6 @@ inline std::uint64_t SpreadBits(unsigned x)
 inline int LowestBit(unsigned x)
 {
   return __builtin_ctz(x);
-}
-
-/// Bit l of `negative` / `zero`: byte l of x[0..count) is negative / zero (count <= 8).
-inline void ClassifyBytes(const signed char* x, int count, unsigned& negative, unsigned& zero)
-{
-  std::uint64_t word = 0;
-  std::memcpy(&word, x, static_cast<size_t>(count));
-  const __m128i v = _mm_cvtsi64_si128(static_cast<long long>(word));
-  const unsigned all = (1u << count) - 1;
-  negative = static_cast<unsigned>(_mm_movemask_epi8(v)) & all;
-  zero = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_setzero_si128()))) & all;
 }
 
 // The lane kernels (vtkTangentFrameLanes.h), once per instruction set. Everything between a
@@ -1236,12 +1280,12 @@ void ComputeBatch(const BatchInput<PT, UT, NT>& in, FrameBatch& b, BatchCode cod
 #endif
   for (; i < b.Size; ++i)
   {
-    const int orientation = b.Orientation[i];
+    const int orientation = b.Orientation(i);
     for (int k = 0; k < 3; ++k)
     {
-      b.Side[k][i] =
-        in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], orientation, b.Ids[k][i]) < 0 ? 1
-                                                                                              : 0;
+      const int side =
+        in.Side(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i], orientation, b.Ids[k][i]);
+      b.SetSides(k, i, 1, side < 0 ? 1u : 0u);
     }
   }
 }

@@ -307,7 +307,7 @@ struct TriangleLanes
   }
 
   /// Stores the lanes' frames and weights w as triangles [i, i + Count) of the batch, with their
-  /// orientation bytes (1 or -1 where the frame is usable, else 0); then the lanes the vector
+  /// orientations (+1 or -1 where the frame is usable, else 0); then the lanes the vector
   /// code does not take, with the scalar kernel.
   template<int Count, typename PT, typename UT, typename NT>
   void Write(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i, const V w[3]) const
@@ -318,13 +318,7 @@ struct TriangleLanes
       L::Store(b.Normal[d] + i, this->Normal[d]);
       L::Store(b.Weight[d] + i, w[d]);
     }
-    constexpr int chunk = Count < 8 ? Count : 8;
-    for (int l = 0; l < Count; l += chunk)
-    {
-      const unsigned ok = this->Usable >> l, positive = this->DetPositive >> l;
-      const std::uint64_t bytes = SpreadBits(ok & positive) | (SpreadBits(ok & ~positive) * 0xff);
-      std::memcpy(b.Orientation + i + l, &bytes, chunk);
-    }
+    b.SetOrientations(i, Count, this->Usable, this->DetPositive);
     constexpr unsigned all = (1u << Count) - 1;
     for (unsigned rest = ~this->Vector & all; rest != 0; rest &= rest - 1)
     {
@@ -439,11 +433,7 @@ void ComputeLanes(const BatchInput<float, float, NT>& in, FrameBatch& b, int i)
         const int l = LowestBit(scalar);
         minus = ScalarSide(in, b, i + l, ids[l]) < 0 ? (minus | (1u << l)) : (minus & ~(1u << l));
       }
-      for (int l = 0; l < count; l += 8)
-      {
-        const std::uint64_t bytes = SpreadBits(minus >> l);
-        std::memcpy(b.Side[k] + i + l, &bytes, 8);
-      }
+      b.SetSides(k, i, count, minus);
     }
   }
 }
@@ -503,8 +493,8 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
     n[d] = L::Load(b.Normal[d] + i);
   }
   const bool guarded = !IdsBelow<count>(b, i, in.NumberOfPoints - 1);
-  unsigned negativeOrientation, zeroOrientation;
-  ClassifyBytes(b.Orientation + i, count, negativeOrientation, zeroOrientation);
+  const unsigned framed = static_cast<unsigned>(b.Framed >> i) & all;
+  const unsigned negativeOrientation = static_cast<unsigned>(b.Mirrored >> i) & framed;
   for (int k = 0; k < 3; ++k)
   {
     const vtkIdType* ids = b.Ids[k] + i;
@@ -513,7 +503,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
     const D dot = LanesDot(m, n);
     const unsigned negative = L::NegativeBits(dot);
     // side < 0 where the dot product's sign and the orientation's differ (orientation 0: 0).
-    unsigned minus = (negative ^ negativeOrientation) & ~zeroOrientation & all;
+    unsigned minus = (negative ^ negativeOrientation) & framed;
     if (in.Fallback)
     {
       for (unsigned unsure = ~L::NonZeroFiniteBits(dot) & all; unsure != 0; unsure &= unsure - 1)
@@ -523,8 +513,7 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
         minus = side < 0 ? (minus | (1u << l)) : (minus & ~(1u << l));
       }
     }
-    const std::uint64_t bytes = SpreadBits(minus);
-    std::memcpy(b.Side[k] + i, &bytes, count);
+    b.SetSides(k, i, count, minus);
   }
 }
 

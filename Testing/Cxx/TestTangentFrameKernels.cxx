@@ -333,18 +333,22 @@ struct RandomBatch
 /// and the frames, weights and sides of triangles that have a frame (the rest is not read).
 bool SameBits(const detail::FrameBatch& a, const detail::FrameBatch& b)
 {
-  if (a.Size != b.Size || std::memcmp(a.Orientation, b.Orientation, a.Size) != 0)
+  if (a.Size != b.Size)
   {
     return false;
   }
   for (int i = 0; i < a.Size; ++i)
   {
-    for (int k = 0; a.Orientation[i] != 0 && k < 3; ++k)
+    if (a.Orientation(i) != b.Orientation(i))
+    {
+      return false;
+    }
+    for (int k = 0; a.Orientation(i) != 0 && k < 3; ++k)
     {
       if (std::memcmp(&a.Tangent[k][i], &b.Tangent[k][i], sizeof(double)) != 0 ||
         std::memcmp(&a.Normal[k][i], &b.Normal[k][i], sizeof(double)) != 0 ||
         std::memcmp(&a.Weight[k][i], &b.Weight[k][i], sizeof(double)) != 0 ||
-        a.Side[k][i] != b.Side[k][i])
+        a.Side(k, i) != b.Side(k, i))
       {
         return false;
       }
@@ -404,19 +408,19 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
   {
     const vtkIdType tri[3] = { i % numPoints, (3 * i + 1) % numPoints, (7 * i + 2) % numPoints };
     b.Add(tri);
-    b.Orientation[i] = static_cast<signed char>(i % 9 == 0 ? 0 : (i % 4 == 0 ? -1 : 1));
+    b.SetOrientation(i, i % 9 == 0 ? 0 : (i % 4 == 0 ? -1 : 1));
     for (int k = 0; k < 3; ++k)
     {
       const vtkIdType p = tri[k];
       b.Tangent[k][i] = d(rng);
       b.Weight[k][i] = p == 9 || (i + k) % 7 == 0 ? 0.0 : std::abs(d(rng));
-      b.Side[k][i] = static_cast<signed char>(p < 3 ? 0 : (p < 6 ? 1 : (i / 10) % 2));
+      b.SetSides(k, i, 1, p < 3 ? 0u : (p < 6 ? 1u : static_cast<unsigned>((i / 10) % 2)));
     }
   }
   std::vector<detail::PointSum> expected(numPoints, detail::PointSum{});
   for (int i = 0; i < b.Size; ++i)
   {
-    for (int k = 0; b.Orientation[i] != 0 && k < 3; ++k)
+    for (int k = 0; b.Orientation(i) != 0 && k < 3; ++k)
     {
       detail::PointSum& e = expected[b.Ids[k][i]];
       for (int c = 0; c < 3; ++c)
@@ -425,7 +429,7 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
       }
       if (b.Weight[k][i] > 0.0)
       {
-        e.Marks |= detail::MarkBase | (b.Side[k][i] == 0 ? detail::PlusSide : detail::MinusSide);
+        e.Marks |= detail::MarkBase | (b.Side(k, i) == 0 ? detail::PlusSide : detail::MinusSide);
       }
     }
   }
@@ -495,8 +499,8 @@ TEST(TangentFrameKernels, SinglePrecisionPathAgreesWithTheDoubleKernel)
       int frames = 0;
       for (int i = 0; i < f.Size; ++i)
       {
-        ASSERT_EQ(f.Orientation[i], d.Orientation[i]) << "triangle " << i;
-        if (d.Orientation[i] == 0)
+        ASSERT_EQ(f.Orientation(i), d.Orientation(i)) << "triangle " << i;
+        if (d.Orientation(i) == 0)
         {
           continue;
         }
@@ -507,7 +511,7 @@ TEST(TangentFrameKernels, SinglePrecisionPathAgreesWithTheDoubleKernel)
         for (int k = 0; k < 3; ++k)
         {
           EXPECT_NEAR(f.Weight[k][i], d.Weight[k][i], 1e-6 * d.Weight[k][i]) << "triangle " << i;
-          EXPECT_EQ(f.Side[k][i], d.Side[k][i]) << "triangle " << i;
+          EXPECT_EQ(f.Side(k, i), d.Side(k, i)) << "triangle " << i;
         }
       }
       // 64 triangles, 8 degenerate in UV and one with a NaN: the rest have frames.
