@@ -154,31 +154,31 @@ struct AtanFloatLanes
   }
 };
 
-/// The same for TriangleLanes<double>::Angles: z times AtanSeries in z^2, as AngleFromSineCosine.
-/// The three chains are interleaved: each is 24 dependent operations, so one at a time would leave
-/// the CPU waiting on latency.
+/// The same for TriangleLanes<double>::Angles: AtanOfReducedDouble. The three chains are
+/// interleaved: each is 20 dependent operations, so one at a time would leave the CPU waiting on
+/// latency.
 struct AtanDoubleLanes
 {
   void operator()(const Lanes::D z[3], Lanes::D atanZ[3]) const
   {
     using L = Lanes;
-    Lanes::D z2[3], series[3];
+    Lanes::D x[3], q[3];
     for (int j = 0; j < 3; ++j)
     {
-      z2[j] = L::Mul(z[j], z[j]);
-      series[j] = L::Set(AtanSeries[12]);
+      x[j] = L::Mul(z[j], z[j]);
+      q[j] = L::Set(AtanMinimaxDouble[9]);
     }
-    for (int k = 11; k >= 0; --k)
+    for (int k = 8; k >= 0; --k)
     {
-      const Lanes::D ck = L::Set(AtanSeries[k]);
+      const Lanes::D ck = L::Set(AtanMinimaxDouble[k]);
       for (int j = 0; j < 3; ++j)
       {
-        series[j] = L::Add(ck, L::Mul(z2[j], series[j]));
+        q[j] = L::Add(ck, L::Mul(x[j], q[j]));
       }
     }
     for (int j = 0; j < 3; ++j)
     {
-      atanZ[j] = L::Mul(z[j], series[j]);
+      atanZ[j] = L::Add(z[j], L::Mul(L::Mul(z[j], x[j]), q[j]));
     }
   }
 };
