@@ -154,31 +154,26 @@ struct AtanFloatLanes
   }
 };
 
-/// The same for TriangleLanes<double>::Angles: AtanOfReducedDouble. The three chains are
-/// interleaved: each is 20 dependent operations, so one at a time would leave the CPU waiting on
-/// latency.
+/// The same for TriangleLanes<double>::Angles: AtanOfReducedDouble, lane by lane with the same
+/// operations.
 struct AtanDoubleLanes
 {
   void operator()(const Lanes::D z[3], Lanes::D atanZ[3]) const
   {
     using L = Lanes;
-    Lanes::D x[3], q[3];
+    using D = Lanes::D;
+    const double* c = AtanMinimaxDouble;
+    const auto pair = [&](int k, D x) { return L::Add(L::Set(c[k]), L::Mul(L::Set(c[k + 1]), x)); };
     for (int j = 0; j < 3; ++j)
     {
-      x[j] = L::Mul(z[j], z[j]);
-      q[j] = L::Set(AtanMinimaxDouble[9]);
-    }
-    for (int k = 8; k >= 0; --k)
-    {
-      const Lanes::D ck = L::Set(AtanMinimaxDouble[k]);
-      for (int j = 0; j < 3; ++j)
-      {
-        q[j] = L::Add(ck, L::Mul(x[j], q[j]));
-      }
-    }
-    for (int j = 0; j < 3; ++j)
-    {
-      atanZ[j] = L::Add(z[j], L::Mul(L::Mul(z[j], x[j]), q[j]));
+      const D x = L::Mul(z[j], z[j]);
+      const D x2 = L::Mul(x, x);
+      const D x4 = L::Mul(x2, x2);
+      const D x8 = L::Mul(x4, x4);
+      const D low = L::Add(pair(0, x), L::Mul(pair(2, x), x2));
+      const D high = L::Add(pair(4, x), L::Mul(pair(6, x), x2));
+      const D q = L::Add(L::Add(low, L::Mul(high, x4)), L::Mul(pair(8, x), x8));
+      atanZ[j] = L::Add(z[j], L::Mul(L::Mul(z[j], x), q));
     }
   }
 };
