@@ -759,17 +759,23 @@ bool ScanFrames(Execution& ex,
       flush(block);
     }
   };
-  // Whole runs of triangles into the batch, with AVX-512 when the ids are 64-bit.
+  // Whole runs of triangles into the batch, with AVX-512 or AVX2 when the ids are 64-bit.
   const auto takeRun = [&](FrameBatch& b, const auto* ids, vtkIdType n)
   {
 #ifdef VTK_TANGENT_BATCH_AVX2
     using IdT = std::remove_const_t<std::remove_pointer_t<decltype(ids)>>;
     if constexpr (sizeof(IdT) == sizeof(std::int64_t))
     {
+      const auto* ids64 = reinterpret_cast<const std::int64_t*>(ids);
       if (ex.Code == vtkNormalMapping::detail::BatchCode::AVX512)
       {
         return vtkNormalMapping::detail::avx512::TakeTriangles(
-          reinterpret_cast<const std::int64_t*>(ids), static_cast<int>(n), ex.NumberOfPoints, b);
+          ids64, static_cast<int>(n), ex.NumberOfPoints, b);
+      }
+      if (ex.Code == vtkNormalMapping::detail::BatchCode::AVX2)
+      {
+        return vtkNormalMapping::detail::avx2::TakeTriangles(
+          ids64, static_cast<int>(n), ex.NumberOfPoints, b);
       }
     }
 #endif

@@ -817,8 +817,7 @@ struct Lanes
     v = _mm256_unpackhi_pd(even, odd);
   }
   /// The normals of points [p, p + 4) of an array of `count` points, in double.
-  template<typename NT>
-  static void LoadNormalRun(const NT* n, vtkIdType p, vtkIdType count, D out[3])
+  static void LoadNormalRun(const float* n, vtkIdType p, vtkIdType count, D out[3])
   {
     const vtkIdType ids[4] = { p, p + 1, p + 2, p + 3 };
     if (p + 4 >= count)
@@ -830,8 +829,80 @@ struct Lanes
       GatherXYZDouble<false>(n, ids, count, out);
     }
   }
+  /// The same for double normals: three loads of exactly their 12 doubles, then Thirds.
+  static void LoadNormalRun(const double* n, vtkIdType p, vtkIdType count, D out[3])
+  {
+    if (p + 4 > count)
+    {
+      const vtkIdType ids[4] = { p, p + 1, p + 2, p + 3 };
+      GatherXYZDouble<true>(n, ids, count, out);
+      return;
+    }
+    const double* q = n + 3 * p;
+    const D x[3] = { _mm256_loadu_pd(q), _mm256_loadu_pd(q + 4), _mm256_loadu_pd(q + 8) };
+    Thirds(x, out);
+  }
+  /// Component k of four interleaved triples x[0..3) (12 lanes) into out[k]: lanes k, k + 3,
+  /// k + 6, k + 9. Per component two blends gather its lanes, and a permute orders them.
+  static void Thirds(const D x[3], D out[3])
+  {
+    // x[0] = (a0 b0 c0 a1), x[1] = (b1 c1 a2 b2), x[2] = (c2 a3 b3 c3).
+    out[0] = _mm256_permute4x64_pd(
+      _mm256_blend_pd(_mm256_blend_pd(x[0], x[1], 0x4), x[2], 0x2), 0x6c); // a0 a3 a2 a1
+    out[1] = _mm256_permute4x64_pd(
+      _mm256_blend_pd(_mm256_blend_pd(x[0], x[1], 0x9), x[2], 0x4), 0xb1); // b1 b0 b3 b2
+    out[2] = _mm256_permute4x64_pd(
+      _mm256_blend_pd(_mm256_blend_pd(x[0], x[1], 0x2), x[2], 0x9), 0xc6); // c2 c1 c0 c3
+  }
 };
 #include "vtkTangentFrameLanes.h"
+
+/**
+ * Appends the n triangles of `ids` (three 64-bit ids each) to the batch, which has room, if every
+ * id is in [0, numPoints); else appends nothing and returns false. Four triangles a step: three
+ * 256-bit loads, a range test and Lanes::Thirds put the interleaved ids into b.Ids.
+ */
+inline bool TakeTriangles(const std::int64_t* ids, int n, std::int64_t numPoints, FrameBatch& b)
+{
+  // An id is in range when id - numPoints is negative and id is not: the sign bit of
+  // (id - numPoints) & ~id, and-ed over all ids.
+  const __m256i limit = _mm256_set1_epi64x(numPoints);
+  __m256i inRange = _mm256_set1_epi64x(-1);
+  int t = 0;
+  for (; t + 4 <= n; t += 4)
+  {
+    const std::int64_t* from = ids + 3 * t;
+    __m256d x[3], corners[3];
+    for (int j = 0; j < 3; ++j)
+    {
+      const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(from + 4 * j));
+      inRange = _mm256_and_si256(inRange, _mm256_andnot_si256(v, _mm256_sub_epi64(v, limit)));
+      x[j] = _mm256_castsi256_pd(v);
+    }
+    Lanes::Thirds(x, corners);
+    for (int k = 0; k < 3; ++k)
+    {
+      _mm256_storeu_pd(reinterpret_cast<double*>(b.Ids[k] + b.Size + t), corners[k]);
+    }
+  }
+  bool tailInRange = true;
+  for (; t < n; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t id = ids[3 * t + k];
+      tailInRange =
+        tailInRange && static_cast<std::uint64_t>(id) < static_cast<std::uint64_t>(numPoints);
+      b.Ids[k][b.Size + t] = id;
+    }
+  }
+  if (!tailInRange || _mm256_movemask_pd(_mm256_castsi256_pd(inRange)) != 0xf)
+  {
+    return false;
+  }
+  b.Size += n;
+  return true;
+}
 } // namespace avx2
 #if defined(__clang__)
 #pragma clang attribute pop
