@@ -659,29 +659,49 @@ struct Lanes
     _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
   }
 
-  /// The four xyz triples v[0..3) as floats, interleaved into out[0..12).
+  /// The four xyz triples v[0..3) as floats, interleaved into out[0..12) with three stores.
   static void StoreXYZ(float* out, const __m256d v[3])
   {
-    alignas(16) float xyz[3][4];
-    for (int d = 0; d < 3; ++d)
-    {
-      _mm_store_ps(xyz[d], _mm256_cvtpd_ps(v[d]));
-    }
-    for (int l = 0; l < 4; ++l)
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        out[3 * l + d] = xyz[d][l];
-      }
-    }
+    const __m128 x = _mm256_cvtpd_ps(v[0]), y = _mm256_cvtpd_ps(v[1]), z = _mm256_cvtpd_ps(v[2]);
+    const __m128 xy01 = _mm_unpacklo_ps(x, y);                                   // x0 y0 x1 y1
+    const __m128 xy23 = _mm_unpackhi_ps(x, y);                                   // x2 y2 x3 y3
+    const __m128 z0x1 = _mm_shuffle_ps(z, x, _MM_SHUFFLE(1, 1, 0, 0));           // z0 z0 x1 x1
+    const __m128 y1z1 = _mm_shuffle_ps(y, z, _MM_SHUFFLE(1, 1, 1, 1));           // y1 y1 z1 z1
+    const __m128 z2x3 = _mm_shuffle_ps(z, x, _MM_SHUFFLE(3, 3, 2, 2));           // z2 z2 x3 x3
+    const __m128 y3z3 = _mm_shuffle_ps(y, z, _MM_SHUFFLE(3, 3, 3, 3));           // y3 y3 z3 z3
+    _mm_storeu_ps(out, _mm_shuffle_ps(xy01, z0x1, _MM_SHUFFLE(2, 0, 1, 0)));     // x0 y0 z0 x1
+    _mm_storeu_ps(out + 4, _mm_shuffle_ps(y1z1, xy23, _MM_SHUFFLE(1, 0, 2, 0))); // y1 z1 x2 y2
+    _mm_storeu_ps(out + 8, _mm_shuffle_ps(z2x3, y3z3, _MM_SHUFFLE(2, 0, 2, 0))); // z2 x3 y3 z3
+  }
+  /// The same in double: Thirds undone (a permute per component, two blends per store).
+  static void StoreXYZ(double* out, const __m256d v[3])
+  {
+    const __m256d x = _mm256_permute4x64_pd(v[0], 0x6c);                            // x0 x3 x2 x1
+    const __m256d y = _mm256_permute4x64_pd(v[1], 0xb1);                            // y1 y0 y3 y2
+    const __m256d z = _mm256_permute4x64_pd(v[2], 0xc6);                            // z2 z1 z0 z3
+    _mm256_storeu_pd(out, _mm256_blend_pd(_mm256_blend_pd(x, y, 0x2), z, 0x4));     // x0 y0 z0 x1
+    _mm256_storeu_pd(out + 4, _mm256_blend_pd(_mm256_blend_pd(x, y, 0x9), z, 0x2)); // y1 z1 x2 y2
+    _mm256_storeu_pd(out + 8, _mm256_blend_pd(_mm256_blend_pd(x, y, 0x4), z, 0x9)); // z2 x3 y3 z3
+  }
+  /// The lanes l < 4 where bit l of `bits` is set.
+  static __m256d MaskFromBits(unsigned bits)
+  {
+    const __m256i bit = _mm256_setr_epi64x(1, 2, 4, 8);
+    return _mm256_castsi256_pd(
+      _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(bits), bit), bit));
   }
   /// out[l] = -1 where bit l of minus is set, else 1, for l < 4.
   static void StoreSigns(float* out, unsigned minus)
   {
-    for (int l = 0; l < 4; ++l)
-    {
-      out[l] = ((minus >> l) & 1u) ? -1.0f : 1.0f;
-    }
+    const __m128i bit = _mm_setr_epi32(1, 2, 4, 8);
+    const __m128i set =
+      _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(static_cast<int>(minus)), bit), bit);
+    _mm_storeu_ps(out, _mm_blendv_ps(_mm_set1_ps(1.0f), _mm_set1_ps(-1.0f), _mm_castsi128_ps(set)));
+  }
+  static void StoreSigns(double* out, unsigned minus)
+  {
+    _mm256_storeu_pd(
+      out, _mm256_blendv_pd(_mm256_set1_pd(1.0), _mm256_set1_pd(-1.0), MaskFromBits(minus)));
   }
 
   using DM = __m256d; // all ones in the lanes where true
@@ -1079,6 +1099,26 @@ struct Lanes
       static_cast<__mmask16>(minus), _mm512_set1_ps(1.0f), _mm512_set1_ps(-1.0f));
     _mm256_storeu_ps(out, _mm512_castps512_ps256(signs));
   }
+  static void StoreSigns(double* out, unsigned minus)
+  {
+    _mm512_storeu_pd(out,
+      _mm512_mask_blend_pd(
+        static_cast<__mmask8>(minus), _mm512_set1_pd(1.0), _mm512_set1_pd(-1.0)));
+  }
+  /// The eight xyz triples in double, interleaved into out[0..24): avx2::Lanes::StoreXYZ per half.
+  static void StoreXYZ(double* out, const D v[3])
+  {
+    __m256d low[3], high[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      low[d] = _mm512_castpd512_pd256(v[d]);
+      high[d] = _mm512_extractf64x4_pd(v[d], 1);
+    }
+    avx2::Lanes::StoreXYZ(out, low);
+    avx2::Lanes::StoreXYZ(out + 12, high);
+  }
+  /// The lanes l < 8 where bit l of `bits` is set.
+  static DM MaskFromBits(unsigned bits) { return static_cast<DM>(bits); }
   static void Widen(F x, D& low, D& high)
   {
     low = _mm512_cvtps_pd(_mm512_castps512_ps256(x));

@@ -569,52 +569,17 @@ unsigned FinishLanes(const NT* normals,
   {
     unit[d] = L::Div(perp[d], perpLength);
   }
-  alignas(64) double frame[3][count];
-  const auto write = [&](OutT* out)
-  {
-    for (int l = 0; l < count; ++l)
-    {
-      for (int d = 0; d < 3; ++d)
-      {
-        out[3 * (p + l) + d] = static_cast<OutT>(frame[d][l]);
-      }
-    }
-  };
-  if constexpr (std::is_same<OutT, float>::value)
-  {
-    L::StoreXYZ(tOut + 3 * p, unit);
-    L::StoreSigns(sOut + p, minus);
-  }
-  else
-  {
-    for (int d = 0; d < 3; ++d)
-    {
-      L::Store(frame[d], unit[d]);
-    }
-    write(tOut);
-    for (int l = 0; l < count; ++l)
-    {
-      sOut[p + l] = static_cast<OutT>(((minus >> l) & 1u) ? -1.0 : 1.0);
-    }
-  }
+  L::StoreXYZ(tOut + 3 * p, unit);
+  L::StoreSigns(sOut + p, minus);
   if (bOut)
   {
     // sign * cross(n, t), as glm computes the cross product; the sign is exact.
-    const D cross[3] = { L::Sub(L::Mul(n[1], unit[2]), L::Mul(unit[1], n[2])),
-      L::Sub(L::Mul(n[2], unit[0]), L::Mul(unit[2], n[0])),
-      L::Sub(L::Mul(n[0], unit[1]), L::Mul(unit[0], n[1])) };
-    for (int d = 0; d < 3; ++d)
-    {
-      L::Store(frame[d], cross[d]);
-    }
-    for (int l = 0; l < count; ++l)
-    {
-      for (int d = 0; ((minus >> l) & 1u) && d < 3; ++d)
-      {
-        frame[d][l] = -frame[d][l];
-      }
-    }
-    write(bOut);
+    const auto flip = L::MaskFromBits(minus);
+    const D bitangent[3] = { L::NegateWhere(
+                               flip, L::Sub(L::Mul(n[1], unit[2]), L::Mul(unit[1], n[2]))),
+      L::NegateWhere(flip, L::Sub(L::Mul(n[2], unit[0]), L::Mul(unit[2], n[0]))),
+      L::NegateWhere(flip, L::Sub(L::Mul(n[0], unit[1]), L::Mul(unit[0], n[1]))) };
+    L::StoreXYZ(bOut + 3 * p, bitangent);
   }
   return all & ~done;
 }
