@@ -516,9 +516,10 @@ void SidesLanes(const BatchInput<PT, UT, NT>& in, FrameBatch& b, int i)
  * The frames of points [p, p + Lanes::DoubleCount) of the filter's finish, as its scalar code
  * computes and writes them (SafeNormalize, OrthonormalizeTangent, WriteFrame), for the points
  * with one handedness whose normal and tangent sum are in the range where normalizing rescales
- * nothing. Writes every lane's side byte (PointSum::Sides) and, for the lanes it does, tangent,
- * sign and (when bOut) bitangent; returns the lanes it did not do, whose output the caller's
- * scalar code must write (or that a later pass writes).
+ * nothing. Writes every lane's side byte (PointSum::Sides) and, unless no lane is done, every
+ * lane's tangent, sign and (when bOut) bitangent, whole vectors at a time; returns the lanes it
+ * did not do, whose output is not meaningful yet: the caller's scalar code must write it (or a
+ * later pass does).
  */
 template<typename NT, typename OutT>
 unsigned FinishLanes(const NT* normals,
