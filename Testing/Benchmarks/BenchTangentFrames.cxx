@@ -349,6 +349,12 @@ struct Paired
     const size_t i = static_cast<size_t>(x);
     return i + 1 < r.size() ? r[i] + (x - static_cast<double>(i)) * (r[i + 1] - r[i]) : r.back();
   }
+  /// The two cells of a table row: "median [first quartile, third quartile] | fastest runs".
+  std::string Cells() const
+  {
+    return Bench::Format(this->Quantile(0.5), 3) + " [" + Bench::Format(this->Quantile(0.25), 3) +
+      ", " + Bench::Format(this->Quantile(0.75), 3) + "] | " + Bench::Format(this->FastestRatio, 3);
+  }
 };
 
 /// Re-executes the filter (Modified, Update) and returns the wall-clock seconds it took.
@@ -723,9 +729,7 @@ int main(int argc, char** argv)
     {
       if (p.Name == one.Name && p.FreshPages == one.FreshPages)
       {
-        md << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
-           << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
-           << "] | " << Bench::Format(p.FastestRatio, 3);
+        md << " | " << p.Cells();
       }
     }
     md << " |\n";
@@ -750,9 +754,7 @@ int main(int argc, char** argv)
     {
       if (p.Name == one.Name)
       {
-        md << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
-           << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
-           << "] | " << Bench::Format(p.FastestRatio, 3);
+        md << " | " << p.Cells();
       }
     }
     md << " |\n";
@@ -775,9 +777,7 @@ int main(int argc, char** argv)
   for (size_t i = 0; i < pairedAVX2.size(); ++i)
   {
     const Paired& p = pairedAVX2[i];
-    md << "| " << (i == 0 ? "float" : "double") << " | " << Bench::Format(p.Quantile(0.5), 3)
-       << " [" << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3)
-       << "] | " << Bench::Format(p.FastestRatio, 3) << " |\n";
+    md << "| " << (i == 0 ? "float" : "double") << " | " << p.Cells() << " |\n";
   }
 
   md << "\n### Two threads against one: paired runs, "
@@ -794,9 +794,7 @@ int main(int argc, char** argv)
      << "|---|---:|---:|\n";
   for (const Paired& p : scaling)
   {
-    md << "| " << p.Name << " | " << Bench::Format(p.Quantile(0.5), 3) << " ["
-       << Bench::Format(p.Quantile(0.25), 3) << ", " << Bench::Format(p.Quantile(0.75), 3) << "] | "
-       << Bench::Format(p.FastestRatio, 3) << " |\n";
+    md << "| " << p.Name << " | " << p.Cells() << " |\n";
   }
 
   md << "\n### Throughput, every configuration\n\n"
