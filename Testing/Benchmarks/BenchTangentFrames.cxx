@@ -718,21 +718,27 @@ int main(int argc, char** argv)
      << "| filter | memory | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
         "[quartiles] | fastest runs |\n"
      << "|---|---|---:|---:|---:|---:|\n";
+  // A row's cells for each thread count: the runs of `list` with one's filter and memory mode.
+  const auto threadColumns = [](const std::vector<Paired>& list, const Paired& one)
+  {
+    std::string cells;
+    for (const Paired& p : list)
+    {
+      if (p.Name == one.Name && p.FreshPages == one.FreshPages)
+      {
+        cells += " | " + p.Cells();
+      }
+    }
+    return cells;
+  };
   for (const Paired& one : paired)
   {
     if (one.Threads != 1)
     {
       continue;
     }
-    md << "| " << one.Name << " | " << (one.FreshPages ? "fresh pages" : "reused");
-    for (const Paired& p : paired)
-    {
-      if (p.Name == one.Name && p.FreshPages == one.FreshPages)
-      {
-        md << " | " << p.Cells();
-      }
-    }
-    md << " |\n";
+    md << "| " << one.Name << " | " << (one.FreshPages ? "fresh pages" : "reused")
+       << threadColumns(paired, one) << " |\n";
   }
 
   md << "\n### Paired runs, double input: "
@@ -745,19 +751,10 @@ int main(int argc, char** argv)
      << "|---|---:|---:|---:|---:|\n";
   for (const Paired& one : pairedDouble)
   {
-    if (one.Threads != 1)
+    if (one.Threads == 1)
     {
-      continue;
+      md << "| " << one.Name << threadColumns(pairedDouble, one) << " |\n";
     }
-    md << "| " << one.Name;
-    for (const Paired& p : pairedDouble)
-    {
-      if (p.Name == one.Name)
-      {
-        md << " | " << p.Cells();
-      }
-    }
-    md << " |\n";
   }
 
   const auto isaName = [](mikk::InstructionSet isa)
