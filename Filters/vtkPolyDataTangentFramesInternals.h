@@ -56,11 +56,11 @@
  * 1. Scatter: every triangle of every polygon and strip is visited in cell order; its frame is
  *    computed (in batches, vtkTangentFrameBatch.h, which gives the bits of
  *    vtkNormalMapping::ComputeTriangleFrame or of its float form) and added, weighted, to one
- *    accumulator per corner point, which also records the handednesses its corners have. The
- *    points are dealt to as many blocks as there are threads (a power of two), in runs of 2^14
- *    ids; each thread reads all cells but only computes and adds the triangles with a corner in
- *    its block (a run of triangles with no such corner is skipped, one with only such corners
- *    taken whole).
+ *    accumulator per corner point, which also records the handednesses its corners have. With
+ *    several threads the points are dealt to blocks (four per thread, a power of two) in runs of
+ *    consecutive ids (ScanBlocks::Choose); each block computes and adds only the triangles with
+ *    a corner in it (a run of triangles with no such corner is skipped, one with only such
+ *    corners taken whole), and the threads share out the blocks.
  *    Every point therefore sums its triangles in cell order whatever the number of threads: the
  *    output is bit-identical for any thread count, without a stored point-to-triangle table or
  *    per-triangle frames. Points whose corners have both handednesses (mirror seams) get their
@@ -523,22 +523,21 @@ struct Execution
   vtkNormalMapping::detail::BatchCode Code = vtkNormalMapping::detail::BatchCode::Scalar;
   bool Vector = false;
 
-  /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin: runs
-  /// long enough that few triangles straddle two owners (each owner computes such a triangle;
-  /// with 2^12 it was a quarter of a 1000-point-wide grid's), short enough that every batch of
-  /// cells (CellBatch, about two runs per block) has work for every block, since meshes number
-  /// their points and cells with the same locality.
-  static constexpr int OwnerShift = 14;
+  /// Points are dealt to the blocks in runs of 2^OwnerShift consecutive ids, round robin (see
+  /// ScanBlocks::Choose): every batch of cells (CellBatch, about two runs per block) has work for
+  /// every block, since meshes number their points and cells with the same locality.
+  int OwnerShift = vtkNormalMapping::detail::ScanBlocks::MaxShift;
   /// Cells scanned between two synchronizations of the blocks (and progress reports).
   vtkIdType CellBatch() const
   {
-    return std::max<vtkIdType>(1 << 16, static_cast<vtkIdType>(this->Blocks) << (OwnerShift + 1));
+    return std::max<vtkIdType>(
+      1 << 16, static_cast<vtkIdType>(this->Blocks) << (this->OwnerShift + 1));
   }
   /// Blocks is a power of two, so that this is a mask and not a division (it runs several times
   /// per triangle).
   bool Owns(int block, vtkIdType p) const
   {
-    return static_cast<int>((p >> OwnerShift) & (this->Blocks - 1)) == block;
+    return static_cast<int>((p >> this->OwnerShift) & (this->Blocks - 1)) == block;
   }
 
   /**
@@ -579,7 +578,7 @@ struct Execution
           {
             if (kind == 0 && this->TrianglesOnly && this->Blocks > 1)
             {
-              owners = ChunkOwners(conn, numCells, this->Blocks, OwnerShift, this->Code);
+              owners = ChunkOwners(conn, numCells, this->Blocks, this->OwnerShift, this->Code);
             }
           }
           const std::uint64_t* chunkOwners = owners.empty() ? nullptr : owners.data();
@@ -869,9 +868,7 @@ bool Scatter(Execution& ex, const View& view, PointSum* sums, vtkIdType& degener
     [](int, const vtkIdType*) { return true; },
     [&](int block, const vtkNormalMapping::detail::FrameBatch& b)
     {
-      const vtkNormalMapping::detail::ScatterTarget target{
-        sums, ex.Blocks, block, Execution::OwnerShift
-      };
+      const vtkNormalMapping::detail::ScatterTarget target{ sums, ex.Blocks, block, ex.OwnerShift };
       vtkNormalMapping::detail::ScatterBatch(b, target, ex.Vector);
     },
     sums,
@@ -1309,21 +1306,10 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.NumberOfPoints = input->GetNumberOfPoints();
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();
-  // With several threads, four blocks per thread (rounded down to a power of two), none smaller
-  // than one run of ids; one block with one thread. A thread done with its blocks of a batch takes
-  // the blocks still waiting, so a thread whose core is slower (busy with other work, as the vCPUs
-  // of a shared VM often are) holds a batch up less than with one block per thread. On the
-  // 1M-triangle torus with two threads (2-vCPU VM, 12 alternated runs of 30 Updates), an Update
-  // took 12.5 ms (median) with 8 blocks against 14.8 ms with 2; 16 blocks measured as 8, 4 and
-  // 32 were slower; one thread took 14.3 ms.
-  const int threads = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
-  const vtkIdType wanted = std::min<vtkIdType>(threads == 1 ? 1 : 4 * threads,
-    std::max<vtkIdType>(1, ex.NumberOfPoints >> Execution::OwnerShift));
-  ex.Blocks = 1;
-  while (ex.Blocks * 2 <= wanted && ex.Blocks < 64)
-  {
-    ex.Blocks *= 2;
-  }
+  const vtkNormalMapping::detail::ScanBlocks blocks = vtkNormalMapping::detail::ScanBlocks::Choose(
+    ex.NumberOfPoints, std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  ex.Blocks = blocks.Blocks;
+  ex.OwnerShift = blocks.OwnerShift;
   const vtkIdType numPoints = ex.NumberOfPoints;
   const auto epsilon = [](vtkDataArray* a)
   { return a->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON); };

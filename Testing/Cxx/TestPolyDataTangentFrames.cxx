@@ -4,6 +4,7 @@
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
+#include "vtkTangentFrameBatch.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
@@ -808,7 +809,8 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThre
     ~RestoreDefault() { mikk::LimitInstructionSet(mikk::InstructionSet::AVX512); }
   } restore;
   vtkNormalMapping::TorusOptions options;
-  // 145,162 triangles, 72,581 points: 4 blocks with 2 or 8 threads. The last chunk of 64
+  // 145,162 triangles, 72,581 points: 8 blocks in runs of 2^12 ids with 2 threads, 32 in runs
+  // of 2^10 with 8 (ScanBlocks::Choose). The last chunk of 64
   // triangles holds 10, so that the last cell's bad id is among the ids the AVX-512 owner pass
   // leaves to its scalar tail (30 ids, 24 read eight at a time).
   options.U = 401;
@@ -1283,9 +1285,10 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // The scatter deals points to four blocks per thread with several threads (a power of two), in
-  // runs of 2^14 ids, and never more blocks than runs: 36,000 points make 2 blocks, 133,897
-  // points 8, so that both meshes check the skipped, whole and shared chunks of several blocks.
+  // With several threads the scatter deals points to blocks in runs of ids (ScanBlocks::Choose):
+  // with two threads 36,300 points make 8 blocks in runs of 2^11 and 134,418 points 8 in runs of
+  // 2^13, with eight threads 32 blocks in runs of 2^10 and 2^11 (checked below), so that both
+  // meshes check the skipped, whole and shared chunks of several blocks and several run lengths.
   // The second has 267,794 triangles: its last chunk of 64 holds 18 (54 ids, not a multiple of
   // the 8 that the AVX-512 owner pass reads at once).
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
@@ -1296,6 +1299,15 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     options.V = u == 300 ? 120 : 257;
     options.MirrorU = true;
     meshes.push_back(vtkNormalMapping::MakeTorus(options));
+  }
+  using vtkNormalMapping::detail::ScanBlocks;
+  ASSERT_EQ(meshes[0]->GetNumberOfPoints(), 36300);
+  ASSERT_EQ(meshes[1]->GetNumberOfPoints(), 134418);
+  for (const auto& [points, threads, blocks, shift] : std::vector<std::array<int, 4>>{
+         { 36300, 2, 8, 11 }, { 134418, 2, 8, 13 }, { 36300, 8, 32, 10 }, { 134418, 8, 32, 11 } })
+  {
+    EXPECT_EQ(ScanBlocks::Choose(points, threads).Blocks, blocks);
+    EXPECT_EQ(ScanBlocks::Choose(points, threads).OwnerShift, shift);
   }
   for (const auto& mesh : meshes)
     for (int method : AllMethods)

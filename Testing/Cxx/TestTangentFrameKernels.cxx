@@ -461,6 +461,60 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
   }
 }
 
+TEST(TangentFrameKernels, ScanBlocksShareOutMeshesOfEverySize)
+{
+  using detail::ScanBlocks;
+  // One thread: one block, which owns every point, whatever the size.
+  for (vtkIdType n : { vtkIdType(0), vtkIdType(5000), vtkIdType(1) << 40 })
+  {
+    const ScanBlocks s = ScanBlocks::Choose(n, 1);
+    EXPECT_EQ(s.Blocks, 1);
+  }
+  // Two threads on the benchmark's tori (about 2 points per triangle): the 1M-triangle one in
+  // runs of 2^14 as before; smaller ones in shorter runs, so that they are shared out at all
+  // (with runs of a fixed 2^14, 50K points made 3 runs and 2 blocks, 32K points one).
+  const auto expectChoice = [](vtkIdType n, int threads, int blocks, int shift)
+  {
+    const ScanBlocks s = ScanBlocks::Choose(n, threads);
+    EXPECT_EQ(s.Blocks, blocks) << n << " points, " << threads << " threads";
+    EXPECT_EQ(s.OwnerShift, shift) << n << " points, " << threads << " threads";
+  };
+  expectChoice(501501, 2, 8, 14);
+  expectChoice(50086, 2, 8, 11);
+  expectChoice(3200, 2, 2, 10);
+  expectChoice(1000, 2, 1, 10);
+  expectChoice(36000, 8, 32, 10);
+  // The rule's invariants over sizes from 0 to 2^26 points and any thread count: a power of two
+  // up to 64 and four per thread, never more blocks than runs, runs within the bounds and only
+  // shortened while there are fewer than two per wanted block, and more points never fewer
+  // blocks.
+  for (int threads : { 2, 3, 4, 8, 16, 64, 1000 })
+  {
+    const vtkIdType wanted = std::min(64, 4 * threads);
+    int previous = 1;
+    for (vtkIdType n = 0; n <= (vtkIdType(1) << 26); n = n < 16 ? n + 1 : n + n / 7)
+    {
+      const ScanBlocks s = ScanBlocks::Choose(n, threads);
+      SCOPED_TRACE(std::to_string(n) + " points, " + std::to_string(threads) + " threads");
+      ASSERT_GE(s.Blocks, 1);
+      EXPECT_EQ(s.Blocks & (s.Blocks - 1), 0);
+      EXPECT_LE(s.Blocks, wanted);
+      EXPECT_GE(s.OwnerShift, ScanBlocks::MinShift);
+      EXPECT_LE(s.OwnerShift, ScanBlocks::MaxShift);
+      const vtkIdType runs = n >> s.OwnerShift;
+      EXPECT_TRUE(s.Blocks == 1 || s.Blocks <= runs);
+      // The largest power of two within both limits: twice as many would exceed one.
+      EXPECT_TRUE(2 * s.Blocks > std::min(wanted, runs));
+      if (s.OwnerShift < ScanBlocks::MaxShift)
+      {
+        EXPECT_LT(n >> (s.OwnerShift + 1), 2 * wanted);
+      }
+      EXPECT_GE(s.Blocks, previous);
+      previous = s.Blocks;
+    }
+  }
+}
+
 TEST(TangentFrameKernels, SinglePrecisionAngleIsWithinTwoAndAHalfRoundings)
 {
   // single::Angle (the float corner angle of AngleWeighted) against atan2 in double, over every
@@ -728,12 +782,12 @@ TEST(TangentFrameKernels, LanesOwnerBitsMatchTheOwnerRule)
   {
     GTEST_SKIP() << "this CPU (or build) has no AVX-512: the filter finds owners with scalar code";
   }
-  // Every block count the filter uses (powers of two up to 64), owner runs of 2^14 ids and a
-  // shorter one, ids anywhere (negative and huge ones included: ids are not checked here), and
-  // counts with and without a tail shorter than a step of eight, each id alone in its run so
-  // that a missed id is a missed bit.
+  // Every block count the filter uses (powers of two up to 64), owner runs of the longest and
+  // shortest lengths the filter uses and a shorter one, ids anywhere (negative and huge ones
+  // included: ids are not checked here), and counts with and without a tail shorter than a step of
+  // eight, each id alone in its run so that a missed id is a missed bit.
   std::mt19937 rng(7);
-  for (int shift : { 3, 14 })
+  for (int shift : { 3, detail::ScanBlocks::MinShift, detail::ScanBlocks::MaxShift })
   {
     for (int blocks = 1; blocks <= 64; blocks *= 2)
     {

@@ -74,7 +74,7 @@ std::vector<std::vector<unsigned char>> AllOutputs(vtkPolyData* input)
 TEST(TangentFramesConcurrency, SeparateInputsOnSeveralThreadsAtOnce)
 {
   // Four different meshes (mirror seams, float and double, sizes that give one or several
-  // blocks of the ordered scatter: 2^12 points per block).
+  // blocks of the ordered scatter and runs of different lengths, see ScanBlocks::Choose).
   std::vector<vtkSmartPointer<vtkPolyData>> inputs;
   for (int i = 0; i < 4; ++i)
   {
