@@ -744,6 +744,7 @@ bool ScanFrames(Execution& ex,
     degenerateByBlock[block] += degenerateHere;
     consume(block, b);
     b.Size = 0;
+    b.Shared = false;
   };
   const auto visit = [&](int block, vtkIdType, vtkIdType, const vtkIdType* tri, bool)
   {
@@ -753,6 +754,7 @@ bool ScanFrames(Execution& ex,
     }
     FrameBatch& b = batches[block];
     b.Add(tri);
+    b.Shared = b.Shared || ex.Blocks > 1;
     if (b.Full())
     {
       flush(block);
@@ -820,9 +822,13 @@ bool ScanFrames(Execution& ex,
             bad = true;
             continue;
           }
-          if (ex.Owns(block, tri[0]) || ex.Owns(block, tri[1]) || ex.Owns(block, tri[2]))
+          const bool owned[3] = {
+            ex.Owns(block, tri[0]), ex.Owns(block, tri[1]), ex.Owns(block, tri[2])
+          };
+          if (owned[0] || owned[1] || owned[2])
           {
             b.Add(tri);
+            b.Shared = b.Shared || !(owned[0] && owned[1] && owned[2]);
           }
         }
       }

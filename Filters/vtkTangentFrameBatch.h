@@ -72,6 +72,9 @@ struct alignas(64) FrameBatch
 {
   static constexpr int Capacity = 64;
   int Size = 0;
+  /// Some triangle may have a corner that the block filling the batch does not own (see
+  /// ScatterTarget); clear: the block owns every corner, and the scatter need not ask.
+  bool Shared = false;
   vtkIdType Ids[3][Capacity];
   double Tangent[3][Capacity];
   double Normal[3][Capacity];
@@ -537,7 +540,7 @@ VTK_TANGENT_BATCH_AVX2_FN void ScatterCorners(const FrameBatch& b, const Scatter
 
 VTK_TANGENT_BATCH_AVX2_FN inline void ScatterBatch(const FrameBatch& b, const ScatterTarget& s)
 {
-  if (s.Blocks == 1)
+  if (s.Blocks == 1 || !b.Shared)
   {
     ScatterCorners<true>(b, s);
   }

@@ -1290,7 +1290,9 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
   // 2^13, with eight threads 32 blocks in runs of 2^10 and 2^11 (checked below), so that both
   // meshes check the skipped, whole and shared chunks of several blocks and several run lengths.
   // The second has 267,794 triangles: its last chunk of 64 holds 18 (54 ids, not a multiple of
-  // the 8 that the AVX-512 owner pass reads at once).
+  // the 8 that the AVX-512 owner pass reads at once). The third is the first with its quads as
+  // quads, strips and triangle pairs in turn: cells that are not all triangles take the other
+  // way into the blocks' batches (triangle by triangle, any corner possibly another block's).
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   for (int u : { 300, 521 })
   {
@@ -1299,6 +1301,40 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     options.V = u == 300 ? 120 : 257;
     options.MirrorU = true;
     meshes.push_back(vtkNormalMapping::MakeTorus(options));
+  }
+  {
+    // MakeTorus writes each quad (a, b, c, d) as the triangles (a, b, c) and (a, c, d).
+    vtkPolyData* torus = meshes[0];
+    vtkNew<vtkCellArray> polys, strips;
+    vtkNew<vtkIdList> tri0, tri1;
+    for (vtkIdType q = 0; 2 * q + 1 < torus->GetNumberOfPolys(); ++q)
+    {
+      torus->GetCellPoints(2 * q, tri0);
+      torus->GetCellPoints(2 * q + 1, tri1);
+      const vtkIdType a = tri0->GetId(0), b = tri0->GetId(1), c = tri0->GetId(2),
+                      d = tri1->GetId(2);
+      if (q % 3 == 0)
+      {
+        const vtkIdType quad[4] = { a, b, c, d };
+        polys->InsertNextCell(4, quad);
+      }
+      else if (q % 3 == 1)
+      {
+        const vtkIdType strip[4] = { b, c, a, d }; // (b, c, a) and (a, c, d)
+        strips->InsertNextCell(4, strip);
+      }
+      else
+      {
+        polys->InsertNextCell(tri0);
+        polys->InsertNextCell(tri1);
+      }
+    }
+    auto mixed = vtkSmartPointer<vtkPolyData>::New();
+    mixed->SetPoints(torus->GetPoints());
+    mixed->GetPointData()->ShallowCopy(torus->GetPointData());
+    mixed->SetPolys(polys);
+    mixed->SetStrips(strips);
+    meshes.push_back(mixed);
   }
   using vtkNormalMapping::detail::ScanBlocks;
   ASSERT_EQ(meshes[0]->GetNumberOfPoints(), 36300);
@@ -1312,7 +1348,8 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
   for (const auto& mesh : meshes)
     for (int method : AllMethods)
     {
-      SCOPED_TRACE(mesh->GetNumberOfPoints());
+      SCOPED_TRACE(std::to_string(mesh->GetNumberOfPoints()) + " points, " +
+        std::to_string(mesh->GetNumberOfStrips()) + " strips");
       std::vector<std::vector<float>> results;
       for (int threads : { 1, 2, 8 })
       {

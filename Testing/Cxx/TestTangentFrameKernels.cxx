@@ -451,6 +451,8 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
     for (int blocks : { 1, 2 })
     {
       std::vector<detail::PointSum> sums(numPoints, detail::PointSum{});
+      // With two blocks, each owns some corners of the batch's triangles: the batch says so.
+      b.Shared = blocks > 1;
       for (int block = 0; block < blocks; ++block)
       {
         detail::ScatterBatch(b, detail::ScatterTarget{ sums.data(), blocks, block, 0 }, useVector);
