@@ -20,7 +20,8 @@
 // once with memory the allocator reuses, once with fresh pages (after the peak memory); and on
 // the double-precision mesh, memory reused; and the default method, float and double, with the
 // vector code limited to AVX2. Scaling
-// (MeasureScaling): each filter alone, updated alternately with one and with two threads.
+// (MeasureScaling): each filter alone, updated alternately with one and with two threads, on the
+// million-triangle mesh; VTK's filter and the default method also on every other size.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
 #include "BenchMemory.h"
@@ -617,6 +618,30 @@ int main(int argc, char** argv)
   {
     scaling.push_back(MeasureScaling(f, Torus(summarySize, false), pairs));
   }
+  // The same for the default method and VTK's filter at every mesh size, with more pairs for the
+  // smaller meshes (whose Updates take a fraction of a millisecond) so that every size's pairs
+  // take some time: at least 40 pairs, up to 400.
+  struct SizeScaling
+  {
+    long long Size;
+    int Pairs;
+    std::vector<Paired> Filters; // VTK's, then AngleWeighted
+  };
+  std::vector<SizeScaling> scalingBySize;
+  for (long long size : sizes)
+  {
+    SizeScaling row{ size,
+      smoke ? pairs : static_cast<int>(std::clamp<long long>(40 * (1000000 / size), 40, 400)),
+      {} };
+    for (const Bench::TangentFilter& f : Bench::TangentFilters())
+    {
+      if (f.IsVTK() || f.Method == vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
+      {
+        row.Filters.push_back(MeasureScaling(f, Torus(size, false), row.Pairs));
+      }
+    }
+    scalingBySize.push_back(row);
+  }
   std::cout
     << "two threads against one in "
     << std::chrono::duration<double>(std::chrono::steady_clock::now() - scalingStart).count()
@@ -792,6 +817,32 @@ int main(int argc, char** argv)
   for (const Paired& p : scaling)
   {
     md << "| " << p.Name << " | " << p.Cells() << " |\n";
+  }
+
+  md << "\n### Two threads against one, by mesh size: float input\n\n"
+     << "As above for VTK's filter and AngleWeighted (the default) on each torus, with more pairs "
+        "for the smaller ones (40 times a million over the triangle count, between 40 and 400), so "
+        "that the short Updates of a small mesh still add up to a measurable time.\n\n"
+     << "| triangles | pairs";
+  for (const Paired& p : scalingBySize.front().Filters)
+  {
+    md << " | " << p.Name << ": median [quartiles] | fastest runs";
+  }
+  md << " |\n|---:|---:";
+  for (size_t i = 0; i < scalingBySize.front().Filters.size(); ++i)
+  {
+    md << "|---:|---:";
+  }
+  md << "|\n";
+  for (const SizeScaling& row : scalingBySize)
+  {
+    md << "| " << Bench::Count(find({ {}, false, 1, row.Size }, "floor").Triangles) << " | "
+       << row.Pairs;
+    for (const Paired& p : row.Filters)
+    {
+      md << " | " << p.Cells();
+    }
+    md << " |\n";
   }
 
   md << "\n### Throughput, every configuration\n\n"
