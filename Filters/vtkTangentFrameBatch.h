@@ -456,7 +456,8 @@ struct ScanBlocks
    * parentheses): 1M triangles 12.5 ms with 8 blocks against 14.8 with 2 (14.3; 4, 16 and 32
    * blocks were slower than 8); 100K triangles 0.78 ms with 4 blocks in runs of 2^12 against
    * 0.92 with the 2 blocks in runs of 2^14 that runs of a fixed length allowed (1.22); 16K
-   * triangles 0.19 ms against 0.25 with one block (0.25); 6K triangles 0.11 against 0.13 (0.13).
+   * triangles 0.19 ms against 0.26 with one block (0.25); 6K triangles 0.11 against 0.18 with one
+   * block (0.13).
    */
   static ScanBlocks Choose(vtkIdType numPoints, int threads)
   {
