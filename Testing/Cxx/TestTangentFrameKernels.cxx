@@ -472,7 +472,7 @@ TEST(TangentFrameKernels, ScanBlocksShareOutMeshesOfEverySize)
     const ScanBlocks s = ScanBlocks::Choose(n, 1);
     EXPECT_EQ(s.Blocks, 1);
   }
-  // Two threads on the benchmark's tori (about 2 points per triangle): the 1M-triangle one in
+  // Two threads on the benchmark's tori (about one point per two triangles): the 1M-triangle one in
   // runs of 2^14 as before; smaller ones in shorter runs, so that they are shared out at all
   // (with runs of a fixed 2^14, 50K points made 3 runs and 2 blocks, 32K points one).
   const auto expectChoice = [](vtkIdType n, int threads, int blocks, int shift)
