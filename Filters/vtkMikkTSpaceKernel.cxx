@@ -2827,7 +2827,7 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
   K.Off = in.FaceOffsets;
   K.Conn = in.FaceConnectivity;
   K.Out = res.Corners.data();
-  K.NumBlocks = std::max(1, std::min(8, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  K.NumBlocks = std::min(8, vtkNormalMapping::detail::UsableThreads());
 #ifdef VTK_MIKK_AVX2
   const InstructionSet isa = UsableInstructionSet(MaximumInstructionSet.load());
   K.UseAVX2 = isa >= InstructionSet::AVX2;

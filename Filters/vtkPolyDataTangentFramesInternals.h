@@ -1313,7 +1313,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();
   const vtkNormalMapping::detail::ScanBlocks blocks = vtkNormalMapping::detail::ScanBlocks::Choose(
-    ex.NumberOfPoints, std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+    ex.NumberOfPoints, vtkNormalMapping::detail::UsableThreads());
   ex.Blocks = blocks.Blocks;
   ex.OwnerShift = blocks.OwnerShift;
   const vtkIdType numPoints = ex.NumberOfPoints;

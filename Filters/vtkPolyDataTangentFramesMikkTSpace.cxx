@@ -621,7 +621,7 @@ void Assign(const Surface& s,
   // point's first corner, in corner order (lists concatenated in order).
   const vtkIdType numChunks = (numCorners + kChunk - 1) / kChunk;
   std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
-  if (vtkSMPTools::GetEstimatedNumberOfThreads() <= 1)
+  if (vtkNormalMapping::detail::UsableThreads() <= 1)
   {
     // One ascending pass (the same result, without atomics): a point's first corner is the
     // first corner with a frame seen; the later ones are compared with it.

@@ -3,6 +3,7 @@
 // output of the same filter run alone. (Thread counts of one filter: the BitIdentical* tests.)
 #include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
+#include "vtkNormalMappingPrivate.h"
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkCellArray.h"
@@ -11,6 +12,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 
 #include <gtest/gtest.h>
 
@@ -126,4 +128,60 @@ TEST(TangentFramesConcurrency, SeparateInputsOnSeveralThreadsAtOnce)
       }
     }
   }
+}
+
+TEST(TangentFramesConcurrency, InsideAParallelLoopWithAndWithoutNestedParallelism)
+{
+  // Filters updated inside a vtkSMPTools::For, one mesh per iteration. With nested parallelism
+  // (VTK 9.1's default) their own loops run in parallel too; without it VTK runs them serially
+  // and the filters split their work for one thread (UsableThreads). Either way every output
+  // must be bit-identical to the filter run alone. Meshes large enough that two threads split
+  // the scan into several blocks (8 blocks in runs of 2^11 ids for 36,300 points).
+  std::vector<vtkSmartPointer<vtkPolyData>> inputs;
+  for (int i = 0; i < 2; ++i)
+  {
+    vtkNormalMapping::TorusOptions options;
+    options.U = 300;
+    options.V = 120;
+    options.MirrorU = true;
+    options.DoublePrecision = i == 1;
+    inputs.push_back(vtkNormalMapping::MakeTorus(options));
+  }
+  ASSERT_EQ(inputs[0]->GetNumberOfPoints(), 36300);
+  std::vector<std::vector<std::vector<unsigned char>>> expected;
+  for (auto& input : inputs)
+  {
+    expected.push_back(AllOutputs(input));
+  }
+  const bool nestedBefore = vtkSMPTools::GetNestedParallelism();
+  NormalMappingTesting::WithThreads(2,
+    [&]()
+    {
+      EXPECT_EQ(vtkNormalMapping::detail::UsableThreads(), 2) << "outside any parallel loop";
+      for (bool nested : { true, false })
+      {
+        vtkSMPTools::SetNestedParallelism(nested);
+        std::vector<std::vector<std::vector<unsigned char>>> results(inputs.size());
+        std::vector<int> usable(inputs.size(), 0);
+        vtkSMPTools::For(0,
+          static_cast<vtkIdType>(inputs.size()),
+          1,
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            for (vtkIdType i = begin; i < end; ++i)
+            {
+              usable[i] = vtkNormalMapping::detail::UsableThreads();
+              results[i] = AllOutputs(inputs[i]);
+            }
+          });
+        for (size_t i = 0; i < inputs.size(); ++i)
+        {
+          SCOPED_TRACE(
+            std::string("nested ") + (nested ? "on" : "off") + ", mesh " + std::to_string(i));
+          EXPECT_EQ(usable[i], nested ? 2 : 1);
+          EXPECT_TRUE(results[i] == expected[i]);
+        }
+      }
+    });
+  vtkSMPTools::SetNestedParallelism(nestedBefore);
 }
