@@ -37,6 +37,18 @@ inline void AdviseHugePages(void* ptr, std::size_t bytes)
   (void)bytes;
 #endif
 }
+
+/**
+ * The bytes to reserve for a block of `bytes` meant for huge pages: rounded up to whole huge
+ * pages when that adds at most an eighth, so that the block's last part does not fault in 4 KiB at
+ * a time; else `bytes`. The rounding costs memory (a huge page is backed whole once touched) and
+ * saves page faults (see AllocatePointSums in vtkPolyDataTangentFramesInternals.h).
+ */
+inline std::size_t HugePageReservation(std::size_t bytes)
+{
+  const std::size_t rounded = (bytes + HugePageBytes - 1) & ~(HugePageBytes - 1);
+  return rounded - bytes <= bytes / 8 ? rounded : bytes;
+}
 } // namespace detail
 } // namespace vtkNormalMapping
 

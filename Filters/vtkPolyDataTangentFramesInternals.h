@@ -422,54 +422,81 @@ struct PointSumRelease
   }
 };
 
-/// Storage for the per-point sums; see AllocatePointSums.
-using PointSumStorage = std::unique_ptr<PointSum[], PointSumRelease>;
+/**
+ * Storage for the per-point sums and, after them, the per-point side bytes (see
+ * AllocatePointSums).
+ */
+struct PointSumStorage
+{
+  std::unique_ptr<PointSum[], PointSumRelease> Block;
+  vtkIdType Count = 0;
+  PointSum* Sums() const { return this->Block.get(); }
+  /// Count bytes after the sums, not cleared.
+  unsigned char* Sides() const
+  {
+    return reinterpret_cast<unsigned char*>(this->Block.get() + this->Count);
+  }
+  explicit operator bool() const { return this->Block != nullptr; }
+};
 
 /**
- * Storage for `count` PointSums, all zero (null if memory is short). On Linux, arrays of 8 MiB or
- * more start on a 2 MiB boundary of a malloc block one huge page larger, advised to use
- * transparent huge pages: pages fresh from the kernel then fault once per 2 MiB instead of once
- * per 4 KiB. Zeroing the 16 MiB of sums of the 1M-triangle torus took 5.7-8 ms on fresh small
- * pages, about 1 ms on fresh huge pages, 0.5 ms on memory the allocator reused. glibc reuses such
- * a block from the second or third execution on (its mmap threshold rises to the freed size);
- * mapping fresh memory every time instead was 3-4% slower per Update. posix_memalign, as for the
- * output arrays (AllocateOnHugePages), does not do here: re-executions then faulted in about 340
- * pages each and were 12% slower.
+ * Storage for `count` PointSums, all zero, followed by `count` side bytes that Finish writes
+ * (null if memory is short): one block, which the passes after the scan use together and free
+ * together. On Linux, blocks of 8 MiB or more start on a 2 MiB boundary of a malloc block one huge
+ * page larger than the whole huge pages they span, advised to use transparent huge pages: pages
+ * fresh from the kernel then fault once per 2 MiB instead of once per 4 KiB. Zeroing the 16 MiB of
+ * sums of the 1M-triangle torus took 5.7-8 ms on fresh small pages, about 1 ms on fresh huge
+ * pages, 0.5 ms on memory the allocator reused. glibc reuses such a block from the second or third
+ * execution on (its mmap threshold rises to the freed size); mapping fresh memory every time
+ * instead was 3-4% slower per Update. posix_memalign, as for the output arrays
+ * (AllocateOnHugePages), does not do here: re-executions then faulted in about 340 pages each and
+ * were 12% slower. With the block's end on whole huge pages (HugePageReservation) and the side
+ * bytes in it, a first execution on the 1M-triangle torus took 949 page faults instead of 1,405
+ * (the sums' last huge page was partly on small pages, and the 0.5 MB of side bytes all) and 5%
+ * less time. The output arrays are not rounded so (AllocateOnHugePages): that saved another 940
+ * faults, but in an application that frees them into glibc's heap the rounded regions, advised
+ * for huge pages, then back later small allocations with whole huge pages (after ten Updates and
+ * the filter deleted: 40 MiB of huge pages resident against 18).
  */
 inline PointSumStorage AllocatePointSums(vtkIdType count)
 {
   const size_t n = static_cast<size_t>(std::max<vtkIdType>(count, 1));
-  PointSumStorage sums;
+  // The side bytes in whole PointSums after the sums.
+  const size_t total = n + (n + sizeof(PointSum) - 1) / sizeof(PointSum);
+  PointSumStorage storage;
+  storage.Count = static_cast<vtkIdType>(n);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr size_t huge = vtkNormalMapping::detail::HugePageBytes;
-  const size_t bytes = sizeof(PointSum) * n;
+  const size_t bytes = vtkNormalMapping::detail::HugePageReservation(sizeof(PointSum) * total);
   if (bytes >= 4 * huge)
   {
     void* raw = std::malloc(bytes + huge);
     if (!raw)
     {
-      return sums;
+      return storage;
     }
     const std::uintptr_t aligned = (reinterpret_cast<std::uintptr_t>(raw) + huge - 1) / huge * huge;
     vtkNormalMapping::detail::AdviseHugePages(reinterpret_cast<void*>(aligned), bytes);
-    sums = PointSumStorage(reinterpret_cast<PointSum*>(aligned), PointSumRelease{ raw });
+    storage.Block = std::unique_ptr<PointSum[], PointSumRelease>(
+      reinterpret_cast<PointSum*>(aligned), PointSumRelease{ raw });
   }
 #endif
-  if (!sums)
+  if (!storage.Block)
   {
-    sums.reset(new (std::nothrow) PointSum[n]);
+    storage.Block.reset(new (std::nothrow) PointSum[total]);
   }
-  if (sums)
+  if (storage.Block)
   {
+    PointSum* sums = storage.Sums();
     ParallelFor(static_cast<vtkIdType>(n),
       [&](vtkIdType b, vtkIdType e)
       {
         // All bits zero: 0.0 sums and no marks. memset's wide stores clear it faster than a
         // loop of PointSum copies.
-        std::memset(static_cast<void*>(sums.get() + b), 0, sizeof(PointSum) * (e - b));
+        std::memset(static_cast<void*>(sums + b), 0, sizeof(PointSum) * (e - b));
       });
   }
-  return sums;
+  return storage;
 }
 
 /**
@@ -1478,7 +1505,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     return 0;
   }
   // Written by Finish, point by point, from the sums' marks.
-  std::unique_ptr<unsigned char[]> sides(new unsigned char[numPoints]);
+  unsigned char* const sides = acc.Sides();
   const auto makeArray = [&](const char* name, int components, vtkIdType tuples)
   {
     auto array = vtkSmartPointer<OutArray>::New();
@@ -1511,18 +1538,18 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     fallbackNormals,
     [&](const auto& view)
     {
-      done = Scatter(ex, view, acc.get(), self->NumberOfDegenerateTriangles);
+      done = Scatter(ex, view, acc.Sums(), self->NumberOfDegenerateTriangles);
       if (!done || ex.BadIds)
       {
         return;
       }
       std::vector<vtkIdType> conflicted;
-      Finish(ex, view, acc.get(), sides.get(), tOut(), sOut(), bOut(), conflicted, fallbacks);
+      Finish(ex, view, acc.Sums(), sides, tOut(), sOut(), bOut(), conflicted, fallbacks);
       self->NumberOfHandednessConflicts = static_cast<vtkIdType>(conflicted.size());
       if (!conflicted.empty())
       {
         std::vector<SideSums> sideSums;
-        done = SumSides(ex, view, sides.get(), conflicted, sideSums);
+        done = SumSides(ex, view, sides, conflicted, sideSums);
         if (!done)
         {
           return;
@@ -1531,11 +1558,10 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
       }
       if (!fallbacks.empty())
       {
-        done = FillFallbacks(ex, view, acc.get(), sides.get(), fallbacks, tOut(), sOut(), bOut());
+        done = FillFallbacks(ex, view, acc.Sums(), sides, fallbacks, tOut(), sOut(), bOut());
       }
     });
-  acc.reset();
-  sides.reset();
+  acc.Block.reset();
   if (!done)
   {
     return aborted();

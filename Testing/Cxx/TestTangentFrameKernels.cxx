@@ -1,4 +1,5 @@
 // Unit tests of the tangent-frame kernels, called directly without a pipeline.
+#include "vtkNormalMappingHugePages.h"
 #include "vtkTangentFrameBatch.h"
 #include "vtkTangentFrameKernels.h"
 
@@ -461,6 +462,27 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
         << "vector " << useVector << ", blocks " << blocks;
     }
   }
+}
+
+TEST(TangentFrameKernels, HugePageReservationRoundsUpOnlyWhenCheap)
+{
+  using detail::HugePageBytes;
+  using detail::HugePageReservation;
+  // Rounded up to whole 2 MiB pages when that adds at most an eighth: the 1M-triangle torus'
+  // sums with their side bytes (501,501 points: 16.5 MB), and blocks of the size of its float
+  // tangents and signs.
+  EXPECT_EQ(HugePageReservation((501501u + 15672u) * 32), 8 * HugePageBytes);
+  EXPECT_EQ(HugePageReservation(501501u * 12), 3 * HugePageBytes);
+  EXPECT_EQ(HugePageReservation(501501u * 4), HugePageBytes);
+  EXPECT_EQ(HugePageReservation(HugePageBytes), HugePageBytes);
+  // One page: rounded from 8/9 of it on (the eighth of the array's own size).
+  const std::size_t edge = (8 * HugePageBytes + 8) / 9;
+  EXPECT_EQ(HugePageReservation(edge), HugePageBytes);
+  // Else left as it is: 0.5 MB would become 2 MiB, 9/8 of a page 2 pages.
+  EXPECT_EQ(HugePageReservation(501501u), 501501u);
+  EXPECT_EQ(HugePageReservation(edge - 1), edge - 1);
+  EXPECT_EQ(HugePageReservation(9 * HugePageBytes / 8), 9 * HugePageBytes / 8);
+  EXPECT_EQ(HugePageReservation(0), 0u);
 }
 
 TEST(TangentFrameKernels, ScanBlocksShareOutMeshesOfEverySize)
