@@ -63,7 +63,7 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // Sizes as unsigned differences and sign bits only (no branch), so the compiler
+      // Sizes as unsigned differences and sign bits only (no branch), so that the compiler
       // vectorizes the pass: the sign bit of n is set for a negative size, that of n - 3 for a
       // size below 3, and that of d | -d for d = n - 3 != 0. In parallel ranges: the pass reads
       // 8 bytes per cell and is memory-bound.
@@ -71,10 +71,12 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
       {
         std::uint64_t Negative = 0, Below3 = 0, NotThree = 0;
       };
-      vtkSMPThreadLocal<Counts> local;
-      ParallelFor(numCells,
-        1 << 16,
-        [&](vtkIdType begin, vtkIdType end)
+      constexpr vtkIdType grain = 1 << 16;
+      std::vector<Counts> chunks(
+        static_cast<size_t>(vtkNormalMapping::detail::ChunkCount(numCells, grain)));
+      vtkNormalMapping::detail::ParallelChunks(numCells,
+        grain,
+        [&](vtkIdType chunk, vtkIdType begin, vtkIdType end)
         {
           std::uint64_t negative = 0, below3 = 0, notThree = 0;
           for (vtkIdType c = begin; c < end; ++c)
@@ -87,13 +89,10 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
             below3 += d >> 63;
             notThree += (d | (0 - d)) >> 63;
           }
-          Counts& counts = local.Local();
-          counts.Negative |= negative;
-          counts.Below3 += below3;
-          counts.NotThree += notThree;
+          chunks[chunk] = Counts{ negative, below3, notThree };
         });
       std::uint64_t negative = 0, below3 = 0, notThree = 0;
-      for (const Counts& counts : local)
+      for (const Counts& counts : chunks)
       {
         negative |= counts.Negative;
         below3 += counts.Below3;
