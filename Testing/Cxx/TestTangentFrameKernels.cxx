@@ -405,7 +405,9 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
   // points 0-2 have only +1 corners, 3-5 only -1 corners, 6-8 both, 9 only zero weights. Expected
   // per point: the sums added in batch order (the scalar scatter's
   // operations) and the or of the marks of its corners with a positive weight. The vector scatter
-  // must give the same bits, with one block or with the points dealt to two.
+  // must give the same bits, with one block or with the points dealt to two, for the full batch
+  // and for batches of 61 and 3 triangles (the vector code takes the marks four corners at a time:
+  // a tail of one, and a batch that is all tail).
   constexpr int numPoints = 10;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> d(-1.0, 1.0);
@@ -423,43 +425,52 @@ TEST(TangentFrameKernels, ScatterSumsAndMarksEveryCornerOnce)
       b.SetSides(k, i, 1, p < 3 ? 0u : (p < 6 ? 1u : static_cast<unsigned>((i / 10) % 2)));
     }
   }
-  std::vector<detail::PointSum> expected(numPoints, detail::PointSum{});
-  for (int i = 0; i < b.Size; ++i)
+  for (int size : { detail::FrameBatch::Capacity, 61, 3 })
   {
-    for (int k = 0; b.Orientation(i) != 0 && k < 3; ++k)
+    b.Size = size;
+    std::vector<detail::PointSum> expected(numPoints, detail::PointSum{});
+    for (int i = 0; i < b.Size; ++i)
     {
-      detail::PointSum& e = expected[b.Ids[k][i]];
-      for (int c = 0; c < 3; ++c)
+      for (int k = 0; b.Orientation(i) != 0 && k < 3; ++k)
       {
-        e.Sum[c] += b.Weight[k][i] * b.Tangent[c][i];
-      }
-      if (b.Weight[k][i] > 0.0)
-      {
-        e.Marks |= detail::MarkBase | (b.Side(k, i) == 0 ? detail::PlusSide : detail::MinusSide);
+        detail::PointSum& e = expected[b.Ids[k][i]];
+        for (int c = 0; c < 3; ++c)
+        {
+          e.Sum[c] += b.Weight[k][i] * b.Tangent[c][i];
+        }
+        if (b.Weight[k][i] > 0.0)
+        {
+          e.Marks |= detail::MarkBase | (b.Side(k, i) == 0 ? detail::PlusSide : detail::MinusSide);
+        }
       }
     }
-  }
-  // The batch must reach every kind of mark, or the comparison proves less than it says.
-  std::set<unsigned char> kinds;
-  for (const detail::PointSum& e : expected)
-  {
-    kinds.insert(e.Sides());
-  }
-  ASSERT_EQ(kinds.size(), 4u); // 0, PlusSide, MinusSide, BothSides
-  const bool vector = detail::BestBatchCode() >= detail::BatchCode::AVX2;
-  for (bool useVector : { false, vector })
-  {
-    for (int blocks : { 1, 2 })
+    // The full batch must reach every kind of mark, or the comparison proves less than it says.
+    std::set<unsigned char> kinds;
+    for (const detail::PointSum& e : expected)
     {
-      std::vector<detail::PointSum> sums(numPoints, detail::PointSum{});
-      // With two blocks, each owns some corners of the batch's triangles: the batch says so.
-      b.Shared = blocks > 1;
-      for (int block = 0; block < blocks; ++block)
+      kinds.insert(e.Sides());
+    }
+    if (size == detail::FrameBatch::Capacity)
+    {
+      ASSERT_EQ(kinds.size(), 4u); // 0, PlusSide, MinusSide, BothSides
+    }
+    const bool vector = detail::BestBatchCode() >= detail::BatchCode::AVX2;
+    for (bool useVector : { false, vector })
+    {
+      for (int blocks : { 1, 2 })
       {
-        detail::ScatterBatch(b, detail::ScatterTarget{ sums.data(), blocks, block, 0 }, useVector);
+        std::vector<detail::PointSum> sums(numPoints, detail::PointSum{});
+        // With two blocks, each owns some corners of the batch's triangles: the batch says so.
+        b.Shared = blocks > 1;
+        for (int block = 0; block < blocks; ++block)
+        {
+          detail::ScatterBatch(
+            b, detail::ScatterTarget{ sums.data(), blocks, block, 0 }, useVector);
+        }
+        EXPECT_EQ(
+          0, std::memcmp(sums.data(), expected.data(), sizeof(detail::PointSum) * numPoints))
+          << "vector " << useVector << ", blocks " << blocks << ", size " << size;
       }
-      EXPECT_EQ(0, std::memcmp(sums.data(), expected.data(), sizeof(detail::PointSum) * numPoints))
-        << "vector " << useVector << ", blocks " << blocks;
     }
   }
 }
