@@ -516,6 +516,56 @@ bool AllocateOnHugePages(ArrayT* array, vtkIdType tuples)
 #endif
 }
 
+/**
+ * For an output array of `bytes` at `data` that the finish then writes whole: when its memory is
+ * fresh from the kernel (IsFreshMemory: a first execution), faults in its parts that are not on
+ * whole huge pages (AllocateOnHugePages: an array under 2 MiB, the ends of a larger one) with
+ * MADV_POPULATE_WRITE, in parallel chunks of 256 KiB, instead of one page fault per 4 KiB page
+ * when the finish writes it. The whole huge pages are left to fault when written, once per 2 MiB:
+ * the page the kernel has just zeroed is then still in cache. On the 1M-triangle torus (its 2 MB of
+ * float signs and the last 1.7 MB of its tangents: 926 of the 949 page faults of a first execution
+ * go), new library against old alternated in one process, on fresh memory: 0.937-0.965 of the
+ * time per Update on one thread, 0.970-0.99 on two, 4M triangles 0.965, 100K 0.987. On memory
+ * the allocator reused nothing is populated: 0.99-1.012, about the spread that rebuilding alone
+ * gives (the residency check is two mincore calls of 0.7 us; ten times as many cost 0.3%).
+ * Populating the whole arrays in 2 MiB chunks: 0.945 on one thread but 1.02 on two, as was the
+ * small-page part in one call instead of parallel chunks (1.02).
+ */
+inline void PrefaultOutput(void* data, size_t bytes)
+{
+  if (!vtkNormalMapping::detail::IsFreshMemory(data, bytes))
+  {
+    return;
+  }
+  constexpr std::uintptr_t huge = vtkNormalMapping::detail::HugePageBytes;
+  const std::uintptr_t b = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t e = b + bytes;
+  // The whole huge pages AllocateOnHugePages advised (none under 2 MiB): [hugeBegin, hugeEnd).
+  std::uintptr_t hugeBegin = (b + huge - 1) & ~(huge - 1);
+  std::uintptr_t hugeEnd = e & ~(huge - 1);
+  if (bytes < huge || hugeEnd <= hugeBegin)
+  {
+    hugeBegin = hugeEnd = e;
+  }
+  const auto populate = [](std::uintptr_t from, std::uintptr_t to)
+  {
+    // Chunks of whole pages, so that no page is cut between two of them and left out of both.
+    constexpr std::uintptr_t page = vtkNormalMapping::detail::SmallPageBytes;
+    from = std::min(to, (from + page - 1) & ~(page - 1));
+    constexpr std::uintptr_t chunk = std::uintptr_t{ 1 } << 18;
+    ParallelFor(static_cast<vtkIdType>((to - from + chunk - 1) / chunk),
+      1,
+      [&](vtkIdType c0, vtkIdType c1)
+      {
+        const std::uintptr_t first = from + chunk * static_cast<std::uintptr_t>(c0);
+        const std::uintptr_t last = std::min(to, from + chunk * static_cast<std::uintptr_t>(c1));
+        vtkNormalMapping::detail::PopulateForWriting(reinterpret_cast<void*>(first), last - first);
+      });
+  };
+  populate(b, hugeBegin);
+  populate(hugeEnd, e);
+}
+
 /// Everything the passes of one execution share.
 struct Execution
 {
@@ -1529,6 +1579,7 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
     {
       array->SetNumberOfTuples(tuples);
     }
+    PrefaultOutput(array->GetPointer(0), sizeof(OutT) * static_cast<size_t>(tuples) * components);
     return array;
   };
   auto tangents = makeArray(TangentsArrayName(), 3, numPoints);

@@ -75,3 +75,64 @@ TEST(TangentFrameKernels, ParallelChunksCoverTheRangeOnceInOrder)
     }
   }
 }
+
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+TEST(TangentFrameKernels, FreshOutputsFaultInOnlyTheirSmallPageParts)
+{
+  using vtkNormalMapping::detail::HugePageBytes;
+  using vtkNormalMapping::detail::IsFreshMemory;
+  using vtkNormalMapping::detail::SmallPageBytes;
+  // A kernel before 5.14 has no MADV_POPULATE_WRITE: PrefaultOutput is then advice that changes
+  // nothing, and there is nothing to check here.
+  void* probe =
+    mmap(nullptr, SmallPageBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(probe, MAP_FAILED);
+  const bool populates = madvise(probe, SmallPageBytes, MADV_POPULATE_WRITE) == 0;
+  munmap(probe, SmallPageBytes);
+  if (!populates)
+  {
+    GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
+  }
+  // An output of two whole huge pages with 3 small pages before them and 50 after, in a fresh
+  // mapping: the small-page parts must come out resident, the huge pages untouched (left to fault
+  // once per 2 MiB when the finish writes them), the contents zero.
+  const std::size_t mapped = 8 * HugePageBytes;
+  void* map = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  const std::uintptr_t hugeBegin =
+    (reinterpret_cast<std::uintptr_t>(map) + 2 * HugePageBytes) & ~(HugePageBytes - 1);
+  char* const data = reinterpret_cast<char*>(hugeBegin - 3 * SmallPageBytes);
+  const std::size_t bytes = 3 * SmallPageBytes + 2 * HugePageBytes + 50 * SmallPageBytes;
+  ASSERT_TRUE(IsFreshMemory(data, bytes));
+  vtkNormalMapping::frames::PrefaultOutput(data, bytes);
+  const std::size_t pages = bytes / SmallPageBytes;
+  std::vector<unsigned char> resident(pages);
+  ASSERT_EQ(mincore(data, bytes, resident.data()), 0);
+  for (std::size_t i = 0; i < pages; ++i)
+  {
+    const bool onHugePages = i >= 3 && i < 3 + 2 * HugePageBytes / SmallPageBytes;
+    ASSERT_EQ(resident[i] & 1, onHugePages ? 0 : 1) << "page " << i;
+  }
+  EXPECT_TRUE(std::all_of(data, data + bytes, [](char c) { return c == 0; }));
+  // Now resident at both ends: memory like this (which the allocator reuses) is left alone.
+  EXPECT_FALSE(IsFreshMemory(data, bytes));
+  std::vector<char> reused(64 * SmallPageBytes, 1);
+  EXPECT_FALSE(IsFreshMemory(reused.data(), reused.size()));
+
+  // An array under 2 MiB (no huge pages at all) that starts 16 bytes into a page, as a malloc
+  // block does, and spans several 256 KiB chunks: every whole page in it must come out resident,
+  // those at the chunks' seams included.
+  char* const small = reinterpret_cast<char*>(hugeBegin + 3 * HugePageBytes + 16);
+  const std::size_t smallBytes = 300 * SmallPageBytes;
+  ASSERT_TRUE(IsFreshMemory(small, smallBytes));
+  vtkNormalMapping::frames::PrefaultOutput(small, smallBytes);
+  char* const firstWhole = small - 16 + SmallPageBytes;
+  std::vector<unsigned char> smallResident(299);
+  ASSERT_EQ(mincore(firstWhole, 299 * SmallPageBytes, smallResident.data()), 0);
+  for (std::size_t i = 0; i < smallResident.size(); ++i)
+  {
+    ASSERT_EQ(smallResident[i] & 1, 1) << "page " << i;
+  }
+  munmap(map, mapped);
+}
+#endif
