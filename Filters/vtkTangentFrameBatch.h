@@ -509,8 +509,8 @@ namespace avx2
 {
 using V = __m256d;
 
-/// The CornerMark of every corner of the batch's triangles [0, Size) (undefined at triangles
-/// without a frame), four at a time.
+/// The CornerMark of every corner of the batch's triangles [0, Size), four at a time (meaningless
+/// at triangles without a frame, which the scatter skips).
 VTK_TANGENT_BATCH_AVX2_FN inline void CornerMarks(const FrameBatch& b,
   std::int64_t marks[3][FrameBatch::Capacity])
 {
