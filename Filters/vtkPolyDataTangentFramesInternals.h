@@ -359,7 +359,7 @@ std::vector<std::uint64_t> ChunkOwners(const IdT* conn,
   int ownerShift,
   vtkNormalMapping::detail::BatchCode code)
 {
-  const vtkIdType chunks = (n + OwnerChunk - 1) / OwnerChunk;
+  const vtkIdType chunks = ChunkCount(n, OwnerChunk);
   std::vector<std::uint64_t> owners(static_cast<size_t>(chunks));
   ParallelFor(chunks,
     256,
@@ -552,14 +552,13 @@ inline void PrefaultOutput(void* data, size_t bytes)
     // Chunks of whole pages, so that no page is cut between two of them and left out of both.
     constexpr std::uintptr_t page = vtkNormalMapping::detail::SmallPageBytes;
     from = std::min(to, (from + page - 1) & ~(page - 1));
-    constexpr std::uintptr_t chunk = std::uintptr_t{ 1 } << 18;
-    ParallelFor(static_cast<vtkIdType>((to - from + chunk - 1) / chunk),
-      1,
-      [&](vtkIdType c0, vtkIdType c1)
+    ParallelChunks(static_cast<vtkIdType>(to - from),
+      vtkIdType{ 1 } << 18,
+      [&](vtkIdType, vtkIdType begin, vtkIdType end)
       {
-        const std::uintptr_t first = from + chunk * static_cast<std::uintptr_t>(c0);
-        const std::uintptr_t last = std::min(to, from + chunk * static_cast<std::uintptr_t>(c1));
-        vtkNormalMapping::detail::PopulateForWriting(reinterpret_cast<void*>(first), last - first);
+        vtkNormalMapping::detail::PopulateForWriting(
+          reinterpret_cast<void*>(from + static_cast<std::uintptr_t>(begin)),
+          static_cast<size_t>(end - begin));
       });
   };
   populate(b, hugeBegin);

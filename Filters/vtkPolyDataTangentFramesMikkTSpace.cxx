@@ -619,7 +619,7 @@ void Assign(const Surface& s,
 
   // 1. The first corner of every point and 2. the corners whose frame differs from their
   // point's first corner, in corner order (lists concatenated in order).
-  const vtkIdType numChunks = (numCorners + kChunk - 1) / kChunk;
+  const vtkIdType numChunks = vtkNormalMapping::detail::ChunkCount(numCorners, kChunk);
   std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
   if (vtkNormalMapping::detail::UsableThreads() <= 1)
   {
