@@ -91,7 +91,8 @@ TEST(TangentFrameKernels, FreshOutputsFaultInOnlyTheirSmallPageParts)
   munmap(probe, SmallPageBytes);
   if (!populates)
   {
-    GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE";
+    GTEST_SKIP() << "this Linux kernel (before 5.14) has no MADV_POPULATE_WRITE: the filter's "
+                    "outputs then fault in page by page as before, and there is nothing to check";
   }
   // An output of two whole huge pages with 3 small pages before them and 50 after, in a fresh
   // mapping: the small-page parts must come out resident, the huge pages untouched (left to fault
