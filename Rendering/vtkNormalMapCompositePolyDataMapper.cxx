@@ -58,7 +58,8 @@ public:
     this->Shading = shading;
   }
 
-  /// The frame the block was last drawn with, or -1 when this helper does not draw it.
+  /// The frame the block was last drawn with (NOT_APPLIED when hidden), or -1 when this helper
+  /// does not hold it.
   int AppliedFrame(unsigned int flatIndex) const
   {
     for (const auto& block : this->BlockTangents)
@@ -66,6 +67,10 @@ public:
       if (block.first->FlatIndex != flatIndex)
       {
         continue;
+      }
+      if (!block.first->Visibility)
+      {
+        return vtkNormalMapPolyDataMapper::NOT_APPLIED;
       }
       if (this->SurfaceFrame == vtkNormalMapPolyDataMapper::NOT_APPLIED ||
         this->SurfaceFrame == vtkNormalMapPolyDataMapper::APPLIED_OBJECT_SPACE)
