@@ -442,6 +442,17 @@ int Checks::Result() const
 }
 
 //------------------------------------------------------------------------------
+void AddSceneLight(vtkRenderer* renderer, const glm::dvec3& position)
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(position.x, position.y, position.z);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->AddLight(light);
+}
+
+//------------------------------------------------------------------------------
 void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -462,12 +473,7 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.0, 0.0, 0.0);
   renderer->SetTwoSidedLighting(true);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(false);
-  light->SetPosition(setup.LightPosition.x, setup.LightPosition.y, setup.LightPosition.z);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
+  AddSceneLight(renderer, setup.LightPosition);
   for (const FlatActor& a : actors)
   {
     vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;

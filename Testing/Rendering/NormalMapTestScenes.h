@@ -186,6 +186,9 @@ struct MirrorScene
 };
 MirrorScene MakeMirrorScene();
 
+/// Adds a directional scene light from `position` towards the origin.
+void AddSceneLight(vtkRenderer* renderer, const glm::dvec3& position);
+
 /// Points the renderer's camera as the setup says (perspective, or parallel with the same framing).
 void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup);
 

@@ -8,7 +8,6 @@
 
 #include "vtkActor.h"
 #include "vtkCompositeDataDisplayAttributes.h"
-#include "vtkLight.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
@@ -72,11 +71,7 @@ int TestNormalMapCompositeScene(int argc, char* argv[])
   auto window = nmtest::MakeWindow(480, 320);
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.1, 0.1, 0.12);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPosition(-1.0, 1.5, 2.0);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
+  nmtest::AddSceneLight(renderer, glm::dvec3(-1.0, 1.5, 2.0));
   renderer->AddActor(actor);
   nmtest::FlatSetup setup;
   setup.CameraDistance = 11.0;
