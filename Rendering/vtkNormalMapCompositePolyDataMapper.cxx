@@ -58,36 +58,13 @@ public:
     this->Shading = shading;
   }
 
-  /// The frame the block was last drawn with (NOT_APPLIED when hidden), or -1 when this helper
-  /// does not hold it.
-  int AppliedFrame(unsigned int flatIndex) const
+  /// Each block's frame in the last render, by flat index (NOT_APPLIED when hidden).
+  void CollectAppliedFrames(std::map<unsigned int, int>& frames) const
   {
     for (const auto& block : this->BlockTangents)
     {
-      if (block.first->FlatIndex != flatIndex)
-      {
-        continue;
-      }
-      if (!block.first->Visibility)
-      {
-        return vtkNormalMapPolyDataMapper::NOT_APPLIED;
-      }
-      if (this->SurfaceFrame == vtkNormalMapPolyDataMapper::NOT_APPLIED ||
-        this->SurfaceFrame == vtkNormalMapPolyDataMapper::APPLIED_OBJECT_SPACE)
-      {
-        return this->SurfaceFrame;
-      }
-      switch (block.second.Use)
-      {
-        case vtkNormalMapShading::TangentUse::Derivatives:
-          return vtkNormalMapPolyDataMapper::APPLIED_DERIVATIVES;
-        case vtkNormalMapShading::TangentUse::Unsigned:
-          return vtkNormalMapPolyDataMapper::APPLIED_UNSIGNED_TANGENTS;
-        default:
-          return vtkNormalMapPolyDataMapper::APPLIED_POINT_TANGENTS;
-      }
+      frames[block.first->FlatIndex] = this->AppliedFrame(*block.first, block.second.Use);
     }
-    return -1;
   }
 
 protected:
@@ -242,6 +219,29 @@ private:
   vtkNormalMapCompositeMapperHelper(const vtkNormalMapCompositeMapperHelper&) = delete;
   void operator=(const vtkNormalMapCompositeMapperHelper&) = delete;
 
+  int AppliedFrame(const vtkCompositeMapperHelperData& block,
+    vtkNormalMapShading::TangentUse use) const
+  {
+    if (!block.Visibility)
+    {
+      return vtkNormalMapPolyDataMapper::NOT_APPLIED;
+    }
+    if (this->SurfaceFrame == vtkNormalMapPolyDataMapper::NOT_APPLIED ||
+      this->SurfaceFrame == vtkNormalMapPolyDataMapper::APPLIED_OBJECT_SPACE)
+    {
+      return this->SurfaceFrame;
+    }
+    switch (use)
+    {
+      case vtkNormalMapShading::TangentUse::Derivatives:
+        return vtkNormalMapPolyDataMapper::APPLIED_DERIVATIVES;
+      case vtkNormalMapShading::TangentUse::Unsigned:
+        return vtkNormalMapPolyDataMapper::APPLIED_UNSIGNED_TANGENTS;
+      default:
+        return vtkNormalMapPolyDataMapper::APPLIED_POINT_TANGENTS;
+    }
+  }
+
   vtkNormalMapShading::Settings Settings;
   vtkNormalMapShading* Shading = nullptr;
   /// Per block, its tangents as found at the last vertex buffer build.
@@ -257,6 +257,8 @@ struct vtkNormalMapCompositePolyDataMapper::Internals
 {
   /// Shared by the helpers: warnings once per actor and blocks, shader keys per program.
   vtkNormalMapShading Shading;
+  /// Per flat index, the frame of the last render.
+  std::map<unsigned int, int> Frames;
 };
 
 vtkStandardNewMacro(vtkNormalMapCompositePolyDataMapper);
@@ -308,18 +310,26 @@ void vtkNormalMapCompositePolyDataMapper::CopyMapperValuesToHelper(
 }
 
 //------------------------------------------------------------------------------
-int vtkNormalMapCompositePolyDataMapper::GetLastAppliedFrame(unsigned int flatIndex)
+void vtkNormalMapCompositePolyDataMapper::Render(vtkRenderer* ren, vtkActor* actor)
 {
+  this->Superclass::Render(ren, actor);
+  // Each drawn block's frame, kept after the helpers are gone (released graphics resources).
+  this->Internal->Frames.clear();
   for (const auto& helper : this->Helpers)
   {
-    auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(helper.second);
-    const int frame = ours ? ours->AppliedFrame(flatIndex) : -1;
-    if (frame >= 0)
+    if (auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(helper.second))
     {
-      return frame;
+      ours->CollectAppliedFrames(this->Internal->Frames);
     }
   }
-  return vtkNormalMapPolyDataMapper::NOT_APPLIED;
+}
+
+//------------------------------------------------------------------------------
+int vtkNormalMapCompositePolyDataMapper::GetLastAppliedFrame(unsigned int flatIndex)
+{
+  const auto found = this->Internal->Frames.find(flatIndex);
+  return found == this->Internal->Frames.end() ? vtkNormalMapPolyDataMapper::NOT_APPLIED
+                                               : found->second;
 }
 
 //------------------------------------------------------------------------------

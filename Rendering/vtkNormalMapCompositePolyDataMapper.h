@@ -69,12 +69,13 @@ public:
   ///@}
 
   /**
-   * The frame the block with this flat index was last drawn with
-   * (vtkNormalMapPolyDataMapper::AppliedFrames; NOT_APPLIED for a block not drawn or drawn
-   * without the map).
+   * The frame the block with this flat index was drawn with in the last render
+   * (vtkNormalMapPolyDataMapper::AppliedFrames; NOT_APPLIED for a block not drawn, hidden, or
+   * drawn without the map).
    */
   int GetLastAppliedFrame(unsigned int flatIndex);
 
+  void Render(vtkRenderer* ren, vtkActor* actor) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
