@@ -13,11 +13,14 @@
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 
+#include <cmath>
 #include <iostream>
 #include <map>
+#include <utility>
 
 namespace
 {
@@ -384,6 +387,75 @@ void DisplayAttributes(nmtest::Checks& check)
   plain.NormalTexture = nullptr;
   const Rendered flat = RenderBlocks(setup, plain, attributes);
   check(MappedShare(changed.Pixels, flat.Pixels) > 0.2, "the coloured block still shows the map");
+
+  // Block opacity 0.5 over the black background halves every channel of the right half.
+  vtkNew<vtkCompositeDataDisplayAttributes> translucent;
+  translucent->SetBlockOpacity(right, 0.5);
+  const Rendered half = RenderBlocks(setup, actor, translucent);
+  double opaqueSum = 0, halfSum = 0, halfDiffers = 0, compared = 0;
+  for (int y = 60; y < 196; ++y)
+  {
+    for (int x = 146; x < 206; ++x)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        const size_t p = 3 * (static_cast<size_t>(y) * setup.Width + x) + c;
+        opaqueSum += both.Pixels[p];
+        halfSum += half.Pixels[p];
+        // The map still shows: each channel is half the opaque one, to blending's rounding.
+        halfDiffers += std::abs(2.0 * half.Pixels[p] - both.Pixels[p]) > 3.0 ? 1 : 0;
+        compared += 1;
+      }
+    }
+  }
+  std::cout << "block opacity 0.5: right half " << halfSum / opaqueSum << " of the opaque sum, "
+            << 100.0 * halfDiffers / compared << "% of channels off 2 x value by more than 3"
+            << std::endl;
+  // 8-bit blending rounds each channel by up to half a level, which doubled is 1 level; 3
+  // levels leave room for the rasterizer. 1% of the channels for the quad's diagonal edges.
+  check(std::abs(halfSum / opaqueSum - 0.5) < 0.01, "block opacity applies");
+  check(halfDiffers <= 0.01 * compared, "the translucent block is the opaque one, halved");
+}
+
+/// Settings and data changed between renders of the same window take effect.
+void Changes(nmtest::Checks& check)
+{
+  nmtest::FlatSetup setup;
+  auto texture = nmtest::MakeNormalTexture(
+    nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 128, nmtest::Storage::OpenGL));
+  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
+  auto left = nmtest::Half(quad, true);
+  auto right = nmtest::Half(quad, false);
+  auto blocks = MakeBlocks({ left, right });
+  nmtest::FlatActor actor;
+  actor.Blocks = blocks;
+  actor.NormalTexture = texture;
+  auto window = nmtest::MakeFlatScene(setup, { actor });
+  auto* mapper = vtkNormalMapCompositePolyDataMapper::SafeDownCast(
+    window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
+  const auto frames = [&]()
+  {
+    window->Render();
+    return std::make_pair(mapper->GetLastAppliedFrame(1), mapper->GetLastAppliedFrame(2));
+  };
+  const auto tangents =
+    std::make_pair(int(Mapper::APPLIED_POINT_TANGENTS), int(Mapper::APPLIED_POINT_TANGENTS));
+  const auto derivatives =
+    std::make_pair(int(Mapper::APPLIED_DERIVATIVES), int(Mapper::APPLIED_DERIVATIVES));
+  check(frames() == tangents, "changes: first render with the blocks' tangents");
+  mapper->SetFrameSource(Mapper::SCREEN_DERIVATIVES);
+  check(frames() == derivatives, "changes: FrameSource set after a render applies");
+  mapper->SetFrameSource(Mapper::AUTOMATIC);
+  check(frames() == tangents, "changes: and back");
+  right->GetPointData()->RemoveArray("Tangents");
+  right->GetPointData()->RemoveArray("TangentSigns");
+  right->Modified();
+  check(frames() ==
+      std::make_pair(int(Mapper::APPLIED_POINT_TANGENTS), int(Mapper::APPLIED_DERIVATIVES)),
+    "changes: a block losing its tangents gets derivatives");
+  const nmtest::Difference d = nmtest::CompareWithReferenceShading(
+    setup, nmtest::ReadPixels(window), nmtest::Pattern::SineBump, 3);
+  check(d.WithinFraction >= 0.995, "changes: and still matches the CPU reference");
 }
 
 /// Install() registers the override of vtkCompositePolyDataMapper2.
@@ -417,6 +489,7 @@ int TestNormalMapCompositeBlocks(int, char*[])
   MirrorSymmetry(check);
   CPUReference(check);
   DisplayAttributes(check);
+  Changes(check);
   Factory(check);
   return check.Result();
 }
