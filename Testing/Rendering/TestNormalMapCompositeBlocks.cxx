@@ -240,20 +240,37 @@ void MirrorSymmetry(nmtest::Checks& check)
   }
 }
 
+/// The default flat scene's SineBump quad as two blocks, its halves x < 0 and x > 0, with
+/// tangents and signs, drawn with the map.
+struct Halves
+{
+  Halves()
+  {
+    auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
+    this->Left = nmtest::Half(quad, true);
+    this->Right = nmtest::Half(quad, false);
+    this->Blocks = MakeBlocks({ this->Left, this->Right });
+    this->Texture = nmtest::MakeNormalTexture(
+      nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 128, nmtest::Storage::OpenGL));
+    this->Actor.Blocks = this->Blocks;
+    this->Actor.NormalTexture = this->Texture;
+  }
+  nmtest::FlatSetup Setup;
+  vtkSmartPointer<vtkPolyData> Left, Right;
+  vtkSmartPointer<vtkMultiBlockDataSet> Blocks;
+  vtkSmartPointer<vtkTexture> Texture;
+  nmtest::FlatActor Actor;
+};
+
 void CPUReference(nmtest::Checks& check)
 {
-  nmtest::FlatSetup setup;
-  const auto pattern = nmtest::Pattern::SineBump;
   // The polydata mapper's test and its error budget (see TestNormalMapCPUReference.cxx): the
   // map magnified, 3 levels on 99.5% of the pixels.
-  auto texture =
-    nmtest::MakeNormalTexture(nmtest::MakeNormalMapImage(pattern, 128, nmtest::Storage::OpenGL));
+  const Halves scene;
+  const nmtest::FlatSetup& setup = scene.Setup;
+  const auto pattern = nmtest::Pattern::SineBump;
   const int bound = 3;
   const double share = 0.995;
-  // The quad's two halves (x < 0, x > 0) as two blocks, with the whole quad's tangents.
-  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
-  auto left = nmtest::Half(quad, true);
-  auto right = nmtest::Half(quad, false);
   struct Case
   {
     const char* Name;
@@ -308,10 +325,10 @@ void CPUReference(nmtest::Checks& check)
   for (const Case& c : cases)
   {
     nmtest::FlatActor actor;
-    auto blocks = MakeBlocks({ nmtest::WithTangentLayout(left, c.Left).Get(),
-      nmtest::WithTangentLayout(right, c.Right).Get() });
+    auto blocks = MakeBlocks({ nmtest::WithTangentLayout(scene.Left, c.Left).Get(),
+      nmtest::WithTangentLayout(scene.Right, c.Right).Get() });
     actor.Blocks = blocks;
-    actor.NormalTexture = texture;
+    actor.NormalTexture = scene.Texture;
     actor.TangentsArrayName = c.TangentsName;
     actor.StockMapper = c.Stock;
     actor.Scale[0] = c.Scale.x;
@@ -337,19 +354,14 @@ void CPUReference(nmtest::Checks& check)
   }
 }
 
-/// Per-block visibility and colour still apply, with the map on.
+/// Per-block visibility, colour and opacity still apply, with the map on.
 void DisplayAttributes(nmtest::Checks& check)
 {
-  nmtest::FlatSetup setup;
-  auto texture = nmtest::MakeNormalTexture(
-    nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 128, nmtest::Storage::OpenGL));
-  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
-  auto left = nmtest::Half(quad, true);
-  auto right = nmtest::Half(quad, false);
-  auto blocks = MakeBlocks({ left, right });
-  nmtest::FlatActor actor;
-  actor.Blocks = blocks;
-  actor.NormalTexture = texture;
+  const Halves scene;
+  const nmtest::FlatSetup& setup = scene.Setup;
+  vtkPolyData* left = scene.Left;
+  vtkPolyData* right = scene.Right;
+  nmtest::FlatActor actor = scene.Actor;
   const Rendered both = RenderBlocks(setup, actor);
 
   vtkNew<vtkCompositeDataDisplayAttributes> attributes;
@@ -420,16 +432,11 @@ void DisplayAttributes(nmtest::Checks& check)
 /// Settings and data changed between renders of the same window take effect.
 void Changes(nmtest::Checks& check)
 {
-  nmtest::FlatSetup setup;
-  auto texture = nmtest::MakeNormalTexture(
-    nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 128, nmtest::Storage::OpenGL));
-  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
-  auto left = nmtest::Half(quad, true);
-  auto right = nmtest::Half(quad, false);
-  auto blocks = MakeBlocks({ left, right });
-  nmtest::FlatActor actor;
-  actor.Blocks = blocks;
-  actor.NormalTexture = texture;
+  const Halves scene;
+  const nmtest::FlatSetup& setup = scene.Setup;
+  vtkPolyData* left = scene.Left;
+  vtkPolyData* right = scene.Right;
+  nmtest::FlatActor actor = scene.Actor;
   auto window = nmtest::MakeFlatScene(setup, { actor });
   auto* mapper = vtkNormalMapCompositePolyDataMapper::SafeDownCast(
     window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
