@@ -19,8 +19,6 @@
 
 namespace
 {
-const char* const TangentAttribute = "nmTangentMC";
-
 /// "Block 3: " or "Blocks 1, 4: ", for warnings.
 std::string BlockNames(std::vector<unsigned int> flatIndices)
 {
@@ -124,7 +122,7 @@ protected:
       packed->SetNumberOfTuples(points->GetNumberOfPoints());
       packed->Fill(0.0);
     }
-    this->VBOs->AppendDataArray(TangentAttribute, packed, VTK_FLOAT);
+    this->VBOs->AppendDataArray(vtkNormalMapShading::TangentAttribute, packed, VTK_FLOAT);
     packed->Delete();
   }
 
@@ -244,7 +242,8 @@ private:
 
   vtkNormalMapShading::Settings Settings;
   vtkNormalMapShading* Shading = nullptr;
-  /// Per block, its tangents as found at the last vertex buffer build.
+  /// Per block, its tangents as found at the last vertex buffer build (the array pointers are
+  /// read during that build only).
   std::map<const vtkCompositeMapperHelperData*, vtkNormalMapShading::Tangents> BlockTangents;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.

@@ -14,16 +14,14 @@ vtkStandardNewMacro(vtkNormalMapPolyDataMapper);
 
 namespace
 {
-const char* const TangentAttribute = "nmTangentMC";
-const char* const SignAttribute = "nmTangentSignMC";
-
 /// The frame the vertex buffers hold (BuildBufferObjects uploaded what FindTangents found).
 vtkNormalMapShading::FrameMix FramesOf(vtkOpenGLVertexBufferObjectGroup* vbos)
 {
   vtkNormalMapShading::FrameMix frames;
-  const int tangentComponents = vbos->GetNumberOfComponents(TangentAttribute);
+  const int tangentComponents = vbos->GetNumberOfComponents(vtkNormalMapShading::TangentAttribute);
   frames.PointTangents = tangentComponents >= 3;
-  frames.SeparateSigns = tangentComponents == 3 && vbos->GetNumberOfComponents(SignAttribute) == 1;
+  frames.SeparateSigns =
+    tangentComponents == 3 && vbos->GetNumberOfComponents(vtkNormalMapShading::SignAttribute) == 1;
   frames.Unsigned = tangentComponents == 3 && !frames.SeparateSigns;
   frames.Derivatives = !frames.PointTangents;
   return frames;
@@ -139,8 +137,9 @@ void vtkNormalMapPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* 
   const auto tangents = vtkNormalMapShading::FindTangents(
     this->CurrentInput, actor, vtkNormalMapShading::SettingsOf(this));
   auto* cache = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetVBOCache();
-  this->VBOs->CacheDataArray(TangentAttribute, tangents.Vectors, cache, VTK_FLOAT);
-  this->VBOs->CacheDataArray(SignAttribute, tangents.Signs, cache, VTK_FLOAT);
+  this->VBOs->CacheDataArray(
+    vtkNormalMapShading::TangentAttribute, tangents.Vectors, cache, VTK_FLOAT);
+  this->VBOs->CacheDataArray(vtkNormalMapShading::SignAttribute, tangents.Signs, cache, VTK_FLOAT);
   this->Superclass::BuildBufferObjects(ren, actor);
 }
 

@@ -28,6 +28,10 @@ class vtkTexture;
 class vtkNormalMapShading
 {
 public:
+  /// The vertex attributes of the point tangents and of their signs (vtkNormalMapVS.glsl).
+  static constexpr const char* TangentAttribute = "nmTangentMC";
+  static constexpr const char* SignAttribute = "nmTangentSignMC";
+
   /// The settings of a normal-mapping mapper (values of vtkNormalMapPolyDataMapper's enums).
   struct Settings
   {
