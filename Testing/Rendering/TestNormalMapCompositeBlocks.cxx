@@ -37,6 +37,18 @@ vtkSmartPointer<vtkMultiBlockDataSet> MakeBlocks(const std::vector<vtkPolyData*>
   return blocks;
 }
 
+/// Appends the object's warnings to `warnings` (which must outlive the object).
+void CollectWarnings(vtkObject* object, std::vector<std::string>& warnings)
+{
+  vtkNew<vtkCallbackCommand> onWarning;
+  onWarning->SetClientData(&warnings);
+  onWarning->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData) {
+      static_cast<std::vector<std::string>*>(clientData)->push_back(static_cast<char*>(callData));
+    });
+  object->AddObserver(vtkCommand::WarningEvent, onWarning);
+}
+
 /// One render of a one-actor scene and what the mapper said.
 struct Rendered
 {
@@ -53,13 +65,7 @@ Rendered RenderBlocks(const nmtest::FlatSetup& setup,
   auto window = nmtest::MakeFlatScene(setup, { actor });
   auto* mapper = vtkCompositePolyDataMapper2::SafeDownCast(
     window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
-  vtkNew<vtkCallbackCommand> onWarning;
-  onWarning->SetClientData(&result.Warnings);
-  onWarning->SetCallback(
-    [](vtkObject*, unsigned long, void* clientData, void* callData) {
-      static_cast<std::vector<std::string>*>(clientData)->push_back(static_cast<char*>(callData));
-    });
-  mapper->AddObserver(vtkCommand::WarningEvent, onWarning);
+  CollectWarnings(mapper, result.Warnings);
   mapper->SetCompositeDataDisplayAttributes(attributes);
   window->Render();
   result.Pixels = nmtest::ReadPixels(window);
@@ -463,6 +469,16 @@ void Changes(nmtest::Checks& check)
   const nmtest::Difference d = nmtest::CompareWithReferenceShading(
     setup, nmtest::ReadPixels(window), nmtest::Pattern::SineBump, 3);
   check(d.WithinFraction >= 0.995, "changes: and still matches the CPU reference");
+  std::vector<std::string> warnings;
+  CollectWarnings(mapper, warnings);
+  mapper->SetFrameSource(Mapper::POINT_TANGENTS);
+  check(frames() ==
+        std::make_pair(int(Mapper::APPLIED_POINT_TANGENTS), int(Mapper::APPLIED_DERIVATIVES)) &&
+      warnings.size() == 1 &&
+      warnings[0].find("Block 2: FrameSource is PointTangents but the input has no tangent") !=
+        std::string::npos,
+    "changes: PointTangents asked for, a block without tangents: derivatives and a warning "
+    "naming it");
 }
 
 /// Install() registers the override of vtkCompositePolyDataMapper2.
