@@ -301,6 +301,13 @@ void CPUReference(nmtest::Checks& check)
       false,
       glm::dvec2(1.0),
       { { 1, Mapper::APPLIED_POINT_TANGENTS }, { 2, Mapper::APPLIED_DERIVATIVES } } },
+    { "ours, no tangents | no tangents",
+      Layout::None,
+      Layout::None,
+      "",
+      false,
+      glm::dvec2(1.0),
+      { { 1, Mapper::APPLIED_DERIVATIVES }, { 2, Mapper::APPLIED_DERIVATIVES } } },
     { "ours, unsigned tangents | no tangents",
       Layout::Unsigned,
       Layout::None,
@@ -339,6 +346,8 @@ void CPUReference(nmtest::Checks& check)
     actor.StockMapper = c.Stock;
     actor.Scale[0] = c.Scale.x;
     actor.Scale[1] = c.Scale.y;
+    std::string shaders;
+    actor.Shaders = &shaders;
     const Rendered out = RenderBlocks(setup, actor);
     const nmtest::Difference d =
       nmtest::CompareWithReferenceShading(setup, out.Pixels, pattern, bound, c.Scale);
@@ -357,6 +366,22 @@ void CPUReference(nmtest::Checks& check)
     const bool unsignedWarned = Warned(out, "Block 1: Point tangents have no handedness sign");
     check(unsignedWarned == (c.Left == Layout::Unsigned),
       std::string(c.Name) + ": a warning names the block with unsigned tangents, and only it");
+    // The shader holds only the frames its blocks use (both blocks share one shader here).
+    bool tangentBlock = false, derivativeBlock = false;
+    for (const auto& f : c.Frames)
+    {
+      derivativeBlock = derivativeBlock || f.second == Mapper::APPLIED_DERIVATIVES;
+      tangentBlock = tangentBlock || f.second == Mapper::APPLIED_POINT_TANGENTS ||
+        f.second == Mapper::APPLIED_UNSIGNED_TANGENTS;
+    }
+    const auto has = [&shaders](const char* text)
+    { return shaders.find(text) != std::string::npos; };
+    check(has("in vec4 nmTangentMC;") == tangentBlock &&
+        has("nmDerivativeFrameMC") == derivativeBlock &&
+        has("nmDatasetHasTangents") == (tangentBlock && derivativeBlock),
+      std::string(c.Name) +
+        ": the shader has the tangent attribute, the derivative frame and "
+        "the per-block choice only where blocks use them");
   }
 }
 
