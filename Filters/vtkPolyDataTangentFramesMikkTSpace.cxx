@@ -74,6 +74,7 @@ namespace
 {
 using mikk::CornerFrame;
 using vtkNormalMapping::detail::ParallelFor;
+using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
@@ -527,7 +528,7 @@ struct Assignment
   std::vector<long long> FirstCorner;  // per input point: its first corner, or kNoCorner
   std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
-  std::vector<std::pair<long long, vtkIdType>> Repoint; // (output corner, new point id)
+  std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
   vtkIdType Conflicts = 0;
   vtkIdType StripCornerConflicts = 0;
 };
@@ -758,35 +759,6 @@ void Assign(const Surface& s,
       a.Repoint.emplace_back(c, id);
     }
   }
-}
-
-/// Re-points the corners [begin, end) of Repoint that fall in this cell array (connectivity
-/// positions offset by `base`); returns the new cell array.
-vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
-  const std::vector<std::pair<long long, vtkIdType>>& repoint,
-  long long base,
-  long long size,
-  vtkIdType maxId)
-{
-  auto copy = vtkSmartPointer<vtkCellArray>::New();
-  copy->DeepCopy(cells);
-  if (!copy->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
-  {
-    copy->ConvertTo64BitStorage();
-  }
-  WithCellStorage(copy,
-    [&](auto*, auto* conn)
-    {
-      using IdT = typename std::remove_pointer<decltype(conn)>::type;
-      for (const auto& r : repoint)
-      {
-        if (r.first >= base && r.first < base + size)
-        {
-          conn[r.first - base] = static_cast<IdT>(r.second);
-        }
-      }
-    });
-  return copy;
 }
 
 template<typename OutArray>

@@ -148,71 +148,6 @@ inline V ScaleByPowerOfTwo(const V& v, int k)
   return v * PowerOfTwo(k);
 }
 
-/// atan(z) = z + z x Q(x) with x = z^2 on |z| <= tan(pi/8): the coefficients of Q, a minimax fit
-/// of degree 9 (scripts/atan_minimax.py: Remez exchange on the relative error of atan, in 60-digit
-/// decimal arithmetic) whose relative error, with the coefficients rounded to double, is below
-/// 3.6e-17, under double's rounding; evaluated in double, within 2.2e-16 of std::atan (measured).
-/// Evaluated by AtanOfReducedDouble, and its lane form AtanDoubleLanes. It replaced the Taylor
-/// series to z^25: an error of 2e-12.
-constexpr double AtanMinimaxDouble[10] = { -0.3333333333333015,
-  0.19999999999088963,
-  -0.1428571419526196,
-  0.1111110665361545,
-  -0.0909078241313454,
-  0.07690068309805519,
-  -0.06641121267638711,
-  0.05692539356211354,
-  -0.04359096199725628,
-  0.02125985465703717 };
-
-/// atan(z) for |z| <= tan(pi/8): z + (z x) Q(x) (AtanMinimaxDouble), with x = z^2 and Q in
-/// Estrin's order: pairs c[2i] + c[2i + 1] x, combined with x^2, x^4 and x^8. Its chain of
-/// dependent operations is 10 long against Horner's 21, which left the lane code (AtanDoubleLanes,
-/// the same operations) waiting on latency.
-inline double AtanOfReducedDouble(double z)
-{
-  const double* c = AtanMinimaxDouble;
-  const double x = z * z;
-  const double x2 = x * x;
-  const double x4 = x2 * x2;
-  const double x8 = x4 * x4;
-  const double low = (c[0] + c[1] * x) + (c[2] + c[3] * x) * x2;
-  const double high = (c[4] + c[5] * x) + (c[6] + c[7] * x) * x2;
-  const double q = (low + high * x4) + (c[8] + c[9] * x) * x8;
-  return z + (z * x) * q;
-}
-
-/// The constants of AngleFromSineCosine (the float path has its own, single::TanPiOver8 ...).
-constexpr double TanPiOver8 = 0.41421356237309504880;
-constexpr double PiOver4 = 0.78539816339744830962;
-constexpr double PiOver2 = 1.5707963267948966192;
-constexpr double Pi = 3.14159265358979323846;
-
-/**
- * atan2(s, c) for s >= 0, in [0, pi], without a library call: reduce to z = min/max in [0, 1],
- * then to |z'| <= tan(pi/8) with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and evaluate the
- * minimax polynomial AtanOfReducedDouble (relative error below 3.6e-17). Used for corner-angle
- * weights; TestTangentFrameKernels measures it against std::atan2.
- */
-inline double AngleFromSineCosine(double s, double c)
-{
-  const double ac = std::abs(c);
-  const bool steep = s > ac;
-  const double num = steep ? ac : s;
-  const double den = steep ? s : ac;
-  if (!(den > 0.0))
-  {
-    return 0.0;
-  }
-  // One division either way: (num - den) / (num + den) is (z - 1) / (z + 1) for z = num / den.
-  const bool reduce = num > TanPiOver8 * den;
-  const double z = reduce ? (num - den) / (num + den) : num / den;
-  const double base = reduce ? PiOver4 : 0.0;
-  double angle = base + AtanOfReducedDouble(z); // atan(num / den) in [0, pi/2]
-  angle = steep ? PiOver2 - angle : angle;
-  return c < 0.0 ? Pi - angle : angle;
-}
-
 /**
  * Interior angles from the edges e1 = p1 - p0, e2 = p2 - p0, e3 = p2 - p1 and
  * sine = |e1 x e2|: the two edges at any corner span the same parallelogram, so one cross
@@ -224,9 +159,9 @@ inline void CornerAnglesFromEdges(const glm::dvec3& e1,
   double sine,
   double angles[3])
 {
-  angles[0] = AngleFromSineCosine(sine, glm::dot(e1, e2));
-  angles[1] = AngleFromSineCosine(sine, -glm::dot(e1, e3));
-  angles[2] = AngleFromSineCosine(sine, glm::dot(e2, e3));
+  angles[0] = std::atan2(sine, glm::dot(e1, e2));
+  angles[1] = std::atan2(sine, -glm::dot(e1, e3));
+  angles[2] = std::atan2(sine, glm::dot(e2, e3));
 }
 
 inline bool IsFinite(const glm::dvec3& v)
@@ -364,9 +299,13 @@ inline double CornerWeight(TangentMethod method,
 /// The handedness a triangle gives at a corner whose shading normal is n: +1 when
 /// sign * cross(n, T) points along dP/dv. A triangle whose winding disagrees with n (flipped
 /// winding, inward normals) flips its orientation here.
+inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
+{
+  return glm::dot(n, triangleNormal) < 0.0 ? -orientation : orientation;
+}
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
-  return glm::dot(n, frame.Normal) < 0.0 ? -frame.Orientation : frame.Orientation;
+  return CornerSign(frame.Orientation, frame.Normal, n);
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.
