@@ -322,7 +322,7 @@ struct Links
 struct TriangleFrames
 {
   Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
-  Buffer<double> Normal;  // unit geometric normal, 3 per triangle; zero when degenerate
+  Buffer<double> Normal;  // TriangleFrame::Normal (winding normal, any length), 3 per triangle
   Buffer<double> Weight;  // the weights of the 3 corners
   Buffer<double> Area;
   Buffer<signed char> Orientation; // see TriangleFrame::Orientation
@@ -384,11 +384,10 @@ struct ComputeFrames
           double corner[3] = { 0.0, 0.0, 0.0 };
           const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
             p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-          const dvec3 unitNormal = SafeNormalize(f.Normal);
           for (int k = 0; k < 3; ++k)
           {
             out.Tangent[3 * t + k] = f.Tangent[k];
-            out.Normal[3 * t + k] = unitNormal[k];
+            out.Normal[3 * t + k] = f.Normal[k];
             out.Weight[3 * t + k] = vtkNormalMapping::CornerWeight(method, f, corner, k);
           }
           out.Area[t] = f.Area;
@@ -477,7 +476,8 @@ std::vector<dvec3> AreaWeightedNormals(const Triangles& tris,
         }
         for (vtkIdType t = tris.FirstTriangle(c); t < tris.FirstTriangle(c + 1); ++t)
         {
-          weighted[t] = frames.Area[t] * (cellNormals ? cellNormal : frames.NormalOf(t));
+          weighted[t] =
+            frames.Area[t] * (cellNormals ? cellNormal : SafeNormalize(frames.NormalOf(t)));
         }
       }
     });
@@ -649,7 +649,7 @@ void CellTangentArray(const Triangles& tris,
         for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
         {
           t += frames.Area[i] * frames.TangentOf(i);
-          n += frames.Area[i] * frames.NormalOf(i);
+          n += frames.Area[i] * SafeNormalize(frames.NormalOf(i));
         }
         const dvec3 unit = PerpendicularTangent(SafeNormalize(n), t);
         for (int k = 0; k < 3; ++k)
