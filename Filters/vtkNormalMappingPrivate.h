@@ -53,8 +53,8 @@ private:
  * vtkSMPTools::For(0, n, grain, f) (grain 0: the backend chooses), compiled once, in
  * vtkNormalMappingPrivate.cxx. The filters' parallel loops go through it, so that the SMP
  * backends' templates (sequential, STDThread and TBB in Debian's VTK) are instantiated once rather
- * than for every loop body, mesh type and output precision: they were most of the filters'
- * compile time. The cost is one indirect call per range a thread takes.
+ * than for every loop body. The cost is one indirect call per range a thread takes. The MikkTSpace
+ * kernel and its glue use it; vtkPolyDataTangentFrames.cxx calls vtkSMPTools::For directly.
  */
 void ParallelFor(vtkIdType n, vtkIdType grain, RangeFunction f);
 inline void ParallelFor(vtkIdType n, RangeFunction f)

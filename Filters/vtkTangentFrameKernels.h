@@ -2,8 +2,8 @@
  * @file   vtkTangentFrameKernels.h
  * @brief  The math of tangent frames, as free functions over GLM vectors.
  *
- * vtkPolyDataTangentFrames is a thin pipeline shell around these kernels; tests and users can
- * call them directly, without a pipeline. Everything is computed in double precision, whatever
+ * vtkPolyDataTangentFrames is a pipeline shell around these kernels; the tests call them directly,
+ * without a pipeline (private: not installed). Everything is computed in double precision, whatever
  * the precision of the stored data: every float input is exact in double, products of two floats
  * are exact, so the only rounding left is that of the stored coordinates themselves.
  *
