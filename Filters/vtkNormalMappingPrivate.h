@@ -85,7 +85,8 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
     return f(
       cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
   }
-  return f(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
+  return f(
+    cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
 }
 
 /**

@@ -215,9 +215,7 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
   {
     const bool inRange = WithCellStorage(cellArrays[kind],
       [&](const auto*, const auto* conn)
-      {
-        return IdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints);
-      });
+      { return IdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
     if (!inRange)
     {
       return false;
@@ -660,6 +658,118 @@ void CellTangentArray(const Triangles& tris,
     });
 }
 
+/**
+ * Every point's frame from its triangles, written to `out`: the frame of its one handedness, or
+ * on a mirror seam (kinds: Conflict) the +1 frame with splitting, else the heavier side's.
+ * Points with no usable triangle are only marked (kinds: Fallback).
+ */
+template<typename OutT>
+void GatherFrames(const Links& links,
+  const TriangleFrames& frames,
+  const dvec3* normals,
+  bool splitting,
+  const FrameArrays<OutT>& out,
+  PointKind* kinds)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(links.Start.size()) - 1,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        const PointSums s = SumPoint(links, frames, p, normals[p]);
+        if (!s.Has[0] && !s.Has[1])
+        {
+          kinds[p] = PointKind::Fallback;
+          continue;
+        }
+        int side = s.Has[0] ? 0 : 1;
+        kinds[p] = PointKind::Framed;
+        if (s.Has[0] && s.Has[1])
+        {
+          kinds[p] = PointKind::Conflict;
+          side = splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1;
+        }
+        out.Write(
+          p, normals[p], PerpendicularTangent(normals[p], s.Tangent[side]), side == 0 ? 1.0 : -1.0);
+      }
+    });
+}
+
+/// The points of one kind, in ascending order.
+std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints, PointKind kind)
+{
+  std::vector<vtkIdType> points;
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (kinds[p] == kind)
+    {
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
+/**
+ * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
+ * tangent plane, and their neighbours' majority sign (+1 when none).
+ */
+template<typename OutT>
+void FillFallbacks(const Triangles& tris,
+  const Links& links,
+  const dvec3* normals,
+  const PointKind* kinds,
+  const std::vector<vtkIdType>& fallbacks,
+  const FrameArrays<OutT>& out)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(fallbacks.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = fallbacks[i];
+        dvec3 sum(0.0);
+        int votes = 0;
+        links.ForEach(p,
+          [&](vtkIdType t, int)
+          {
+            for (int m = 0; m < 3; ++m)
+            {
+              const vtkIdType q = tris.Ids[3 * t + m];
+              if (q != p && kinds[q] != PointKind::Fallback)
+              {
+                sum += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
+                votes += out.Signs[q] < 0 ? -1 : 1;
+              }
+            }
+          });
+        out.Write(p, normals[p], PerpendicularTangent(normals[p], sum), votes < 0 ? -1.0 : 1.0);
+      }
+    });
+}
+
+/// The -1 frames of the seam points, for their copies.
+std::vector<SplitPoint> SplitFrames(const Links& links,
+  const TriangleFrames& frames,
+  const dvec3* normals,
+  const std::vector<vtkIdType>& conflicts)
+{
+  std::vector<SplitPoint> splits(conflicts.size());
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(conflicts.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = conflicts[i];
+        const PointSums s = SumPoint(links, frames, p, normals[p]);
+        splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
+      }
+    });
+  return splits;
+}
+
 /// Machine epsilon of the type an array stores.
 double Epsilon(vtkDataArray* array)
 {
@@ -744,6 +854,27 @@ struct vtkPolyDataTangentFrames::Internals
   int Run();
   template<typename OutT>
   int RunWeighted(vtkSmartPointer<OutArray<OutT>> computedNormals, const dvec3* normals);
+
+  /// The split points' -1 frames, written after the input points, and the cells on their
+  /// mirrored side re-pointed to them in the output.
+  template<typename OutT>
+  void AppendSplitFrames(const std::vector<SplitPoint>& splits, const FrameArrays<OutT>& out)
+  {
+    const vtkIdType numSplits = static_cast<vtkIdType>(splits.size());
+    for (vtkIdType i = 0; i < numSplits; ++i)
+    {
+      out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
+    }
+    const auto repoint =
+      MirroredCorners(this->Cells, this->Tris, *this->Frames, splits, this->NumberOfPoints);
+    const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
+    const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
+    const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;
+    this->Output->SetPolys(
+      vtkNormalMapping::detail::RepointCells(this->Cells[0], repoint, 0, polySize, maxId));
+    this->Output->SetStrips(
+      vtkNormalMapping::detail::RepointCells(this->Cells[1], repoint, polySize, stripSize, maxId));
+  }
 };
 
 template<typename OutT>
@@ -842,8 +973,9 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
   const vtkIdType numPoints = this->NumberOfPoints;
   const Links& links = *this->PointLinks;
   const TriangleFrames& frames = *this->Frames;
-  self->NumberOfDegenerateTriangles += std::count(
-    frames.Orientation.get(), frames.Orientation.get() + this->Tris.Count, static_cast<signed char>(0));
+  self->NumberOfDegenerateTriangles += std::count(frames.Orientation.get(),
+    frames.Orientation.get() + this->Tris.Count,
+    static_cast<signed char>(0));
 
   auto tangents = NewArray<OutT>(TangentsArrayName(), 3, numPoints);
   auto signs = NewArray<OutT>(SignsArrayName(), 1, numPoints);
@@ -859,105 +991,21 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
       bitangents ? bitangents->GetPointer(0) : nullptr };
   };
 
-  // Every point's frame from its triangles; conflicts and fallbacks marked.
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  const bool splitting = self->Splitting;
-  {
-    const FrameArrays<OutT> out = frameArrays();
-    vtkSMPTools::For(0,
-      numPoints,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType p = begin; p < end; ++p)
-        {
-          const PointSums s = SumPoint(links, frames, p, normals[p]);
-          if (!s.Has[0] && !s.Has[1])
-          {
-            kinds[p] = PointKind::Fallback;
-            continue;
-          }
-          int side = s.Has[0] ? 0 : 1;
-          kinds[p] = PointKind::Framed;
-          if (s.Has[0] && s.Has[1])
-          {
-            kinds[p] = PointKind::Conflict;
-            side = splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1;
-          }
-          out.Write(p,
-            normals[p],
-            PerpendicularTangent(normals[p], s.Tangent[side]),
-            side == 0 ? 1.0 : -1.0);
-        }
-      });
-  }
-  std::vector<vtkIdType> conflicts, fallbacks;
-  for (vtkIdType p = 0; p < numPoints; ++p)
-  {
-    if (kinds[p] == PointKind::Conflict)
-    {
-      conflicts.push_back(p);
-    }
-    else if (kinds[p] == PointKind::Fallback)
-    {
-      fallbacks.push_back(p);
-    }
-  }
+  GatherFrames(links, frames, normals, self->Splitting, frameArrays(), kinds.get());
+  const std::vector<vtkIdType> conflicts =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
+  const std::vector<vtkIdType> fallbacks =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
   self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());
   self->NumberOfFallbackPoints += static_cast<vtkIdType>(fallbacks.size());
   if (!this->Continue(0.7))
   {
     return 1;
   }
-
-  // Fallback points: the mean of their framed neighbours' tangents on their own tangent plane,
-  // and their neighbours' majority sign (+1 when none).
-  {
-    const FrameArrays<OutT> out = frameArrays();
-    vtkSMPTools::For(0,
-      static_cast<vtkIdType>(fallbacks.size()),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          const vtkIdType p = fallbacks[i];
-          dvec3 sum(0.0);
-          int votes = 0;
-          links.ForEach(p,
-            [&](vtkIdType t, int)
-            {
-              for (int m = 0; m < 3; ++m)
-              {
-                const vtkIdType q = this->Tris.Ids[3 * t + m];
-                if (q != p && kinds[q] != PointKind::Fallback)
-                {
-                  sum += dvec3(
-                    out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
-                  votes += out.Signs[q] < 0 ? -1 : 1;
-                }
-              }
-            });
-          out.Write(p, normals[p], PerpendicularTangent(normals[p], sum), votes < 0 ? -1.0 : 1.0);
-        }
-      });
-  }
-
-  // Split points: the -1 frames of the seam points, for their copies.
-  std::vector<SplitPoint> splits;
-  if (splitting)
-  {
-    splits.resize(conflicts.size());
-    vtkSMPTools::For(0,
-      static_cast<vtkIdType>(conflicts.size()),
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType i = begin; i < end; ++i)
-        {
-          const vtkIdType p = conflicts[i];
-          const PointSums s = SumPoint(links, frames, p, normals[p]);
-          splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
-        }
-      });
-  }
+  FillFallbacks(this->Tris, links, normals, kinds.get(), fallbacks, frameArrays());
+  const std::vector<SplitPoint> splits =
+    self->Splitting ? SplitFrames(links, frames, normals, conflicts) : std::vector<SplitPoint>();
   if (!this->Continue(0.85))
   {
     return 1;
@@ -966,13 +1014,12 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
   // Output: the input with the split points appended and their mirrored corners re-pointed.
   vtkPolyData* input = this->Input;
   vtkPolyData* output = this->Output;
-  const vtkIdType numSplits = static_cast<vtkIdType>(splits.size());
-  self->NumberOfSplitPoints += numSplits;
+  self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
   std::vector<vtkIdType> splitSource(splits.size());
   std::transform(
     splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
   vtkNormalMapping::detail::CopyWithAppendedPoints(input, output, splitSource);
-  if (numSplits > 0)
+  if (!splits.empty())
   {
     if (computedNormals)
     {
@@ -983,22 +1030,11 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
     {
       if (array)
       {
-        array->Resize(numPoints + numSplits);
-        array->SetNumberOfTuples(numPoints + numSplits);
+        array->Resize(numPoints + static_cast<vtkIdType>(splits.size()));
+        array->SetNumberOfTuples(numPoints + static_cast<vtkIdType>(splits.size()));
       }
     }
-    const FrameArrays<OutT> out = frameArrays();
-    for (vtkIdType i = 0; i < numSplits; ++i)
-    {
-      out.Write(numPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
-    }
-    const auto repoint = MirroredCorners(this->Cells, this->Tris, frames, splits, numPoints);
-    const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
-    const vtkIdType maxId = numPoints + numSplits - 1;
-    output->SetPolys(
-      vtkNormalMapping::detail::RepointCells(this->Cells[0], repoint, 0, polySize, maxId));
-    output->SetStrips(vtkNormalMapping::detail::RepointCells(
-      this->Cells[1], repoint, polySize, this->Cells[1]->GetNumberOfConnectivityIds(), maxId));
+    this->AppendSplitFrames(splits, frameArrays());
   }
   vtkPointData* outPD = output->GetPointData();
   if (computedNormals)
@@ -1146,10 +1182,8 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
       continue;
     }
     vtkNew<vtkPolyData> output;
-    this->ExecuteBlock(input,
-      output,
-      static_cast<double>(leaf) / leaves,
-      static_cast<double>(leaf + 1) / leaves);
+    this->ExecuteBlock(
+      input, output, static_cast<double>(leaf) / leaves, static_cast<double>(leaf + 1) / leaves);
     outComposite->SetDataSet(it, output);
   }
   return 1;
@@ -1178,9 +1212,9 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
       CellArrayProblem(cellArrays[a].second, shortCells[a], trianglesOnly[a]);
     if (!problem.empty())
     {
-      vtkErrorMacro("Cannot compute tangent frames: the "
-        << cellArrays[a].first << " cell array is malformed: " << problem
-        << "; passing the input through.");
+      vtkErrorMacro("Cannot compute tangent frames: the " << cellArrays[a].first
+                                                          << " cell array is malformed: " << problem
+                                                          << "; passing the input through.");
       return passThrough();
     }
   }

@@ -173,8 +173,9 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  vtkTypeBool ProcessRequest(
-    vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  vtkTypeBool ProcessRequest(vtkInformation*,
+    vtkInformationVector**,
+    vtkInformationVector*) override;
   /// The output: polydata for polydata input, the input's own type for composite input.
   virtual int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -199,8 +200,10 @@ private:
 
   /// Frames for one polydata; adds to the counts. Progress goes from progressBegin to
   /// progressEnd.
-  int ExecuteBlock(
-    vtkPolyData* input, vtkPolyData* output, double progressBegin, double progressEnd);
+  int ExecuteBlock(vtkPolyData* input,
+    vtkPolyData* output,
+    double progressBegin,
+    double progressEnd);
 
   struct Internals;
   friend struct Internals;

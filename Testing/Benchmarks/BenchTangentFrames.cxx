@@ -517,7 +517,8 @@ std::vector<PairingMesh> PairingMeshes(bool smoke, std::string& note)
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputConnection(torusSource->GetOutputPort());
   triangles->Update();
-  meshes.push_back({ "vtkParametricTorus " + resolution + ", triangulated", triangles->GetOutput() });
+  meshes.push_back(
+    { "vtkParametricTorus " + resolution + ", triangulated", triangles->GetOutput() });
 
   std::string lookedFor;
   const std::string shared = NormalMappingTestData::FindSharedData(&lookedFor);
@@ -545,7 +546,8 @@ std::vector<PairingMesh> PairingMeshes(bool smoke, std::string& note)
   }
   if (!largest.Mesh)
   {
-    note = "Skipped: no glTF model with normals and texture coordinates in " + folder.string() + ".";
+    note =
+      "Skipped: no glTF model with normals and texture coordinates in " + folder.string() + ".";
     return meshes;
   }
   meshes.push_back(largest);

@@ -113,11 +113,9 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
   image->SetDimensions(2, 2, 2);
   vtkNew<vtkPolyData> empty;
 
-  const std::vector<vtkSmartPointer<vtkPolyData>> polyBlocks = { Torus(true, 16),
-    Torus(true, 12),
-    degenerate,
-    empty,
-    Torus(false, 10) };
+  const std::vector<vtkSmartPointer<vtkPolyData>> polyBlocks = {
+    Torus(true, 16), Torus(true, 12), degenerate, empty, Torus(false, 10)
+  };
   vtkNew<vtkMultiBlockDataSet> inner;
   inner->SetNumberOfBlocks(3);
   inner->SetBlock(0, polyBlocks[1]);
