@@ -64,6 +64,10 @@ void ExpectSameArray(vtkDataArray* a, vtkDataArray* b, const char* name)
   }
   ASSERT_EQ(a->GetDataType(), b->GetDataType()) << name;
   ASSERT_EQ(a->GetNumberOfValues(), b->GetNumberOfValues()) << name;
+  if (a->GetNumberOfValues() == 0)
+  {
+    return; // an empty array may have no storage at all
+  }
   EXPECT_EQ(0,
     std::memcmp(a->GetVoidPointer(0),
       b->GetVoidPointer(0),
