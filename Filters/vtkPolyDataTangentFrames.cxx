@@ -37,12 +37,16 @@
  * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
  * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order, and
  *    every point gets the list of its triangle corners in that order (the links).
- * 2. Every triangle gets its frame (ComputeTriangleFrame) and its three corner weights.
- * 3. Every point sums, through its links, the weighted tangents of its triangles per handedness,
+ * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
+ *    input has none) the area-weighted sum of its triangles' normals, through the links.
+ * 3. Every triangle gets its frame (ComputeTriangleFrame) and, per corner, its weight signed
+ *    with the handedness it gives that corner's point (the triangle's orientation, flipped where
+ *    its winding disagrees with the point's normal).
+ * 4. Every point sums, through its links, the weighted tangents of its triangles per handedness,
  *    then takes the frame of its one handedness, or on a mirror seam the +1 frame (the -1 frame
  *    goes to the point's copy) or the heavier side. Because each point adds its triangles in
  *    triangle order, the output is bit-identical for any number of threads.
- * 4. Points without a usable triangle take their neighbours' frames; split points are appended
+ * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
 
@@ -320,17 +324,20 @@ struct Links
 struct TriangleFrames
 {
   Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
-  Buffer<double> Normal;  // TriangleFrame::Normal (winding normal, any length), 3 per triangle
-  Buffer<double> Weight;  // the weights of the 3 corners
+  /**
+   * Per corner, its weight with the handedness the triangle gives it (CornerSign with the
+   * corner point's shading normal) as its sign; zero without a frame.
+   */
+  Buffer<double> SignedWeight;
+  /// Only for cell tangents (else null): the winding normal (3 per triangle) and the area.
+  Buffer<double> Normal;
   Buffer<double> Area;
-  Buffer<signed char> Orientation; // see TriangleFrame::Orientation
 
-  explicit TriangleFrames(vtkIdType n)
+  TriangleFrames(vtkIdType n, bool cellTangents)
     : Tangent(new double[3 * n])
-    , Normal(new double[3 * n])
-    , Weight(new double[3 * n])
-    , Area(new double[n])
-    , Orientation(new signed char[n])
+    , SignedWeight(new double[3 * n])
+    , Normal(cellTangents ? new double[3 * n] : nullptr)
+    , Area(cellTangents ? new double[n] : nullptr)
   {
   }
   dvec3 TangentOf(vtkIdType t) const
@@ -341,28 +348,26 @@ struct TriangleFrames
   {
     return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
   }
-  /// The handedness triangle t gives a corner whose shading normal is n (0 without a frame).
-  int SignAt(vtkIdType t, const dvec3& n) const
-  {
-    return vtkNormalMapping::CornerSign(this->Orientation[t], this->NormalOf(t), n);
-  }
+  bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
 };
 
-/// Frames and corner weights of every triangle, for any point and texture coordinate arrays.
-struct ComputeFrames
+/**
+ * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
+ * angles when asked for), in parallel, for any point and texture coordinate arrays.
+ */
+struct VisitTriangleFrames
 {
-  template<typename PointArray, typename UVArray>
+  template<typename PointArray, typename UVArray, typename Visit>
   void operator()(PointArray* pointArray,
     UVArray* uvArray,
     const Triangles& tris,
-    TangentMethod method,
     const DegeneracyTolerance& tol,
-    TriangleFrames& out) const
+    bool angles,
+    const Visit& visit) const
   {
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
-    const bool angles = method == TangentMethod::AngleWeighted;
     vtkSMPTools::For(0,
       tris.Count,
       [&](vtkIdType begin, vtkIdType end)
@@ -382,14 +387,7 @@ struct ComputeFrames
           double corner[3] = { 0.0, 0.0, 0.0 };
           const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
             p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-          for (int k = 0; k < 3; ++k)
-          {
-            out.Tangent[3 * t + k] = f.Tangent[k];
-            out.Normal[3 * t + k] = f.Normal[k];
-            out.Weight[3 * t + k] = vtkNormalMapping::CornerWeight(method, f, corner, k);
-          }
-          out.Area[t] = f.Area;
-          out.Orientation[t] = f.Orientation;
+          visit(t, f, corner);
         }
       });
   }
@@ -448,37 +446,12 @@ vtkIdType ComputeUnitNormals(vtkDataArray* normals, dvec3* out, vtkIdType n)
 
 /**
  * Smooth point normals: per point the sum, in triangle order, of its triangles' area-weighted
- * unit normals (the geometric ones, or the cells' normals when given), normalized; `empty` for
- * points with no area.
+ * unit normals (`weighted`), normalized; `empty` for points with no area.
  */
-std::vector<dvec3> AreaWeightedNormals(const Triangles& tris,
-  const Links& links,
-  const TriangleFrames& frames,
-  vtkDataArray* cellNormals,
-  vtkIdType firstSurfaceCell,
+std::vector<dvec3> AreaWeightedNormals(const Links& links,
+  const std::vector<dvec3>& weighted,
   const dvec3& empty)
 {
-  std::vector<dvec3> weighted(static_cast<size_t>(tris.Count));
-  vtkSMPTools::For(0,
-    tris.NumberOfCells,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType c = begin; c < end; ++c)
-      {
-        dvec3 cellNormal(0.0);
-        if (cellNormals)
-        {
-          double n[3];
-          cellNormals->GetTuple(firstSurfaceCell + c, n);
-          cellNormal = SafeNormalize(dvec3(n[0], n[1], n[2]));
-        }
-        for (vtkIdType t = tris.FirstTriangle(c); t < tris.FirstTriangle(c + 1); ++t)
-        {
-          weighted[t] =
-            frames.Area[t] * (cellNormals ? cellNormal : SafeNormalize(frames.NormalOf(t)));
-        }
-      }
-    });
   std::vector<dvec3> normals(links.Start.size() - 1);
   vtkSMPTools::For(0,
     static_cast<vtkIdType>(normals.size()),
@@ -500,27 +473,27 @@ struct PointSums
 {
   dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
   double Weight[2] = { 0.0, 0.0 };
-  /// Whether a corner with a positive weight has this handedness.
+  /// Whether a corner of positive weight has this handedness.
   bool Has[2] = { false, false };
 };
 
-/// The sums of point p with shading normal n over its triangles, in triangle order.
-PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p, const dvec3& n)
+/// The sums of point p over its triangles, in triangle order.
+PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p)
 {
   PointSums s;
   links.ForEach(p,
     [&](vtkIdType t, int k)
     {
-      const int sign = frames.SignAt(t, n);
-      if (sign == 0)
+      const double signedWeight = frames.SignedWeight[3 * t + k];
+      if (signedWeight == 0.0)
       {
         return;
       }
-      const int side = sign > 0 ? 0 : 1;
-      const double w = frames.Weight[3 * t + k];
+      const int side = signedWeight > 0.0 ? 0 : 1;
+      const double w = std::abs(signedWeight);
       s.Tangent[side] += w * frames.TangentOf(t);
       s.Weight[side] += w;
-      s.Has[side] = s.Has[side] || w > 0.0;
+      s.Has[side] = true;
     });
   return s;
 }
@@ -568,6 +541,20 @@ struct SplitPoint
   dvec3 Tangent;
 };
 
+/// The handedness (+1, -1, or 0 without a frame or weight) triangle t gives its corner at point id.
+int CornerHandedness(const Triangles& tris, const TriangleFrames& frames, vtkIdType t, vtkIdType id)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (tris.Ids[3 * t + k] == id)
+    {
+      const double w = frames.SignedWeight[3 * t + k];
+      return w > 0.0 ? 1 : (w < 0.0 ? -1 : 0);
+    }
+  }
+  return 0;
+}
+
 /**
  * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
  * copy id), polygon positions first, then strip positions after the polygons' connectivity.
@@ -611,7 +598,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
             int vote = 0;
             for (vtkIdType j = first; j <= last; ++j)
             {
-              vote += frames.SignAt(firstTriangle + j, it->Normal);
+              vote += CornerHandedness(tris, frames, firstTriangle + j, id);
             }
             if (vote < 0)
             {
@@ -677,7 +664,7 @@ void GatherFrames(const Links& links,
     {
       for (vtkIdType p = begin; p < end; ++p)
       {
-        const PointSums s = SumPoint(links, frames, p, normals[p]);
+        const PointSums s = SumPoint(links, frames, p);
         if (!s.Has[0] && !s.Has[1])
         {
           kinds[p] = PointKind::Fallback;
@@ -763,7 +750,7 @@ std::vector<SplitPoint> SplitFrames(const Links& links,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = conflicts[i];
-        const PointSums s = SumPoint(links, frames, p, normals[p]);
+        const PointSums s = SumPoint(links, frames, p);
         splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
       }
     });
@@ -825,8 +812,8 @@ struct vtkPolyDataTangentFrames::Internals
     return true;
   }
 
-  /// Triangles, links and triangle frames; false after an error (input passed through).
-  bool Prepare(TangentMethod method)
+  /// Triangles and links; false after an error (input passed through).
+  bool Prepare()
   {
     if (!BuildTriangles(this->Cells, this->PolysAreTriangles, this->NumberOfPoints, this->Tris))
     {
@@ -837,17 +824,87 @@ struct vtkPolyDataTangentFrames::Internals
       return false;
     }
     this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
-    this->Frames.reset(new TriangleFrames(this->Tris.Count));
+    return true;
+  }
+
+  /// visit(t, frame, angles) for every triangle (VisitTriangleFrames).
+  template<typename Visit>
+  void VisitFrames(bool angles, const Visit& visit)
+  {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
     DispatchReals2(this->Input->GetPoints()->GetData(),
       this->UVs,
-      ComputeFrames(),
+      VisitTriangleFrames(),
       this->Tris,
-      method,
       tol,
-      *this->Frames);
-    return true;
+      angles,
+      visit);
+  }
+
+  /**
+   * Smooth area-weighted point normals from the triangles' geometric normals, or from the
+   * input's cell normals when given; `empty` where a point has no area.
+   */
+  std::vector<dvec3> SmoothNormals(vtkDataArray* cellNormals, const dvec3& empty)
+  {
+    std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
+    std::vector<double> area(cellNormals ? weighted.size() : 0);
+    this->VisitFrames(false,
+      [&](vtkIdType t, const TriangleFrame& f, const double*)
+      {
+        weighted[t] = f.Area * SafeNormalize(f.Normal);
+        if (cellNormals)
+        {
+          area[t] = f.Area;
+        }
+      });
+    if (cellNormals)
+    {
+      vtkSMPTools::For(0,
+        this->Tris.NumberOfCells,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType c = begin; c < end; ++c)
+          {
+            double n[3];
+            cellNormals->GetTuple(this->FirstSurfaceCell + c, n);
+            const dvec3 cellNormal = SafeNormalize(dvec3(n[0], n[1], n[2]));
+            for (vtkIdType t = this->Tris.FirstTriangle(c); t < this->Tris.FirstTriangle(c + 1);
+                 ++t)
+            {
+              weighted[t] = area[t] * cellNormal;
+            }
+          }
+        });
+    }
+    return AreaWeightedNormals(*this->PointLinks, weighted, empty);
+  }
+
+  /// The frames pass: tangents and signed corner weights with the points' shading normals.
+  void ComputeFrames(TangentMethod method, const dvec3* normals, bool cellTangents)
+  {
+    this->Frames.reset(new TriangleFrames(this->Tris.Count, cellTangents));
+    TriangleFrames& out = *this->Frames;
+    const vtkIdType* ids = this->Tris.Ids;
+    this->VisitFrames(method == TangentMethod::AngleWeighted,
+      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const int sign = vtkNormalMapping::CornerSign(f, normals[ids[3 * t + k]]);
+          out.Tangent[3 * t + k] = f.Tangent[k];
+          out.SignedWeight[3 * t + k] = sign * vtkNormalMapping::CornerWeight(method, f, angles, k);
+        }
+        if (out.Area)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            out.Normal[3 * t + k] = f.Normal[k];
+          }
+          out.Area[t] = f.Area;
+        }
+      });
   }
 
   template<typename OutT>
@@ -901,19 +958,14 @@ int vtkPolyDataTangentFrames::Internals::Run()
   }
   if (!mikkTSpace || !this->Normals)
   {
-    if (!this->Prepare(method) || !this->Continue(0.3))
+    if (!this->Prepare() || !this->Continue(0.2))
     {
       return 1;
     }
   }
   if (!this->Normals)
   {
-    const std::vector<dvec3> smooth = AreaWeightedNormals(this->Tris,
-      *this->PointLinks,
-      *this->Frames,
-      this->CellNormals,
-      this->FirstSurfaceCell,
-      dvec3(0.0, 0.0, 1.0));
+    const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
     computedNormals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
     OutT* out = computedNormals->GetPointer(0);
     for (size_t p = 0; p < smooth.size(); ++p)
@@ -928,8 +980,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
   }
   else if (unusable > 0 && !mikkTSpace)
   {
-    const std::vector<dvec3> geometric =
-      AreaWeightedNormals(this->Tris, *this->PointLinks, *this->Frames, nullptr, 0, dvec3(0.0));
+    const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
     for (vtkIdType p = 0; p < this->NumberOfPoints; ++p)
     {
       normals[p] = normals[p] == dvec3(0.0) ? geometric[p] : normals[p];
@@ -957,6 +1008,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
     self->NumberOfSplitPoints += counts.SplitPoints;
     return result;
   }
+  this->ComputeFrames(method, normals.get(), self->ComputeCellTangents);
   if (!this->Continue(0.4))
   {
     return 1;
@@ -973,9 +1025,10 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
   const vtkIdType numPoints = this->NumberOfPoints;
   const Links& links = *this->PointLinks;
   const TriangleFrames& frames = *this->Frames;
-  self->NumberOfDegenerateTriangles += std::count(frames.Orientation.get(),
-    frames.Orientation.get() + this->Tris.Count,
-    static_cast<signed char>(0));
+  for (vtkIdType t = 0; t < this->Tris.Count; ++t)
+  {
+    self->NumberOfDegenerateTriangles += frames.HasFrame(t) ? 0 : 1;
+  }
 
   auto tangents = NewArray<OutT>(TangentsArrayName(), 3, numPoints);
   auto signs = NewArray<OutT>(SignsArrayName(), 1, numPoints);
