@@ -8,29 +8,23 @@ set(_nm_classes
   Rendering/vtkNormalMapObjectFactory
   Rendering/vtkNormalMapPolyDataMapper)
 # Installed, but not wrapped for Python: VTK 9.1's wrappers wrap only classes, and only enums and
-# constants of namespaces, so these free functions over GLM vectors and plain structs would give
-# nothing usable (and the kernels header would make the wrapper parse GLM).
+# constants of namespaces, so these free functions and plain structs would give nothing usable.
 set(_nm_nowrap_headers
   Filters/vtkMikkTSpaceKernel.h
-  Filters/vtkTangentFrameKernels.h
   Filters/vtkNormalMappingMeshes.h)
-# vtkPolyDataTangentFrames' execution is instantiated for float and double output in two
-# translation units of their own (RunFloat, RunDouble), which compile in parallel.
 set(_nm_sources
   Filters/vtkMikkTSpaceKernel.cxx
   Filters/vtkNormalMappingMeshes.cxx
   Filters/vtkNormalMappingPrivate.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
-  Filters/vtkPolyDataTangentFramesRunDouble.cxx
-  Filters/vtkPolyDataTangentFramesRunFloat.cxx
   Rendering/vtkNormalMapShading.cxx)
+# Not installed. vtkTangentFrameKernels.h (the math, over GLM vectors) is reachable from the
+# build tree, so that the tests call its functions directly.
 set(_nm_private_headers
   Filters/vtkNormalMappingHugePages.h
   Filters/vtkNormalMappingPrivate.h
-  Filters/vtkPolyDataTangentFramesInternals.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
-  Filters/vtkTangentFrameBatch.h
-  Filters/vtkTangentFrameLanes.h
+  Filters/vtkTangentFrameKernels.h
   Rendering/vtkNormalMapShading.h)
 
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
@@ -62,6 +56,6 @@ vtk_module_include(VTK::NormalMapping
   PUBLIC
     "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>"
     "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Rendering>")
-# The kernels header (installed, callable from tests and users) is written with GLM.
-vtk_module_link(VTK::NormalMapping PUBLIC glm::glm)
+# GLM is a private detail of the filters; tests that include the kernels header link it themselves.
+vtk_module_link(VTK::NormalMapping PRIVATE glm::glm)
 vtk_module_compile_features(VTK::NormalMapping PUBLIC cxx_std_17)

@@ -18,6 +18,7 @@
 #include "vtkType.h"
 
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace vtkNormalMapping
@@ -52,8 +53,8 @@ private:
  * vtkSMPTools::For(0, n, grain, f) (grain 0: the backend chooses), compiled once, in
  * vtkNormalMappingPrivate.cxx. The filters' parallel loops go through it, so that the SMP
  * backends' templates (sequential, STDThread and TBB in Debian's VTK) are instantiated once rather
- * than for every loop body, mesh type and output precision: they were most of the filters'
- * compile time. The cost is one indirect call per range a thread takes.
+ * than for every loop body. The cost is one indirect call per range a thread takes. The MikkTSpace
+ * kernel and its glue use it; vtkPolyDataTangentFrames.cxx calls vtkSMPTools::For directly.
  */
 void ParallelFor(vtkIdType n, vtkIdType grain, RangeFunction f);
 inline void ParallelFor(vtkIdType n, RangeFunction f)
@@ -68,54 +69,24 @@ inline vtkIdType ChunkCount(vtkIdType n, vtkIdType size)
 }
 
 /**
- * f(chunk, begin, end) for each of the ChunkCount(n, size) ranges [chunk size, ...) of [0, n), in
- * parallel: for results kept per chunk (in a vector of ChunkCount entries, combined in chunk order
- * afterwards) instead of per thread. Constructing a vtkSMPThreadLocal asks
- * std::thread::hardware_concurrency for the CPU count, which glibc 2.36 answers by opening and
- * reading /sys/devices/system/cpu/online every time: the seven thread-local objects an Update of
- * vtkPolyDataTangentFrames made cost 35-40 us, a quarter of an Update of 10K triangles.
- */
-template<typename F>
-void ParallelChunks(vtkIdType n, vtkIdType size, F&& f)
-{
-  ParallelFor(ChunkCount(n, size),
-    1,
-    [&](vtkIdType first, vtkIdType last)
-    {
-      for (vtkIdType chunk = first; chunk < last; ++chunk)
-      {
-        const vtkIdType begin = chunk * size;
-        f(chunk, begin, n - begin < size ? n : begin + size);
-      }
-    });
-}
-
-/**
  * The number of threads ParallelFor can use from here: 1 inside a vtkSMPTools parallel scope
  * with nested parallelism turned off (VTK then runs the inner loops serially, on the calling
- * thread), else vtkSMPTools' estimate. The filters split their work for this many threads:
- * splitting for more than run it only adds work. Measured with nested parallelism off: two
- * 1M-triangle tori updated inside one vtkSMPTools::For, one per thread, took 14.0-15.8 ms per
- * pair of Updates (median of 6 runs 14.3) with the scan in one block, 15.8-17.7 (15.95) in the 8
- * blocks of two threads. VTK 9.1's TBB and STDThread backends nest by default, and then nothing
- * changes. The scope can begin or end on another thread meanwhile: the output does not depend on
- * the split, only the speed.
+ * thread), else vtkSMPTools' estimate.
  */
 int UsableThreads();
 
-/// Calls f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit),
+/// Returns f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit),
 /// so that cells are read without a virtual call per cell.
 template<typename F>
-void WithCellStorage(vtkCellArray* cells, F&& f)
+decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
 {
   if (cells->IsStorage64Bit())
   {
-    f(cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
+    return f(
+      cells->GetOffsetsArray64()->GetPointer(0), cells->GetConnectivityArray64()->GetPointer(0));
   }
-  else
-  {
-    f(cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
-  }
+  return f(
+    cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
 }
 
 /**
@@ -182,6 +153,17 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
     }
   }
 }
+
+/**
+ * A copy of `cells` whose connectivity positions [base, base + size) listed in `repoint`
+ * (position, new point id) refer to the new ids: the corners of split points that move to the
+ * points' copies. 64-bit storage when maxId does not fit in 32 bits.
+ */
+vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
+  const std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
+  vtkIdType base,
+  vtkIdType size,
+  vtkIdType maxId);
 }
 }
 

@@ -1,10 +1,68 @@
-#include "vtkPolyDataTangentFramesInternals.h"
+#include "vtkPolyDataTangentFrames.h"
+
+#include "vtkNormalMappingPrivate.h"
+#include "vtkPolyDataTangentFramesMikkTSpace.h"
+#include "vtkTangentFrameKernels.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDemandDrivenPipeline.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+/*
+ * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
+ * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order, and
+ *    every point gets the list of its triangle corners in that order (the links).
+ * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
+ *    input has none) the area-weighted sum of its triangles' normals, through the links.
+ * 3. Every triangle gets its frame (ComputeTriangleFrame) and, per corner, its weight signed
+ *    with the handedness it gives that corner's point (the triangle's orientation, flipped where
+ *    its winding disagrees with the point's normal).
+ * 4. Every point sums, through its links, the weighted tangents of its triangles per handedness,
+ *    then takes the frame of its one handedness, or on a mirror seam the +1 frame (the -1 frame
+ *    goes to the point's copy) or the heavier side. Because each point adds its triangles in
+ *    triangle order, the output is bit-identical for any number of threads.
+ * 5. Points without a usable triangle take their neighbours' frames; split points are appended
+ *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
+ */
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
 
 namespace
 {
-using namespace vtkNormalMapping::frames;
+using glm::dvec2;
+using glm::dvec3;
+using vtkNormalMapping::CornerSign;
+using vtkNormalMapping::DegeneracyTolerance;
+using vtkNormalMapping::PerpendicularTangent;
+using vtkNormalMapping::SafeNormalize;
+using vtkNormalMapping::TangentMethod;
+using vtkNormalMapping::TriangleFrame;
+using vtkNormalMapping::detail::WithCellStorage;
 
 /// Checks a numeric point array: exists, numeric, long enough.
 vtkDataArray* NumericPointArray(vtkPolyData* input,
@@ -38,10 +96,10 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
  * Why a cell array cannot be read safely, or an empty string when it can: single-component
  * offsets and connectivity, at least one offset, the first 0, none smaller than the one before
  * it (a negative cell size), the last equal to the connectivity size (no cell reaches past it).
- * VTK's vtkCellArray::SetData accepts any arrays; the readers below rely on all of this.
- * `sizes` gets the array's cell sizes, in the same pass.
+ * VTK's vtkCellArray::SetData accepts any arrays; everything below relies on this. `shortCells`
+ * gets the number of cells with fewer than 3 points, `trianglesOnly` whether all have 3.
  */
-std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
+std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& trianglesOnly)
 {
   if (cells->GetOffsetsArray()->GetNumberOfComponents() != 1 ||
     cells->GetConnectivityArray()->GetNumberOfComponents() != 1)
@@ -63,55 +121,17 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // Sizes as unsigned differences and sign bits only (no branch), so that the compiler
-      // vectorizes the pass: the sign bit of n is set for a negative size, that of n - 3 for a
-      // size below 3, and that of d | -d for d = n - 3 != 0. In parallel ranges: the pass reads
-      // 8 bytes per cell and is memory-bound.
-      struct Counts
+      for (vtkIdType c = 0; c < numCells; ++c)
       {
-        std::uint64_t Negative = 0, Below3 = 0, NotThree = 0;
-      };
-      constexpr vtkIdType grain = 1 << 16;
-      std::vector<Counts> chunks(
-        static_cast<size_t>(vtkNormalMapping::detail::ChunkCount(numCells, grain)));
-      vtkNormalMapping::detail::ParallelChunks(numCells,
-        grain,
-        [&](vtkIdType chunk, vtkIdType begin, vtkIdType end)
+        if (offsets[c + 1] < offsets[c])
         {
-          std::uint64_t negative = 0, below3 = 0, notThree = 0;
-          for (vtkIdType c = begin; c < end; ++c)
-          {
-            const std::uint64_t n =
-              static_cast<std::uint64_t>(static_cast<std::int64_t>(offsets[c + 1])) -
-              static_cast<std::uint64_t>(static_cast<std::int64_t>(offsets[c]));
-            const std::uint64_t d = n - 3;
-            negative |= n;
-            below3 += d >> 63;
-            notThree += (d | (0 - d)) >> 63;
-          }
-          chunks[chunk] = Counts{ negative, below3, notThree };
-        });
-      std::uint64_t negative = 0, below3 = 0, notThree = 0;
-      for (const Counts& counts : chunks)
-      {
-        negative |= counts.Negative;
-        below3 += counts.Below3;
-        notThree += counts.NotThree;
-      }
-      if (negative >> 63)
-      {
-        for (vtkIdType c = 0; c < numCells; ++c)
-        {
-          if (offsets[c + 1] < offsets[c])
-          {
-            problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
-              std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
-            return;
-          }
+          problem = "the offsets decrease at cell " + std::to_string(c) + " (" +
+            std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
+          return;
         }
+        shortCells += offsets[c + 1] - offsets[c] < 3 ? 1 : 0;
+        trianglesOnly = trianglesOnly && offsets[c + 1] - offsets[c] == 3;
       }
-      sizes.Short = static_cast<vtkIdType>(below3);
-      sizes.TrianglesOnly = notThree == 0;
       if (static_cast<vtkIdType>(offsets[numCells]) != size)
       {
         problem = "its last offset is " + std::to_string(offsets[numCells]) +
@@ -121,7 +141,976 @@ std::string CellArrayProblem(vtkCellArray* cells, CellSizes& sizes)
   return problem;
 }
 
+/// Storage whose every entry the filter writes before reading it (not cleared first).
+template<typename T>
+using Buffer = std::unique_ptr<T[]>;
+
+/// The triangles of the polygons and strips, in cell order.
+struct Triangles
+{
+  vtkIdType Count = 0;
+  /// Three point ids per triangle: the polygons' own connectivity when every polygon is a
+  /// triangle stored with vtkIdType ids and there are no strips, else Storage.
+  const vtkIdType* Ids = nullptr;
+  std::vector<vtkIdType> Storage;
+  /// Per polygon, then per strip, its first triangle, and one more entry for the end; empty
+  /// when triangle t is polygon t.
+  std::vector<vtkIdType> CellStart;
+
+  vtkIdType NumberOfCells = 0;
+  vtkIdType FirstTriangle(vtkIdType cell) const
+  {
+    return this->CellStart.empty() ? cell : this->CellStart[cell];
+  }
+};
+
+/**
+ * Triangle j of a cell with points pts: polygons fan from corner 0, strip triangle j is
+ * (j, j+1, j+2) with every odd one reversed so that all triangles of a strip share its winding.
+ */
+template<typename IdT>
+void CellTriangle(const IdT* pts, vtkIdType j, bool strip, vtkIdType tri[3])
+{
+  if (!strip)
+  {
+    tri[0] = pts[0];
+    tri[1] = pts[j + 1];
+    tri[2] = pts[j + 2];
+    return;
+  }
+  const bool odd = (j & 1) != 0;
+  tri[0] = pts[odd ? j + 1 : j];
+  tri[1] = pts[odd ? j : j + 1];
+  tri[2] = pts[j + 2];
+}
+
+/// Whether every id of [ids, ids + n) is in [0, numPoints), checked in parallel.
+template<typename IdT>
+bool IdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
+{
+  std::atomic<bool> bad{ false };
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      bool inRange = true;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        inRange &= ids[i] >= 0 && static_cast<vtkIdType>(ids[i]) < numPoints;
+      }
+      if (!inRange)
+      {
+        bad = true;
+      }
+    });
+  return !bad;
+}
+
+/// Lists the triangles of polygons and strips; false when a cell has a point id outside
+/// [0, numPoints). polysAreTriangles: every polygon has 3 points.
+bool BuildTriangles(vtkCellArray* const cellArrays[2],
+  bool polysAreTriangles,
+  vtkIdType numPoints,
+  Triangles& out)
+{
+  vtkCellArray* polys = cellArrays[0];
+  out.NumberOfCells = polys->GetNumberOfCells() + cellArrays[1]->GetNumberOfCells();
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool inRange = WithCellStorage(cellArrays[kind],
+      [&](const auto*, const auto* conn)
+      { return IdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
+    if (!inRange)
+    {
+      return false;
+    }
+  }
+  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0 && polys->IsStorage64Bit() &&
+    std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
+  {
+    out.Count = polys->GetNumberOfCells();
+    out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
+    return true;
+  }
+
+  out.CellStart.resize(static_cast<size_t>(out.NumberOfCells + 1));
+  vtkIdType next = 0;
+  vtkIdType cell = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = cellArrays[kind];
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto*)
+      {
+        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c, ++cell)
+        {
+          out.CellStart[cell] = next;
+          next += std::max<vtkIdType>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]) - 2, 0);
+        }
+      });
+  }
+  out.CellStart[out.NumberOfCells] = next;
+  out.Count = next;
+  out.Storage.resize(static_cast<size_t>(3 * next));
+  out.Ids = out.Storage.data();
+
+  vtkIdType firstCell = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = cellArrays[kind];
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto* conn)
+      {
+        vtkSMPTools::For(0,
+          cells->GetNumberOfCells(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            for (vtkIdType c = begin; c < end; ++c)
+            {
+              const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+              vtkIdType* tri = out.Storage.data() + 3 * out.CellStart[firstCell + c];
+              for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
+              {
+                CellTriangle(conn + offsets[c], j, kind == 1, tri);
+              }
+            }
+          });
+      });
+    firstCell += cells->GetNumberOfCells();
+  }
+  return true;
+}
+
+/**
+ * Per point, its triangle corners (3 * triangle + corner) in triangle order: the order in which
+ * every per-point sum adds its terms, whatever the number of threads.
+ */
+struct Links
+{
+  std::vector<vtkIdType> Start; // per point, and one more entry for the end
+  Buffer<vtkIdType> Corners;
+
+  Links(const Triangles& tris, vtkIdType numPoints)
+    : Start(static_cast<size_t>(numPoints + 1), 0)
+    , Corners(new vtkIdType[3 * tris.Count])
+  {
+    const vtkIdType numCorners = 3 * tris.Count;
+    for (vtkIdType c = 0; c < numCorners; ++c)
+    {
+      ++this->Start[tris.Ids[c] + 1];
+    }
+    std::partial_sum(this->Start.begin(), this->Start.end(), this->Start.begin());
+    // Filling moves each point's start to its end, which is the next point's start.
+    for (vtkIdType c = 0; c < numCorners; ++c)
+    {
+      this->Corners[this->Start[tris.Ids[c]]++] = c;
+    }
+    std::copy_backward(this->Start.begin(), this->Start.end() - 1, this->Start.end());
+    this->Start[0] = 0;
+  }
+
+  /// f(triangle, corner) for the corners of point p, in triangle order.
+  template<typename F>
+  void ForEach(vtkIdType p, F&& f) const
+  {
+    for (vtkIdType i = this->Start[p]; i < this->Start[p + 1]; ++i)
+    {
+      f(this->Corners[i] / 3, static_cast<int>(this->Corners[i] % 3));
+    }
+  }
+};
+
+/// What every triangle gives its corners, one array per quantity.
+struct TriangleFrames
+{
+  Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
+  /**
+   * Per corner, its weight with the handedness the triangle gives it (CornerSign with the
+   * corner point's shading normal) as its sign; zero without a frame.
+   */
+  Buffer<double> SignedWeight;
+  /// Only for cell tangents (else null): the winding normal (3 per triangle) and the area.
+  Buffer<double> Normal;
+  Buffer<double> Area;
+
+  TriangleFrames(vtkIdType n, bool cellTangents)
+    : Tangent(new double[3 * n])
+    , SignedWeight(new double[3 * n])
+    , Normal(cellTangents ? new double[3 * n] : nullptr)
+    , Area(cellTangents ? new double[n] : nullptr)
+  {
+  }
+  dvec3 TangentOf(vtkIdType t) const
+  {
+    return dvec3(this->Tangent[3 * t], this->Tangent[3 * t + 1], this->Tangent[3 * t + 2]);
+  }
+  dvec3 NormalOf(vtkIdType t) const
+  {
+    return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
+  }
+  bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
+};
+
+/**
+ * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
+ * angles when asked for), in parallel, for any point and texture coordinate arrays.
+ */
+struct VisitTriangleFrames
+{
+  template<typename PointArray, typename UVArray, typename Visit>
+  void operator()(PointArray* pointArray,
+    UVArray* uvArray,
+    const Triangles& tris,
+    const DegeneracyTolerance& tol,
+    bool angles,
+    const Visit& visit) const
+  {
+    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
+    const auto uvs = vtk::DataArrayTupleRange(uvArray);
+    const bool hasV = uvArray->GetNumberOfComponents() > 1;
+    vtkSMPTools::For(0,
+      tris.Count,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType t = begin; t < end; ++t)
+        {
+          dvec3 p[3];
+          dvec2 uv[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            const vtkIdType id = tris.Ids[3 * t + k];
+            const auto point = points[id];
+            const auto texture = uvs[id];
+            p[k] = dvec3(point[0], point[1], point[2]);
+            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+          }
+          double corner[3] = { 0.0, 0.0, 0.0 };
+          const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
+            p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
+          visit(t, f, corner);
+        }
+      });
+  }
+};
+
+/// Calls worker(a, b, args...) with a and b as their concrete float or double array types, or
+/// as plain vtkDataArray (virtual access) for any other type.
+template<typename Worker, typename... Args>
+void DispatchReals2(vtkDataArray* a, vtkDataArray* b, Worker&& worker, Args&&... args)
+{
+  using Dispatcher =
+    vtkArrayDispatch::Dispatch2ByValueType<vtkArrayDispatch::Reals, vtkArrayDispatch::Reals>;
+  if (!Dispatcher::Execute(a, b, worker, args...))
+  {
+    worker(a, b, args...);
+  }
+}
+
+/// Unit shading normals from a normal array (zero where it is zero or non-finite); counts those.
+struct UnitNormals
+{
+  template<typename NormalArray>
+  void operator()(NormalArray* array, dvec3* out, vtkIdType n, vtkIdType& unusable) const
+  {
+    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
+    std::atomic<vtkIdType> zero{ 0 };
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        vtkIdType here = 0;
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          const auto v = normals[p];
+          out[p] = SafeNormalize(dvec3(v[0], v[1], v[2]));
+          here += out[p] == dvec3(0.0) ? 1 : 0;
+        }
+        zero += here;
+      });
+    unusable = zero;
+  }
+};
+
+/// UnitNormals for an array of any type; returns the number of unusable normals.
+vtkIdType ComputeUnitNormals(vtkDataArray* normals, dvec3* out, vtkIdType n)
+{
+  vtkIdType unusable = 0;
+  UnitNormals worker;
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(
+        normals, worker, out, n, unusable))
+  {
+    worker(normals, out, n, unusable);
+  }
+  return unusable;
+}
+
+/**
+ * Smooth point normals: per point the sum, in triangle order, of its triangles' area-weighted
+ * unit normals (`weighted`), normalized; `empty` for points with no area.
+ */
+std::vector<dvec3> AreaWeightedNormals(const Links& links,
+  const std::vector<dvec3>& weighted,
+  const dvec3& empty)
+{
+  std::vector<dvec3> normals(links.Start.size() - 1);
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(normals.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        dvec3 sum(0.0);
+        links.ForEach(p, [&](vtkIdType t, int) { sum += weighted[t]; });
+        const dvec3 n = SafeNormalize(sum);
+        normals[p] = n == dvec3(0.0) ? empty : n;
+      }
+    });
+  return normals;
+}
+
+/// The weighted tangent sums of one point, per handedness (index 0: +1, 1: -1).
+struct PointSums
+{
+  dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
+  double Weight[2] = { 0.0, 0.0 };
+  /// Whether a corner of positive weight has this handedness.
+  bool Has[2] = { false, false };
+};
+
+/// The sums of point p over its triangles, in triangle order.
+PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p)
+{
+  PointSums s;
+  links.ForEach(p,
+    [&](vtkIdType t, int k)
+    {
+      const double signedWeight = frames.SignedWeight[3 * t + k];
+      if (signedWeight == 0.0)
+      {
+        return;
+      }
+      const int side = signedWeight > 0.0 ? 0 : 1;
+      const double w = std::abs(signedWeight);
+      s.Tangent[side] += w * frames.TangentOf(t);
+      s.Weight[side] += w;
+      s.Has[side] = true;
+    });
+  return s;
+}
+
+/// What the gather found at a point.
+enum class PointKind : unsigned char
+{
+  Framed,   ///< its corners have one handedness
+  Conflict, ///< both handednesses (a mirror seam)
+  Fallback, ///< no usable triangle
+};
+
+/// The output arrays of the frames.
+template<typename OutT>
+struct FrameArrays
+{
+  OutT* Tangents;
+  OutT* Signs;
+  OutT* Bitangents; // null when not asked for
+
+  void Write(vtkIdType p, const dvec3& n, const dvec3& t, double sign) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Tangents[3 * p + c] = static_cast<OutT>(t[c]);
+    }
+    this->Signs[p] = static_cast<OutT>(sign);
+    if (this->Bitangents)
+    {
+      const dvec3 b = sign * glm::cross(n, t);
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Bitangents[3 * p + c] = static_cast<OutT>(b[c]);
+      }
+    }
+  }
+};
+
+/// A point on a mirror seam with splitting: its normal and the frame of its -1 side, which goes
+/// to its copy.
+struct SplitPoint
+{
+  vtkIdType Id;
+  dvec3 Normal;
+  dvec3 Tangent;
+};
+
+/// The handedness (+1, -1, or 0 without a frame or weight) triangle t gives its corner at point id.
+int CornerHandedness(const Triangles& tris, const TriangleFrames& frames, vtkIdType t, vtkIdType id)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (tris.Ids[3 * t + k] == id)
+    {
+      const double w = frames.SignedWeight[3 * t + k];
+      return w > 0.0 ? 1 : (w < 0.0 ? -1 : 0);
+    }
+  }
+  return 0;
+}
+
+/**
+ * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
+ * copy id), polygon positions first, then strip positions after the polygons' connectivity.
+ * A corner's side is the majority handedness of its cell's triangles that hold it.
+ */
+std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
+  const Triangles& tris,
+  const TriangleFrames& frames,
+  const std::vector<SplitPoint>& splits,
+  vtkIdType numPoints)
+{
+  std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  vtkIdType firstCell = 0;
+  vtkIdType base = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool strip = kind == 1;
+    vtkCellArray* cells = cellArrays[kind];
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto* conn)
+      {
+        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+        {
+          const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+          const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
+          for (vtkIdType k = 0; k < n; ++k)
+          {
+            const vtkIdType id = conn[offsets[c] + k];
+            const auto it = std::lower_bound(splits.begin(),
+              splits.end(),
+              id,
+              [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
+            if (it == splits.end() || it->Id != id)
+            {
+              continue;
+            }
+            // The cell's triangles that hold corner k (see CellTriangle).
+            const vtkIdType first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
+            const vtkIdType last = strip ? std::min<vtkIdType>(k, n - 3)
+                                         : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
+            int vote = 0;
+            for (vtkIdType j = first; j <= last; ++j)
+            {
+              vote += CornerHandedness(tris, frames, firstTriangle + j, id);
+            }
+            if (vote < 0)
+            {
+              repoint.emplace_back(
+                base + offsets[c] + k, numPoints + static_cast<vtkIdType>(it - splits.begin()));
+            }
+          }
+        }
+      });
+    firstCell += cells->GetNumberOfCells();
+    base += cells->GetNumberOfConnectivityIds();
+  }
+  return repoint;
+}
+
+/// Cell tangents: per polygon or strip, its triangles' area-weighted tangents on the plane of
+/// their area-weighted normals; (0, 0, 0) for vertex and line cells.
+template<typename OutT>
+void CellTangentArray(const Triangles& tris,
+  const TriangleFrames& frames,
+  vtkIdType firstSurfaceCell,
+  vtkIdType numCells,
+  OutT* out)
+{
+  std::fill(out, out + 3 * numCells, OutT(0));
+  vtkSMPTools::For(0,
+    tris.NumberOfCells,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        dvec3 t(0.0), n(0.0);
+        for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
+        {
+          t += frames.Area[i] * frames.TangentOf(i);
+          n += frames.Area[i] * SafeNormalize(frames.NormalOf(i));
+        }
+        const dvec3 unit = PerpendicularTangent(SafeNormalize(n), t);
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * (firstSurfaceCell + c) + k] = static_cast<OutT>(unit[k]);
+        }
+      }
+    });
+}
+
+/**
+ * Every point's frame from its triangles, written to `out`: the frame of its one handedness, or
+ * on a mirror seam (kinds: Conflict) the +1 frame with splitting, else the heavier side's.
+ * Points with no usable triangle are only marked (kinds: Fallback).
+ */
+template<typename OutT>
+void GatherFrames(const Links& links,
+  const TriangleFrames& frames,
+  const dvec3* normals,
+  bool splitting,
+  const FrameArrays<OutT>& out,
+  PointKind* kinds)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(links.Start.size()) - 1,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        const PointSums s = SumPoint(links, frames, p);
+        if (!s.Has[0] && !s.Has[1])
+        {
+          kinds[p] = PointKind::Fallback;
+          continue;
+        }
+        int side = s.Has[0] ? 0 : 1;
+        kinds[p] = PointKind::Framed;
+        if (s.Has[0] && s.Has[1])
+        {
+          kinds[p] = PointKind::Conflict;
+          side = splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1;
+        }
+        out.Write(
+          p, normals[p], PerpendicularTangent(normals[p], s.Tangent[side]), side == 0 ? 1.0 : -1.0);
+      }
+    });
+}
+
+/// The points of one kind, in ascending order.
+std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints, PointKind kind)
+{
+  std::vector<vtkIdType> points;
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (kinds[p] == kind)
+    {
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
+/**
+ * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
+ * tangent plane, and their neighbours' majority sign (+1 when none).
+ */
+template<typename OutT>
+void FillFallbacks(const Triangles& tris,
+  const Links& links,
+  const dvec3* normals,
+  const PointKind* kinds,
+  const std::vector<vtkIdType>& fallbacks,
+  const FrameArrays<OutT>& out)
+{
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(fallbacks.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = fallbacks[i];
+        dvec3 sum(0.0);
+        int votes = 0;
+        links.ForEach(p,
+          [&](vtkIdType t, int)
+          {
+            for (int m = 0; m < 3; ++m)
+            {
+              const vtkIdType q = tris.Ids[3 * t + m];
+              if (q != p && kinds[q] != PointKind::Fallback)
+              {
+                sum += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
+                votes += out.Signs[q] < 0 ? -1 : 1;
+              }
+            }
+          });
+        out.Write(p, normals[p], PerpendicularTangent(normals[p], sum), votes < 0 ? -1.0 : 1.0);
+      }
+    });
+}
+
+/// The -1 frames of the seam points, for their copies.
+std::vector<SplitPoint> SplitFrames(const Links& links,
+  const TriangleFrames& frames,
+  const dvec3* normals,
+  const std::vector<vtkIdType>& conflicts)
+{
+  std::vector<SplitPoint> splits(conflicts.size());
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(conflicts.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = conflicts[i];
+        const PointSums s = SumPoint(links, frames, p);
+        splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
+      }
+    });
+  return splits;
+}
+
+/// Machine epsilon of the type an array stores.
+double Epsilon(vtkDataArray* array)
+{
+  return array->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON);
+}
+
+/// The output arrays' concrete class for OutT, so that users' SafeDownCasts work.
+template<typename OutT>
+using OutArray =
+  typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
+
+template<typename OutT>
+vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<OutArray<OutT>>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
 } // namespace
+
+/// One execution on one polydata, with what it needs from the filter.
+struct vtkPolyDataTangentFrames::Internals
+{
+  vtkPolyDataTangentFrames* Self;
+  vtkPolyData* Input;
+  vtkPolyData* Output;
+  vtkDataArray* UVs;
+  vtkDataArray* Normals;     // valid point normals, or null
+  vtkDataArray* CellNormals; // averaged to points when Normals is null, or null
+  bool PolysAreTriangles;
+  double ProgressBegin;
+  double ProgressEnd;
+
+  vtkIdType NumberOfPoints = 0;
+  vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
+  vtkIdType FirstSurfaceCell = 0;
+  Triangles Tris;
+  std::unique_ptr<TriangleFrames> Frames;
+  std::unique_ptr<Links> PointLinks;
+
+  /// Progress as a fraction of this execution; false (output emptied) when aborted.
+  bool Continue(double fraction)
+  {
+    this->Self->UpdateProgress(
+      this->ProgressBegin + fraction * (this->ProgressEnd - this->ProgressBegin));
+    if (this->Self->GetAbortExecute())
+    {
+      this->Output->Initialize();
+      return false;
+    }
+    return true;
+  }
+
+  /// Triangles and links; false after an error (input passed through).
+  bool Prepare()
+  {
+    if (!BuildTriangles(this->Cells, this->PolysAreTriangles, this->NumberOfPoints, this->Tris))
+    {
+      vtkErrorWithObjectMacro(this->Self,
+        "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
+          << this->NumberOfPoints << "); passing the input through.");
+      this->Output->ShallowCopy(this->Input);
+      return false;
+    }
+    this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
+    return true;
+  }
+
+  /// visit(t, frame, angles) for every triangle (VisitTriangleFrames).
+  template<typename Visit>
+  void VisitFrames(bool angles, const Visit& visit)
+  {
+    const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
+      Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
+    DispatchReals2(this->Input->GetPoints()->GetData(),
+      this->UVs,
+      VisitTriangleFrames(),
+      this->Tris,
+      tol,
+      angles,
+      visit);
+  }
+
+  /**
+   * Smooth area-weighted point normals from the triangles' geometric normals, or from the
+   * input's cell normals when given; `empty` where a point has no area.
+   */
+  std::vector<dvec3> SmoothNormals(vtkDataArray* cellNormals, const dvec3& empty)
+  {
+    std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
+    std::vector<double> area(cellNormals ? weighted.size() : 0);
+    this->VisitFrames(false,
+      [&](vtkIdType t, const TriangleFrame& f, const double*)
+      {
+        weighted[t] = f.Area * SafeNormalize(f.Normal);
+        if (cellNormals)
+        {
+          area[t] = f.Area;
+        }
+      });
+    if (cellNormals)
+    {
+      vtkSMPTools::For(0,
+        this->Tris.NumberOfCells,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType c = begin; c < end; ++c)
+          {
+            double n[3];
+            cellNormals->GetTuple(this->FirstSurfaceCell + c, n);
+            const dvec3 cellNormal = SafeNormalize(dvec3(n[0], n[1], n[2]));
+            for (vtkIdType t = this->Tris.FirstTriangle(c); t < this->Tris.FirstTriangle(c + 1);
+                 ++t)
+            {
+              weighted[t] = area[t] * cellNormal;
+            }
+          }
+        });
+    }
+    return AreaWeightedNormals(*this->PointLinks, weighted, empty);
+  }
+
+  /// The frames pass: tangents and signed corner weights with the points' shading normals.
+  void ComputeFrames(TangentMethod method, const dvec3* normals, bool cellTangents)
+  {
+    this->Frames.reset(new TriangleFrames(this->Tris.Count, cellTangents));
+    TriangleFrames& out = *this->Frames;
+    const vtkIdType* ids = this->Tris.Ids;
+    this->VisitFrames(method == TangentMethod::AngleWeighted,
+      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          const int sign = vtkNormalMapping::CornerSign(f, normals[ids[3 * t + k]]);
+          out.Tangent[3 * t + k] = f.Tangent[k];
+          out.SignedWeight[3 * t + k] = sign * vtkNormalMapping::CornerWeight(method, f, angles, k);
+        }
+        if (out.Area)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            out.Normal[3 * t + k] = f.Normal[k];
+          }
+          out.Area[t] = f.Area;
+        }
+      });
+  }
+
+  template<typename OutT>
+  int Run();
+  template<typename OutT>
+  int RunWeighted(vtkSmartPointer<OutArray<OutT>> computedNormals, const dvec3* normals);
+
+  /// The split points' -1 frames, written after the input points, and the cells on their
+  /// mirrored side re-pointed to them in the output.
+  template<typename OutT>
+  void AppendSplitFrames(const std::vector<SplitPoint>& splits, const FrameArrays<OutT>& out)
+  {
+    const vtkIdType numSplits = static_cast<vtkIdType>(splits.size());
+    for (vtkIdType i = 0; i < numSplits; ++i)
+    {
+      out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
+    }
+    const auto repoint =
+      MirroredCorners(this->Cells, this->Tris, *this->Frames, splits, this->NumberOfPoints);
+    const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
+    const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
+    const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;
+    this->Output->SetPolys(
+      vtkNormalMapping::detail::RepointCells(this->Cells[0], repoint, 0, polySize, maxId));
+    this->Output->SetStrips(
+      vtkNormalMapping::detail::RepointCells(this->Cells[1], repoint, polySize, stripSize, maxId));
+  }
+};
+
+template<typename OutT>
+int vtkPolyDataTangentFrames::Internals::Run()
+{
+  vtkPolyDataTangentFrames* self = this->Self;
+  vtkPolyData* input = this->Input;
+  this->NumberOfPoints = input->GetNumberOfPoints();
+  this->Cells[0] = input->GetPolys();
+  this->Cells[1] = input->GetStrips();
+  this->FirstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  const bool mikkTSpace = self->Method == MIKKTSPACE;
+  const TangentMethod method =
+    mikkTSpace ? TangentMethod::AreaWeighted : static_cast<TangentMethod>(self->Method);
+
+  // Normals: the input's (unit, with geometric stand-ins where unusable), or computed.
+  Buffer<dvec3> normals(new dvec3[this->NumberOfPoints]);
+  vtkSmartPointer<OutArray<OutT>> computedNormals;
+  vtkIdType unusable = 0;
+  if (this->Normals)
+  {
+    unusable = ComputeUnitNormals(this->Normals, normals.get(), this->NumberOfPoints);
+    self->NumberOfInvalidNormals += unusable;
+  }
+  if (!mikkTSpace || !this->Normals)
+  {
+    if (!this->Prepare() || !this->Continue(0.2))
+    {
+      return 1;
+    }
+  }
+  if (!this->Normals)
+  {
+    const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
+    computedNormals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
+    OutT* out = computedNormals->GetPointer(0);
+    for (size_t p = 0; p < smooth.size(); ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        out[3 * p + c] = static_cast<OutT>(smooth[p][c]);
+      }
+    }
+    // The frames follow the normals as stored.
+    ComputeUnitNormals(computedNormals, normals.get(), this->NumberOfPoints);
+  }
+  else if (unusable > 0 && !mikkTSpace)
+  {
+    const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
+    for (vtkIdType p = 0; p < this->NumberOfPoints; ++p)
+    {
+      normals[p] = normals[p] == dvec3(0.0) ? geometric[p] : normals[p];
+    }
+  }
+
+  if (mikkTSpace)
+  {
+    vtkNormalMapping::detail::MikkTSpaceRequest request;
+    request.Filter = self;
+    request.Input = input;
+    request.TCoords = this->UVs;
+    request.Normals = computedNormals ? computedNormals.Get() : this->Normals;
+    request.ComputedNormals = computedNormals != nullptr;
+    request.DoublePrecision = std::is_same<OutT, double>::value;
+    request.GLTFSign = self->GLTFSignConvention;
+    request.Splitting = self->Splitting;
+    request.Bitangents = self->ComputeBitangents;
+    request.CellTangents = self->ComputeCellTangents;
+    vtkNormalMapping::detail::MikkTSpaceCounts counts;
+    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
+    self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
+    self->NumberOfFallbackPoints += counts.FallbackCorners;
+    self->NumberOfHandednessConflicts += counts.Conflicts;
+    self->NumberOfSplitPoints += counts.SplitPoints;
+    return result;
+  }
+  this->ComputeFrames(method, normals.get(), self->ComputeCellTangents);
+  if (!this->Continue(0.4))
+  {
+    return 1;
+  }
+  return this->RunWeighted<OutT>(computedNormals, normals.get());
+}
+
+template<typename OutT>
+int vtkPolyDataTangentFrames::Internals::RunWeighted(
+  vtkSmartPointer<OutArray<OutT>> computedNormals,
+  const dvec3* normals)
+{
+  vtkPolyDataTangentFrames* self = this->Self;
+  const vtkIdType numPoints = this->NumberOfPoints;
+  const Links& links = *this->PointLinks;
+  const TriangleFrames& frames = *this->Frames;
+  for (vtkIdType t = 0; t < this->Tris.Count; ++t)
+  {
+    self->NumberOfDegenerateTriangles += frames.HasFrame(t) ? 0 : 1;
+  }
+
+  auto tangents = NewArray<OutT>(TangentsArrayName(), 3, numPoints);
+  auto signs = NewArray<OutT>(SignsArrayName(), 1, numPoints);
+  vtkSmartPointer<OutArray<OutT>> bitangents;
+  if (self->ComputeBitangents)
+  {
+    bitangents = NewArray<OutT>(BitangentsArrayName(), 3, numPoints);
+  }
+  const auto frameArrays = [&]()
+  {
+    return FrameArrays<OutT>{ tangents->GetPointer(0),
+      signs->GetPointer(0),
+      bitangents ? bitangents->GetPointer(0) : nullptr };
+  };
+
+  Buffer<PointKind> kinds(new PointKind[numPoints]);
+  GatherFrames(links, frames, normals, self->Splitting, frameArrays(), kinds.get());
+  const std::vector<vtkIdType> conflicts =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
+  const std::vector<vtkIdType> fallbacks =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
+  self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());
+  self->NumberOfFallbackPoints += static_cast<vtkIdType>(fallbacks.size());
+  if (!this->Continue(0.7))
+  {
+    return 1;
+  }
+  FillFallbacks(this->Tris, links, normals, kinds.get(), fallbacks, frameArrays());
+  const std::vector<SplitPoint> splits =
+    self->Splitting ? SplitFrames(links, frames, normals, conflicts) : std::vector<SplitPoint>();
+  if (!this->Continue(0.85))
+  {
+    return 1;
+  }
+
+  // Output: the input with the split points appended and their mirrored corners re-pointed.
+  vtkPolyData* input = this->Input;
+  vtkPolyData* output = this->Output;
+  self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
+  std::vector<vtkIdType> splitSource(splits.size());
+  std::transform(
+    splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
+  vtkNormalMapping::detail::CopyWithAppendedPoints(input, output, splitSource);
+  if (!splits.empty())
+  {
+    if (computedNormals)
+    {
+      computedNormals = OutArray<OutT>::SafeDownCast(
+        vtkNormalMapping::detail::ExtendPointArray(computedNormals, numPoints, splitSource));
+    }
+    for (OutArray<OutT>* array : { tangents.Get(), signs.Get(), bitangents.Get() })
+    {
+      if (array)
+      {
+        array->Resize(numPoints + static_cast<vtkIdType>(splits.size()));
+        array->SetNumberOfTuples(numPoints + static_cast<vtkIdType>(splits.size()));
+      }
+    }
+    this->AppendSplitFrames(splits, frameArrays());
+  }
+  vtkPointData* outPD = output->GetPointData();
+  if (computedNormals)
+  {
+    outPD->SetNormals(computedNormals);
+  }
+  outPD->SetTangents(tangents);
+  outPD->AddArray(signs);
+  if (bitangents)
+  {
+    outPD->AddArray(bitangents);
+  }
+  if (self->ComputeCellTangents)
+  {
+    const vtkIdType numCells = input->GetNumberOfCells();
+    auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
+    CellTangentArray(
+      this->Tris, frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
+    output->GetCellData()->SetTangents(cellTangents);
+  }
+  this->Continue(1.0);
+  return 1;
+}
 
 vtkPolyDataTangentFrames::vtkPolyDataTangentFrames() = default;
 vtkPolyDataTangentFrames::~vtkPolyDataTangentFrames() = default;
@@ -152,21 +1141,112 @@ void vtkPolyDataTangentFrames::SetTCoordsArrayName(const std::string& name)
   }
 }
 
+int vtkPolyDataTangentFrames::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+int vtkPolyDataTangentFrames::FillOutputPortInformation(int, vtkInformation* info)
+{
+  // vtkPolyData for polydata input, the input's composite type for composite input.
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkDataObject");
+  return 1;
+}
+
+vtkTypeBool vtkPolyDataTangentFrames::ProcessRequest(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  if (request->Has(vtkDemandDrivenPipeline::REQUEST_DATA_OBJECT()))
+  {
+    return this->RequestDataObject(request, inputVector, outputVector);
+  }
+  return this->Superclass::ProcessRequest(request, inputVector, outputVector);
+}
+
+int vtkPolyDataTangentFrames::RequestDataObject(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* output = vtkDataObject::GetData(outInfo);
+  if (vtkCompositeDataSet::SafeDownCast(input))
+  {
+    if (!output || !output->IsA(input->GetClassName()))
+    {
+      auto composite = vtk::TakeSmartPointer(input->NewInstance());
+      outInfo->Set(vtkDataObject::DATA_OBJECT(), composite);
+    }
+  }
+  else if (!vtkPolyData::SafeDownCast(output))
+  {
+    vtkNew<vtkPolyData> polyData;
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), polyData);
+  }
+  return 1;
+}
+
 int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NumberOfDegenerateTriangles = 0;
   this->NumberOfFallbackPoints = 0;
   this->NumberOfHandednessConflicts = 0;
   this->NumberOfSplitPoints = 0;
   this->NumberOfInvalidNormals = 0;
-  if (!input || !output)
+  vtkCompositeDataSet* inComposite = vtkCompositeDataSet::GetData(inputVector[0], 0);
+  if (!inComposite)
+  {
+    vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+    vtkPolyData* output = vtkPolyData::GetData(outputVector);
+    return input && output ? this->ExecuteBlock(input, output, 0.0, 1.0) : 0;
+  }
+
+  // Composite input: every polydata leaf on its own, the counts summed over the leaves.
+  vtkCompositeDataSet* outComposite = vtkCompositeDataSet::GetData(outputVector, 0);
+  if (!outComposite)
   {
     return 0;
   }
+  outComposite->CopyStructure(inComposite);
+  auto it = vtk::TakeSmartPointer(inComposite->NewIterator());
+  vtkIdType leaves = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    ++leaves;
+  }
+  vtkIdType leaf = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal() && !this->GetAbortExecute();
+       it->GoToNextItem(), ++leaf)
+  {
+    vtkDataObject* block = it->GetCurrentDataObject();
+    vtkPolyData* input = vtkPolyData::SafeDownCast(block);
+    if (!input)
+    {
+      vtkWarningMacro("Block " << it->GetCurrentFlatIndex() << " is a " << block->GetClassName()
+                               << ", not polydata; passing it through without frames.");
+      auto copy = vtk::TakeSmartPointer(block->NewInstance());
+      copy->ShallowCopy(block);
+      outComposite->SetDataSet(it, copy);
+      continue;
+    }
+    vtkNew<vtkPolyData> output;
+    this->ExecuteBlock(
+      input, output, static_cast<double>(leaf) / leaves, static_cast<double>(leaf + 1) / leaves);
+    outComposite->SetDataSet(it, output);
+  }
+  return 1;
+}
+
+int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
+  vtkPolyData* output,
+  double progressBegin,
+  double progressEnd)
+{
   const auto passThrough = [&]()
   {
     output->ShallowCopy(input);
@@ -177,14 +1257,15 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     { "line", input->GetLines() },
     { "polygon", input->GetPolys() },
     { "triangle strip", input->GetStrips() } };
-  CellSizes sizes[4]; // polygons: 2, strips: 3
+  vtkIdType shortCells[4] = { 0, 0, 0, 0 };
+  bool trianglesOnly[4] = { true, true, true, true };
   for (int a = 0; a < 4; ++a)
   {
-    const auto& named = cellArrays[a];
-    const std::string problem = CellArrayProblem(named.second, sizes[a]);
+    const std::string problem =
+      CellArrayProblem(cellArrays[a].second, shortCells[a], trianglesOnly[a]);
     if (!problem.empty())
     {
-      vtkErrorMacro("Cannot compute tangent frames: the " << named.first
+      vtkErrorMacro("Cannot compute tangent frames: the " << cellArrays[a].first
                                                           << " cell array is malformed: " << problem
                                                           << "; passing the input through.");
       return passThrough();
@@ -195,6 +1276,12 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   {
     // Nothing to give frames to; not an error (vertices and lines only, or empty input).
     return passThrough();
+  }
+  if (shortCells[2] + shortCells[3] > 0)
+  {
+    vtkWarningMacro(<< shortCells[2] + shortCells[3]
+                    << " polygon or strip cells have fewer than 3 points; they "
+                       "pass through and give no frames.");
   }
 
   // Texture coordinates.
@@ -260,11 +1347,12 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     }
   }
 
+  Internals run{
+    this, input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd
+  };
   const bool doublePrecision = this->OutputPrecision == DOUBLE_PRECISION ||
     (this->OutputPrecision == DEFAULT_PRECISION && input->GetPoints()->GetDataType() == VTK_DOUBLE);
-  return doublePrecision
-    ? Internals::Run<double>(this, input, output, uvs, normals, cellNormals, sizes + 2)
-    : Internals::Run<float>(this, input, output, uvs, normals, cellNormals, sizes + 2);
+  return doublePrecision ? run.Run<double>() : run.Run<float>();
 }
 
 void vtkPolyDataTangentFrames::PrintSelf(ostream& os, vtkIndent indent)

@@ -41,6 +41,10 @@
  * splitting) with a warning; cell normals alone are averaged to points with a warning; texture
  * coordinates with 1 or more than 2 components use (u, 0) or the first two with a warning.
  *
+ * Composite input (a multiblock from a reader, for example) gives output of the same structure:
+ * every polydata block gets its frames as if it were filtered alone, other blocks pass through
+ * with a warning, and the counts below are the sums over the blocks.
+ *
  * The work runs on vtkSMPTools and is deterministic: the output is bit-identical for any number
  * of threads, because each point sums its triangles in a fixed order through a point-to-triangle
  * table. Progress is reported and AbortExecute honoured between parallel passes; an aborted
@@ -131,16 +135,14 @@ public:
   /**
    * Precision of the output arrays: vtkAlgorithm::DEFAULT_PRECISION (the default) follows the
    * input points (double points give double arrays, anything else float), SINGLE_PRECISION or
-   * DOUBLE_PRECISION choose. The computation is in double, except the per-triangle solve and
-   * corner angles of float points with float texture coordinates, which are in float (within
-   * about 2e-5 degrees of the double computation; see the README's Precision).
+   * DOUBLE_PRECISION choose. The computation is in double whatever the input types.
    */
   vtkSetClampMacro(OutputPrecision, int, SINGLE_PRECISION, DEFAULT_PRECISION);
   vtkGetMacro(OutputPrecision, int);
   ///@}
 
   ///@{
-  /// Counts from the last execution.
+  /// Counts from the last execution (summed over the blocks of composite input).
   /// Triangles (after fan-triangulating polygons and strips) with no usable frame.
   vtkGetMacro(NumberOfDegenerateTriangles, vtkIdType);
   /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
@@ -169,6 +171,13 @@ protected:
   vtkPolyDataTangentFrames();
   ~vtkPolyDataTangentFrames() override;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  vtkTypeBool ProcessRequest(vtkInformation*,
+    vtkInformationVector**,
+    vtkInformationVector*) override;
+  /// The output: polydata for polydata input, the input's own type for composite input.
+  virtual int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Method = ANGLE_WEIGHTED;
@@ -188,6 +197,13 @@ protected:
 private:
   vtkPolyDataTangentFrames(const vtkPolyDataTangentFrames&) = delete;
   void operator=(const vtkPolyDataTangentFrames&) = delete;
+
+  /// Frames for one polydata; adds to the counts. Progress goes from progressBegin to
+  /// progressEnd.
+  int ExecuteBlock(vtkPolyData* input,
+    vtkPolyData* output,
+    double progressBegin,
+    double progressEnd);
 
   struct Internals;
   friend struct Internals;

@@ -74,13 +74,14 @@ namespace
 {
 using mikk::CornerFrame;
 using vtkNormalMapping::detail::ParallelFor;
+using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
 constexpr long long kNoCorner = std::numeric_limits<long long>::max();
 constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
 
-/// Bitwise equality (two 64-bit compares; a memcmp call was ~10 % of the filter's run time).
+/// Bitwise equality, as two 64-bit compares (this runs once per corner).
 bool SameFrame(const CornerFrame& a, const CornerFrame& b)
 {
   static_assert(sizeof(CornerFrame) == 16, "four floats");
@@ -96,9 +97,9 @@ bool IsDefault(const CornerFrame& f)
 }
 
 /// |length - 1| allowed before a kernel tangent counts as cancelled. The kernel normalises in
-/// float: a unit vector within a few float ulps (measured on the shared reference meshes: 8.4e-8
-/// at most), whereas a cancelled sum is below ~1e-19; 1e-6 is what the weighted methods' float
-/// output meets.
+/// float: a unit vector within a few float ulps (below 1e-7 on the shared reference meshes),
+/// whereas a cancelled sum is below ~1e-19; 1e-6 is what the weighted methods' float output
+/// meets.
 constexpr double kUnitTolerance = 1e-6;
 /// |T.N| (unit N) allowed before a kernel tangent is Gram-Schmidt-ed. MikkTSpace projects with
 /// the normal as given, so a normal off unit length by e leaves T.N of about 2e. Normals in real
@@ -527,7 +528,7 @@ struct Assignment
   std::vector<long long> FirstCorner;  // per input point: its first corner, or kNoCorner
   std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
-  std::vector<std::pair<long long, vtkIdType>> Repoint; // (output corner, new point id)
+  std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
   vtkIdType Conflicts = 0;
   vtkIdType StripCornerConflicts = 0;
 };
@@ -758,35 +759,6 @@ void Assign(const Surface& s,
       a.Repoint.emplace_back(c, id);
     }
   }
-}
-
-/// Re-points the corners [begin, end) of Repoint that fall in this cell array (connectivity
-/// positions offset by `base`); returns the new cell array.
-vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
-  const std::vector<std::pair<long long, vtkIdType>>& repoint,
-  long long base,
-  long long size,
-  vtkIdType maxId)
-{
-  auto copy = vtkSmartPointer<vtkCellArray>::New();
-  copy->DeepCopy(cells);
-  if (!copy->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
-  {
-    copy->ConvertTo64BitStorage();
-  }
-  WithCellStorage(copy,
-    [&](auto*, auto* conn)
-    {
-      using IdT = typename std::remove_pointer<decltype(conn)>::type;
-      for (const auto& r : repoint)
-      {
-        if (r.first >= base && r.first < base + size)
-        {
-          conn[r.first - base] = static_cast<IdT>(r.second);
-        }
-      }
-    });
-  return copy;
 }
 
 template<typename OutArray>

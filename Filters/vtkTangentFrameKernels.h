@@ -2,8 +2,8 @@
  * @file   vtkTangentFrameKernels.h
  * @brief  The math of tangent frames, as free functions over GLM vectors.
  *
- * vtkPolyDataTangentFrames is a thin pipeline shell around these kernels; tests and users can
- * call them directly, without a pipeline. Everything is computed in double precision, whatever
+ * vtkPolyDataTangentFrames is a pipeline shell around these kernels; the tests call them directly,
+ * without a pipeline (private: not installed). Everything is computed in double precision, whatever
  * the precision of the stored data: every float input is exact in double, products of two floats
  * are exact, so the only rounding left is that of the stored coordinates themselves.
  *
@@ -149,12 +149,9 @@ inline V ScaleByPowerOfTwo(const V& v, int k)
 }
 
 /// atan(z) = z + z x Q(x) with x = z^2 on |z| <= tan(pi/8): the coefficients of Q, a minimax fit
-/// of degree 9 (scripts/atan_minimax.py: Remez exchange on the relative error of atan, in 60-digit
-/// decimal arithmetic) whose relative error, with the coefficients rounded to double, is below
-/// 3.6e-17, under double's rounding; evaluated in double, within 2.2e-16 of std::atan (measured).
-/// Evaluated by AtanOfReducedDouble, and its lane form AtanDoubleLanes. It replaced the Taylor
-/// series to z^25: an error of 2e-12.
-constexpr double AtanMinimaxDouble[10] = { -0.3333333333333015,
+/// of degree 9 (scripts/atan_minimax.py: Remez exchange on the relative error of atan) whose
+/// relative error, with the coefficients rounded to double, is below 3.6e-17.
+constexpr double AtanMinimax[10] = { -0.3333333333333015,
   0.19999999999088963,
   -0.1428571419526196,
   0.1111110665361545,
@@ -165,13 +162,11 @@ constexpr double AtanMinimaxDouble[10] = { -0.3333333333333015,
   -0.04359096199725628,
   0.02125985465703717 };
 
-/// atan(z) for |z| <= tan(pi/8): z + (z x) Q(x) (AtanMinimaxDouble), with x = z^2 and Q in
-/// Estrin's order: pairs c[2i] + c[2i + 1] x, combined with x^2, x^4 and x^8. Its chain of
-/// dependent operations is 10 long against Horner's 21, which left the lane code (AtanDoubleLanes,
-/// the same operations) waiting on latency.
-inline double AtanOfReducedDouble(double z)
+/// atan(z) for |z| <= tan(pi/8): z + (z x) Q(x) (AtanMinimax), with x = z^2 and Q in Estrin's
+/// order, whose chain of dependent operations is half as long as Horner's.
+inline double AtanOfReduced(double z)
 {
-  const double* c = AtanMinimaxDouble;
+  const double* c = AtanMinimax;
   const double x = z * z;
   const double x2 = x * x;
   const double x4 = x2 * x2;
@@ -182,17 +177,16 @@ inline double AtanOfReducedDouble(double z)
   return z + (z * x) * q;
 }
 
-/// The constants of AngleFromSineCosine (the float path has its own, single::TanPiOver8 ...).
 constexpr double TanPiOver8 = 0.41421356237309504880;
 constexpr double PiOver4 = 0.78539816339744830962;
 constexpr double PiOver2 = 1.5707963267948966192;
 constexpr double Pi = 3.14159265358979323846;
 
 /**
- * atan2(s, c) for s >= 0, in [0, pi], without a library call: reduce to z = min/max in [0, 1],
- * then to |z'| <= tan(pi/8) with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and evaluate the
- * minimax polynomial AtanOfReducedDouble (relative error below 3.6e-17). Used for corner-angle
- * weights; TestTangentFrameKernels measures it against std::atan2.
+ * atan2(s, c) for s >= 0, in [0, pi]: reduce to z = min/max in [0, 1], then to |z'| <= tan(pi/8)
+ * with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and evaluate AtanOfReduced: one division and a
+ * polynomial, for the three corner angles of every triangle, instead of a library call. Within
+ * about one ulp of std::atan2 (TestTangentFrameKernels bounds it).
  */
 inline double AngleFromSineCosine(double s, double c)
 {
@@ -208,7 +202,7 @@ inline double AngleFromSineCosine(double s, double c)
   const bool reduce = num > TanPiOver8 * den;
   const double z = reduce ? (num - den) / (num + den) : num / den;
   const double base = reduce ? PiOver4 : 0.0;
-  double angle = base + AtanOfReducedDouble(z); // atan(num / den) in [0, pi/2]
+  double angle = base + AtanOfReduced(z); // atan(num / den) in [0, pi/2]
   angle = steep ? PiOver2 - angle : angle;
   return c < 0.0 ? Pi - angle : angle;
 }
@@ -364,9 +358,13 @@ inline double CornerWeight(TangentMethod method,
 /// The handedness a triangle gives at a corner whose shading normal is n: +1 when
 /// sign * cross(n, T) points along dP/dv. A triangle whose winding disagrees with n (flipped
 /// winding, inward normals) flips its orientation here.
+inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
+{
+  return glm::dot(n, triangleNormal) < 0.0 ? -orientation : orientation;
+}
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
-  return glm::dot(n, frame.Normal) < 0.0 ? -frame.Orientation : frame.Orientation;
+  return CornerSign(frame.Orientation, frame.Normal, n);
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.

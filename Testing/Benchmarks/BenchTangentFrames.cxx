@@ -15,31 +15,37 @@
 // Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
 // configurations (so a burst of load from other processes does not hit one configuration's
 // repetitions only); the median of the repetitions is reported, and its spread.
-// Paired runs (MeasurePaired): each of our methods and VTK's filter updated alternately on the
-// million-triangle float mesh, 1 and 2 threads, the median and quartiles of the per-pair ratios;
-// once with memory the allocator reuses, once with fresh pages (after the peak memory); and on
-// the double-precision mesh, memory reused; and the default method, float and double, with the
-// vector code limited to AVX2. Scaling
-// (MeasureScaling): each filter alone, updated alternately with one and with two threads, on the
-// million-triangle mesh; VTK's filter and the default method also on every other size.
+// Paired runs (MeasurePaired): the default method (AngleWeighted) and VTK's filter updated
+// alternately on three meshes that are not ours: vtkTexturedSphereSource and vtkParametricTorus
+// (through vtkParametricFunctionSource and vtkTriangleFilter) at 1024 x 512, and the largest glTF
+// model of ../shared/data/gltf-external (skipped with a note when the data is absent); 1 and 2
+// threads, the median and quartiles of the per-pair ratios. Scaling (MeasureScaling): each filter
+// alone, updated alternately with one and with two threads, on the million-triangle torus; VTK's
+// filter and the default method also on every other size.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
 #include "BenchMemory.h"
+#include "NormalMapGLTF.h"
+#include "NormalMappingReferenceData.h"
 #include "NormalMappingThreads.h"
-#include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 
 #include "vtkAOSDataArrayTemplate.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCellArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkParametricFunctionSource.h"
+#include "vtkParametricTorus.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
+#include "vtkTexturedSphereSource.h"
+#include "vtkTriangleFilter.h"
 #include "vtkVersionMacros.h"
 
 #include <benchmark/benchmark.h>
@@ -48,6 +54,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <sstream>
 #include <string>
@@ -339,7 +346,6 @@ struct Paired
 {
   std::string Name;
   int Threads = 1;
-  bool FreshPages = false;    // every large block fresh from the kernel (see main)
   std::vector<double> Ratios; // the first run's time / the second's, one per pair
   double FastestRatio = 0.0;  // the first's fastest Update / the second's fastest Update
   double Quantile(double q) const
@@ -450,6 +456,104 @@ Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int
   return result;
 }
 
+/// A mesh of the paired runs.
+struct PairingMesh
+{
+  std::string Name;
+  vtkSmartPointer<vtkPolyData> Mesh;
+};
+
+/// Every triangle primitive of a glTF file as one polydata (points, normals, TEXCOORD_0 as the
+/// active texture coordinates); null when the file cannot be read or has no triangles.
+vtkSmartPointer<vtkPolyData> ReadGLTF(const std::string& path)
+{
+  NormalMapGLTF::Document doc;
+  std::string error;
+  if (!NormalMapGLTF::ReadDocument(path, doc, error))
+  {
+    return nullptr;
+  }
+  vtkNew<vtkAppendPolyData> append;
+  for (const NormalMapGLTF::PrimitiveId id : NormalMapGLTF::TrianglePrimitives(doc))
+  {
+    vtkSmartPointer<vtkPolyData> primitive = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
+    if (primitive && primitive->GetPointData()->GetNormals() &&
+      primitive->GetPointData()->GetTCoords())
+    {
+      append->AddInputData(primitive);
+    }
+  }
+  if (append->GetNumberOfInputConnections(0) == 0)
+  {
+    return nullptr;
+  }
+  append->Update();
+  return append->GetOutput();
+}
+
+/**
+ * The meshes of the paired runs: VTK's textured sphere and parametric torus at 1024 x 512 (64 x 32
+ * for the smoke run), and the glTF model of `shared/gltf-external` with the most triangles. `note`
+ * says why the glTF model is missing, when it is.
+ */
+std::vector<PairingMesh> PairingMeshes(bool smoke, std::string& note)
+{
+  const int u = smoke ? 64 : 1024;
+  const int v = smoke ? 32 : 512;
+  const std::string resolution = std::to_string(u) + " x " + std::to_string(v);
+  std::vector<PairingMesh> meshes;
+  vtkNew<vtkTexturedSphereSource> sphere;
+  sphere->SetThetaResolution(u);
+  sphere->SetPhiResolution(v);
+  sphere->Update();
+  meshes.push_back({ "vtkTexturedSphereSource " + resolution, sphere->GetOutput() });
+
+  vtkNew<vtkParametricTorus> torus;
+  vtkNew<vtkParametricFunctionSource> torusSource;
+  torusSource->SetParametricFunction(torus);
+  torusSource->SetUResolution(u);
+  torusSource->SetVResolution(v);
+  torusSource->GenerateTextureCoordinatesOn();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(torusSource->GetOutputPort());
+  triangles->Update();
+  meshes.push_back(
+    { "vtkParametricTorus " + resolution + ", triangulated", triangles->GetOutput() });
+
+  std::string lookedFor;
+  const std::string shared = NormalMappingTestData::FindSharedData(&lookedFor);
+  const std::filesystem::path folder = std::filesystem::path(shared) / "gltf-external";
+  std::error_code ec;
+  if (shared.empty() || !std::filesystem::is_directory(folder, ec))
+  {
+    note = "Skipped: the glTF models (`shared/data/gltf-external`, beside the project) were not "
+           "found; looked for " +
+      (shared.empty() ? lookedFor : folder.string()) + ".";
+    return meshes;
+  }
+  PairingMesh largest;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder, ec))
+  {
+    if (entry.path().extension() != ".gltf")
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkPolyData> mesh = ReadGLTF(entry.path().string());
+    if (mesh && (!largest.Mesh || mesh->GetNumberOfPolys() > largest.Mesh->GetNumberOfPolys()))
+    {
+      largest = { "glTF " + entry.path().stem().string(), mesh };
+    }
+  }
+  if (!largest.Mesh)
+  {
+    note =
+      "Skipped: no glTF model with normals and texture coordinates in " + folder.string() + ".";
+    return meshes;
+  }
+  meshes.push_back(largest);
+  return meshes;
+}
+
 std::string MemoryCell(const Measured& m)
 {
   if (m.PeakBytes < 0)
@@ -553,10 +657,6 @@ int main(int argc, char** argv)
   benchmark::RunSpecifiedBenchmarks(&collector);
   benchmark::Shutdown();
 
-  // Paired runs against VTK's filter: the summary mesh (see below), float input; once with
-  // glibc's usual allocation (large blocks that an execution frees are reused by the next, as in
-  // an application that updates a pipeline again), once more after the peak memory, with every
-  // large block from mmap: then each Update pays for fresh pages, as a first execution does.
   long long summarySize = sizes.front();
   for (long long size : sizes)
   {
@@ -566,60 +666,22 @@ int main(int argc, char** argv)
     }
   }
   const int pairs = smoke ? 3 : 40;
-  std::vector<Paired> paired;
-  const auto runPaired = [&](bool freshPages)
-  {
-    const auto pairedStart = std::chrono::steady_clock::now();
-    for (int threads : { 1, 2 })
-    {
-      for (const Bench::TangentFilter& f : Bench::TangentFilters())
-      {
-        if (!f.IsVTK())
-        {
-          paired.push_back(MeasurePaired(f, Torus(summarySize, false), threads, pairs));
-          paired.back().FreshPages = freshPages;
-        }
-      }
-    }
-    std::cout
-      << "paired runs" << (freshPages ? " (fresh pages)" : "") << " in "
-      << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
-      << " s" << std::endl;
-  };
-  runPaired(false);
-  // The same against VTK's filter with double input (memory reused): the double-precision path
-  // has kernels of its own.
-  std::vector<Paired> pairedDouble;
-  const auto doubleStart = std::chrono::steady_clock::now();
-  for (int threads : { 1, 2 })
-  {
-    for (const Bench::TangentFilter& f : Bench::TangentFilters())
-    {
-      if (!f.IsVTK())
-      {
-        pairedDouble.push_back(MeasurePaired(f, Torus(summarySize, true), threads, pairs));
-      }
-    }
-  }
-  std::cout << "paired runs (double input) in "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - doubleStart).count()
-            << " s" << std::endl;
-  // The default method with the vector code limited to AVX2, as on the many CPUs without AVX-512
-  // (VTK's filter is scalar code either way): float and double input, one thread, memory reused.
-  // On a CPU without AVX2 the limit gives its best code; the table says which ran.
-  namespace mikk = vtkNormalMapping::mikk;
-  const mikk::InstructionSet best = mikk::LimitInstructionSet(mikk::InstructionSet::AVX512);
-  const mikk::InstructionSet limited = mikk::LimitInstructionSet(mikk::InstructionSet::AVX2);
-  std::vector<Paired> pairedAVX2;
+  // Paired runs: the default method against VTK's filter on meshes that are not ours.
   const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
                                               vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
     vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
-  for (bool doublePrecision : { false, true })
+  std::string pairingNote;
+  const std::vector<PairingMesh> pairingMeshes = PairingMeshes(smoke, pairingNote);
+  std::vector<std::vector<Paired>> paired; // per mesh: 1 thread, 2 threads
+  const auto pairedStart = std::chrono::steady_clock::now();
+  for (const PairingMesh& m : pairingMeshes)
   {
-    pairedAVX2.push_back(
-      MeasurePaired(angleWeighted, Torus(summarySize, doublePrecision), 1, pairs));
+    paired.push_back({ MeasurePaired(angleWeighted, m.Mesh, 1, pairs),
+      MeasurePaired(angleWeighted, m.Mesh, 2, pairs) });
   }
-  mikk::LimitInstructionSet(best);
+  std::cout << "paired runs in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
+            << " s" << std::endl;
   // Two threads against one, each filter alone (memory reused).
   std::vector<Paired> scaling;
   const auto scalingStart = std::chrono::steady_clock::now();
@@ -676,7 +738,6 @@ int main(int argc, char** argv)
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - memoryStart).count()
             << " s" << (peakAvailable ? "" : " (VmHWM cannot be reset here: not measured)")
             << std::endl;
-  runPaired(true);
 
   // The tables.
   const auto find = [&](Config c, const std::string& name) -> const Measured&
@@ -735,80 +796,29 @@ int main(int argc, char** argv)
        << " MiB |\n";
   }
 
-  md << "\n### Paired runs: "
-     << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
-     << " triangles, float input\n\n"
-     << "Each filter and `vtkPolyDataTangents` updated alternately, " << pairs
+  md << "\n### Paired runs: AngleWeighted (the default) against VTK's filter\n\n"
+     << "Meshes that are not ours: VTK's sources (their points, normals and texture coordinates, "
+        "float) and the largest glTF model of `shared/data/gltf-external` (read with the "
+        "normalmap tool's reader, its triangle primitives appended). The two filters updated "
+        "alternately, "
+     << pairs
      << " pairs after one warm-up Update each, the order within a pair alternating (wall-clock "
-        "time). A pair's two runs are milliseconds apart, so a change in the machine's speed "
-        "mostly hits both, which the medians above (repetitions seconds apart) do not assure. "
-        "Each cell: the median over the pairs of `vtkPolyDataTangents`' time / the filter's "
-        "(above 1: faster than VTK's), with the first and third quartiles, and the ratio of "
-        "the two filters' fastest runs. Memory **reused**: glibc's usual allocation, under "
-        "which the large blocks an Update frees serve the next one (an application updating "
-        "its pipeline again; also the timed runs above). **Fresh pages**: every block of 128 "
-        "KiB or more from mmap and back, so that each Update faults in and zeroes its memory "
-        "as a first execution does (run after the peak memory, which needs that mode).\n\n"
-     << "| filter | memory | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
+        "time, memory reused). A pair's two runs are milliseconds apart, so a change in the "
+        "machine's speed mostly hits both. Each cell: the median over the pairs of "
+        "`vtkPolyDataTangents`' time / AngleWeighted's (above 1: faster than VTK's), with the "
+        "first and third quartiles, and the ratio of the two filters' fastest runs.\n\n"
+     << "| mesh | triangles | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
         "[quartiles] | fastest runs |\n"
-     << "|---|---|---:|---:|---:|---:|\n";
-  // A row's cells for each thread count: the runs of `list` with one's filter and memory mode.
-  const auto threadColumns = [](const std::vector<Paired>& list, const Paired& one)
+     << "|---|---:|---:|---:|---:|---:|\n";
+  for (size_t i = 0; i < pairingMeshes.size(); ++i)
   {
-    std::string cells;
-    for (const Paired& p : list)
-    {
-      if (p.Name == one.Name && p.FreshPages == one.FreshPages)
-      {
-        cells += " | " + p.Cells();
-      }
-    }
-    return cells;
-  };
-  for (const Paired& one : paired)
-  {
-    if (one.Threads != 1)
-    {
-      continue;
-    }
-    md << "| " << one.Name << " | " << (one.FreshPages ? "fresh pages" : "reused")
-       << threadColumns(paired, one) << " |\n";
+    md << "| " << pairingMeshes[i].Name << " | "
+       << Bench::Count(pairingMeshes[i].Mesh->GetNumberOfPolys()) << " | " << paired[i][0].Cells()
+       << " | " << paired[i][1].Cells() << " |\n";
   }
-
-  md << "\n### Paired runs, double input: "
-     << Bench::Count(find({ {}, true, 1, summarySize }, "floor").Triangles)
-     << " triangles, memory reused\n\n"
-     << "As above with the double-precision torus (points, normals and texture coordinates in "
-        "double), memory reused.\n\n"
-     << "| filter | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
-        "[quartiles] | fastest runs |\n"
-     << "|---|---:|---:|---:|---:|\n";
-  for (const Paired& one : pairedDouble)
+  if (!pairingNote.empty())
   {
-    if (one.Threads == 1)
-    {
-      md << "| " << one.Name << threadColumns(pairedDouble, one) << " |\n";
-    }
-  }
-
-  const auto isaName = [](mikk::InstructionSet isa)
-  {
-    return isa == mikk::InstructionSet::AVX512
-      ? "AVX-512"
-      : (isa == mikk::InstructionSet::AVX2 ? "AVX2" : "the baseline (no AVX2)");
-  };
-  md << "\n### Paired runs, AVX2 only: "
-     << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
-     << " triangles, one thread, memory reused\n\n"
-     << "AngleWeighted (the default) against VTK's filter as above, with our vector code limited "
-        "to AVX2 as on CPUs without AVX-512 (VTK's filter is scalar code either way). This run: "
-     << isaName(limited) << " (the CPU's best: " << isaName(best) << ").\n\n"
-     << "| input | median [quartiles] | fastest runs |\n"
-     << "|---|---:|---:|\n";
-  for (size_t i = 0; i < pairedAVX2.size(); ++i)
-  {
-    const Paired& p = pairedAVX2[i];
-    md << "| " << (i == 0 ? "float" : "double") << " | " << p.Cells() << " |\n";
+    md << "\n" << pairingNote << "\n";
   }
 
   md << "\n### Two threads against one: paired runs, "

@@ -4,7 +4,6 @@
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
-#include "vtkTangentFrameBatch.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
@@ -799,20 +798,10 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInAnyCellAreAnErrorForEveryMethod)
 
 TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThreads)
 {
-  // Meshes of triangles only are read as runs of id triples, in one block (one thread) or with
-  // owner checks (several; a block skips runs it owns no corner of, and the owner of a bad id
-  // checks it), by the AVX-512, AVX2 or scalar code: a bad id anywhere, first or last triangle or
-  // in the middle of a batch, must still give the error and the pass-through.
-  namespace mikk = vtkNormalMapping::mikk;
-  struct RestoreDefault
-  {
-    ~RestoreDefault() { mikk::LimitInstructionSet(mikk::InstructionSet::AVX512); }
-  } restore;
+  // A bad id anywhere, first or last triangle or in the middle, with one thread or several,
+  // must give the error and the pass-through.
   vtkNormalMapping::TorusOptions options;
-  // 145,162 triangles, 72,581 points: 8 blocks in runs of 2^12 ids with 2 threads, 32 in runs
-  // of 2^10 with 8 (ScanBlocks::Choose). The last chunk of 64
-  // triangles holds 10, so that the last cell's bad id is among the ids the AVX-512 owner pass
-  // leaves to its scalar tail (30 ids, 24 read eight at a time).
+  // 145,162 triangles, 72,581 points.
   options.U = 401;
   options.V = 181;
   const auto torus = vtkNormalMapping::MakeTorus(options);
@@ -825,31 +814,21 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThre
       bad->DeepCopy(torus);
       bad->GetPolys()->GetConnectivityArray()->SetComponent(
         3 * cell + 1, 0, static_cast<double>(id));
-      for (const mikk::InstructionSet isa : { mikk::InstructionSet::Baseline,
-             mikk::InstructionSet::AVX2,
-             mikk::InstructionSet::AVX512 })
+      for (int threads : { 1, 2, 8 })
       {
-        if (mikk::LimitInstructionSet(isa) != isa)
-        {
-          continue; // not on this CPU
-        }
-        for (int threads : { 1, 2, 8 })
-        {
-          SCOPED_TRACE("cell " + std::to_string(cell) + " id " + std::to_string(id) + ", " +
-            std::to_string(threads) + " threads, instruction set " +
-            std::to_string(static_cast<int>(isa)));
-          NormalMappingTesting::WithThreads(threads,
-            [&]()
-            {
-              vtkNew<vtkPolyDataTangentFrames> filter;
-              Messages messages(filter);
-              filter->SetInputData(bad);
-              filter->Update();
-              ASSERT_EQ(messages.Errors.size(), 1u);
-              EXPECT_TRUE(messages.Has(messages.Errors, "point id outside")) << messages.Errors[0];
-              EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
-            });
-        }
+        SCOPED_TRACE("cell " + std::to_string(cell) + " id " + std::to_string(id) + ", " +
+          std::to_string(threads) + " threads");
+        NormalMappingTesting::WithThreads(threads,
+          [&]()
+          {
+            vtkNew<vtkPolyDataTangentFrames> filter;
+            Messages messages(filter);
+            filter->SetInputData(bad);
+            filter->Update();
+            ASSERT_EQ(messages.Errors.size(), 1u);
+            EXPECT_TRUE(messages.Has(messages.Errors, "point id outside")) << messages.Errors[0];
+            EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+          });
       }
     }
   }
@@ -1336,15 +1315,8 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     mixed->SetStrips(strips);
     meshes.push_back(mixed);
   }
-  using vtkNormalMapping::detail::ScanBlocks;
   ASSERT_EQ(meshes[0]->GetNumberOfPoints(), 36300);
   ASSERT_EQ(meshes[1]->GetNumberOfPoints(), 134418);
-  for (const auto& [points, threads, blocks, shift] : std::vector<std::array<int, 4>>{
-         { 36300, 2, 8, 11 }, { 134418, 2, 8, 13 }, { 36300, 8, 32, 10 }, { 134418, 8, 32, 11 } })
-  {
-    EXPECT_EQ(ScanBlocks::Choose(points, threads).Blocks, blocks);
-    EXPECT_EQ(ScanBlocks::Choose(points, threads).OwnerShift, shift);
-  }
   for (const auto& mesh : meshes)
     for (int method : AllMethods)
     {
@@ -1356,7 +1328,6 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
         NormalMappingTesting::WithThreads(threads,
           [&]()
           {
-            // The blocks of the ordered scatter follow the estimated thread count.
             EXPECT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), threads);
             auto out = RunFrames(mesh,
               [&](vtkPolyDataTangentFrames* f)

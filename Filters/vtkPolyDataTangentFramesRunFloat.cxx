@@ -1,4 +1,0 @@
-// vtkPolyDataTangentFrames' execution with float output (see vtkPolyDataTangentFramesInternals.h).
-#include "vtkPolyDataTangentFramesInternals.h"
-
-VTK_TANGENT_FRAMES_RUN_INSTANCE(float);
