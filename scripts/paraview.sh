@@ -92,8 +92,26 @@ case "$job" in
     PV_PLUGIN_PATH="${plugin%/*}" paraview
     ;;
   screenshot)
-    "$root/Testing/Rendering/RunHeadless.sh" xvfb \
-      paraview --script="$root/ParaView/Testing/GuiScreenshot.py"
+    # ImageMagick's import grabs the X screen: only this job needs it.
+    dpkg-query -W -f='${Status}' imagemagick 2>/dev/null | grep -q "install ok installed" ||
+      DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
+        imagemagick >/dev/null
+    work="$build/screenshot"
+    rm -rf "$work" && mkdir -p "$work/config/ParaView"
+    # Settings of its own (the user's are not read or written): no welcome dialog.
+    printf '[General]\nGeneralSettings.ShowWelcomeDialog=0\n' \
+      >"$work/config/ParaView/ParaView5.11.0.ini"
+    XDG_CONFIG_HOME="$work/config" NORMALMAPPING_WORK="$work" PYTHONPATH="$PYTHONPATH:$root/ParaView/Testing" \
+      PV_PLUGIN_PATH="${plugin%/*}" "$root/Testing/Rendering/RunHeadless.sh" xvfb sh -c '
+        paraview -geometry 1280x1000+0+0 --script="$1/ParaView/Testing/GuiScreenshot.py" \
+          >"$2/paraview.log" 2>&1 &
+        gui=$!
+        tries=0
+        while [ ! -e "$2/ready" ] && [ "$tries" -lt 600 ]; do sleep 0.1; tries=$((tries + 1)); done
+        sleep 3 # the window draws after the script returns
+        import -window "ParaView 5.11.0" "$1/docs/paraview.png"
+        kill "$gui"' sh "$root" "$work"
+    echo "== wrote $root/docs/paraview.png"
     ;;
   *)
     echo "usage: $0 test|build|gui|screenshot" >&2

@@ -1,6 +1,7 @@
 #include "vtkNormalMappedSurfaceRepresentation.h"
 
 #include "vtkNormalMapCompositePolyDataMapper.h"
+#include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactory.h"
 #include "vtkTexture.h"
 
@@ -76,9 +77,9 @@ void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent inde
   this->Superclass::PrintSelf(os, indent);
   auto* mapper = this->NormalMapper(0);
   os << indent << "MapEncoding: "
-     << vtkNormalMapCompositePolyDataMapper::GetMapEncodingName(mapper->GetMapEncoding()) << "\n";
+     << vtkNormalMapPolyDataMapper::GetMapEncodingName(mapper->GetMapEncoding()) << "\n";
   os << indent << "FrameSource: "
-     << vtkNormalMapCompositePolyDataMapper::GetFrameSourceName(mapper->GetFrameSource()) << "\n";
+     << vtkNormalMapPolyDataMapper::GetFrameSourceName(mapper->GetFrameSource()) << "\n";
   os << indent << "TangentSignsArray: " << mapper->GetTangentSignsArrayName() << "\n";
   os << indent << "NormalMapTexture: " << this->NormalMapTexture.GetPointer() << "\n";
 }
