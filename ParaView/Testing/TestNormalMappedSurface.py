@@ -65,6 +65,13 @@ fraction, _ = nm.difference(directx, ours, BASELINE_BOUND)
 check(fraction < 0.9, "the map encoding changes the image (%.1f%% unchanged)" % (100 * fraction))
 display.NormalMapEncoding = "Tangent space, OpenGL (+Y green)"
 
+# The signs are what shade the mirrored half right: naming an array that does not exist leaves
+# the tangents unsigned (sign +1, with a warning), and the mirrored half is wrong again.
+display.TangentSignsArray = "NoSuchArray"
+Render(view)
+nm.measure_symmetry(view, "Normal Mapped Surface, signs not found", check, False, "no-signs")
+display.TangentSignsArray = "TangentSigns"
+
 # No tangent array at all: the reader's output, with this representation's NormalMapTexture
 # (ParaView's NormalTexture widget is disabled without tangents). The frame comes from screen
 # derivatives, which handle mirroring by themselves.
