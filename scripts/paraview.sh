@@ -28,9 +28,10 @@ sudo_cmd=""
 [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 if [ "${#missing[@]}" -gt 0 ]; then
   echo "== installing missing Debian packages: ${missing[*]}"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >/dev/null
+  mkdir -p "$build"
+  { $sudo_cmd apt-get update -qq &&
+    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
+      "${missing[@]}"; } >"$build/apt.log" 2>&1 || { cat "$build/apt.log"; exit 1; }
 fi
 
 # A prefix that looks like /usr to ParaView's relocatable CMake package (which finds everything
@@ -77,7 +78,8 @@ configure_and_build() {
       -DParaView_DIR="$prefix/lib/$multiarch/cmake/paraview-5.11" >"$build/configure.log" 2>&1 ||
       { cat "$build/configure.log"; exit 1; }
   fi
-  cmake --build "$build" -j 2 >"$build/build.log" 2>&1 || { grep -E "error|Error" "$build/build.log"; exit 1; }
+  cmake --build "$build" -j 2 >"$build/build.log" 2>&1 ||
+    { grep -E "error|Error" "$build/build.log"; exit 1; }
 }
 configure_and_build
 
@@ -95,14 +97,15 @@ case "$job" in
     # ImageMagick's import grabs the X screen: only this job needs it.
     dpkg-query -W -f='${Status}' imagemagick 2>/dev/null | grep -q "install ok installed" ||
       DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
-        imagemagick >/dev/null
+        imagemagick >"$build/apt.log" 2>&1 || { cat "$build/apt.log"; exit 1; }
     work="$build/screenshot"
     rm -rf "$work" && mkdir -p "$work/config/ParaView"
     # Settings of its own (the user's are not read or written): no welcome dialog.
     printf '[General]\nGeneralSettings.ShowWelcomeDialog=0\n' \
       >"$work/config/ParaView/ParaView5.11.0.ini"
-    XDG_CONFIG_HOME="$work/config" NORMALMAPPING_WORK="$work" PYTHONPATH="$PYTHONPATH:$root/ParaView/Testing" \
-      PV_PLUGIN_PATH="${plugin%/*}" "$root/Testing/Rendering/RunHeadless.sh" xvfb sh -c '
+    XDG_CONFIG_HOME="$work/config" NORMALMAPPING_WORK="$work" PV_PLUGIN_PATH="${plugin%/*}" \
+      PYTHONPATH="$PYTHONPATH:$root/ParaView/Testing" \
+      "$root/Testing/Rendering/RunHeadless.sh" xvfb sh -c '
         paraview -geometry 1280x1000+0+0 --script="$1/ParaView/Testing/GuiScreenshot.py" \
           >"$2/paraview.log" 2>&1 &
         gui=$!

@@ -22,6 +22,7 @@ nm.measure_symmetry(view, "ParaView's Surface, no normal map", check, True, "sur
 
 display.NormalTexture = texture
 Render(view)
-nm.measure_symmetry(view, "ParaView's Surface with the normal map", check, False, "surface-normal-map")
+nm.measure_symmetry(
+    view, "ParaView's Surface with the normal map", check, False, "surface-normal-map")
 
 check.finish()

@@ -38,7 +38,8 @@ class Checks:
 
     def finish(self):
         if self.failed:
-            raise RuntimeError("%d check(s) failed: %s" % (len(self.failed), "; ".join(self.failed)))
+            failed = "; ".join(self.failed)
+            raise RuntimeError("%d check(s) failed: %s" % (len(self.failed), failed))
         print("all checks passed")
 
 

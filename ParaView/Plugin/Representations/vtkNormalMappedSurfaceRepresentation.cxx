@@ -20,7 +20,8 @@ vtkNormalMappedSurfaceRepresentation::vtkNormalMappedSurfaceRepresentation()
 
 vtkNormalMappedSurfaceRepresentation::~vtkNormalMappedSurfaceRepresentation() = default;
 
-vtkNormalMapCompositePolyDataMapper* vtkNormalMappedSurfaceRepresentation::NormalMapper(int which) const
+vtkNormalMapCompositePolyDataMapper* vtkNormalMappedSurfaceRepresentation::NormalMapper(
+  int which) const
 {
   return static_cast<vtkNormalMapCompositePolyDataMapper*>(
     which == 0 ? this->Mapper : this->LODMapper);
@@ -76,10 +77,12 @@ void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent inde
 {
   this->Superclass::PrintSelf(os, indent);
   auto* mapper = this->NormalMapper(0);
-  os << indent << "MapEncoding: "
-     << vtkNormalMapPolyDataMapper::GetMapEncodingName(mapper->GetMapEncoding()) << "\n";
-  os << indent << "FrameSource: "
-     << vtkNormalMapPolyDataMapper::GetFrameSourceName(mapper->GetFrameSource()) << "\n";
+  os << indent
+     << "MapEncoding: " << vtkNormalMapPolyDataMapper::GetMapEncodingName(mapper->GetMapEncoding())
+     << "\n";
+  os << indent
+     << "FrameSource: " << vtkNormalMapPolyDataMapper::GetFrameSourceName(mapper->GetFrameSource())
+     << "\n";
   os << indent << "TangentSignsArray: " << mapper->GetTangentSignsArrayName() << "\n";
   os << indent << "NormalMapTexture: " << this->NormalMapTexture.GetPointer() << "\n";
 }
