@@ -16,6 +16,9 @@
  * enabled only for data with tangents, or this representation's SetNormalMapTexture, offered for
  * any data with texture coordinates. When both are set, SetNormalMapTexture's wins. The tangent
  * array is ParaView's (SetTangentArray makes it the active tangents, which the mapper reads).
+ *
+ * The LOD mapper (interactive rendering of large data) is ours too. The back-face mappers
+ * (ParaView's Backface Representation other than "Follow Frontface") stay ParaView's own.
  */
 #ifndef vtkNormalMappedSurfaceRepresentation_h
 #define vtkNormalMappedSurfaceRepresentation_h
