@@ -16,7 +16,6 @@ job="${1:-test}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-paraview}"
 prefix="$build/prefix"
-multiarch="$(gcc -dumpmachine)"
 
 packages=(build-essential cmake libglm-dev xvfb xauth paraview paraview-dev
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev qttools5-dev qtxmlpatterns5-dev-tools)
@@ -33,6 +32,8 @@ if [ "${#missing[@]}" -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
       "${missing[@]}"; } >"$build/apt.log" 2>&1 || { cat "$build/apt.log"; exit 1; }
 fi
+
+multiarch="$(gcc -dumpmachine)" # after the install: build-essential brings gcc
 
 # A prefix that looks like /usr to ParaView's relocatable CMake package (which finds everything
 # relative to its own folder), made of links to /usr plus the unpacked python3-paraview: its
