@@ -243,13 +243,20 @@ def mirror_view():
     view.OrientationAxesVisibility = 0
     view.UseColorPaletteForBackground = 0
     view.Background = [0.0, 0.0, 0.0]
+    light_on_mirror_plane(view)
+    return view
+
+
+def light_on_mirror_plane(view):
+    """The view's only light: directional, from (0, 1.5, 2) towards the origin."""
+    from paraview import simple
+
     view.UseLight = 0  # no light kit: its key and fill lights are off the mirror plane
     light = simple.AddLight(view=view)
     light.Coords = "Scene"
     light.Type = "Directional"
     light.Position = [0.0, 1.5, 2.0]
     light.FocalPoint = [0.0, 0.0, 0.0]
-    return view
 
 
 def show_mirrored(source, view, representation, texture=None, texture_property="NormalTexture"):
