@@ -4,6 +4,7 @@ find_package(glm REQUIRED)
 
 set(_nm_classes
   Filters/vtkPolyDataTangentFrames
+  Rendering/vtkNormalMapCompositePolyDataMapper
   Rendering/vtkNormalMapObjectFactory
   Rendering/vtkNormalMapPolyDataMapper)
 # Installed, but not wrapped for Python: VTK 9.1's wrappers wrap only classes, and only enums and
@@ -21,14 +22,16 @@ set(_nm_sources
   Filters/vtkNormalMappingPrivate.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
   Filters/vtkPolyDataTangentFramesRunDouble.cxx
-  Filters/vtkPolyDataTangentFramesRunFloat.cxx)
+  Filters/vtkPolyDataTangentFramesRunFloat.cxx
+  Rendering/vtkNormalMapShading.cxx)
 set(_nm_private_headers
   Filters/vtkNormalMappingHugePages.h
   Filters/vtkNormalMappingPrivate.h
   Filters/vtkPolyDataTangentFramesInternals.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
   Filters/vtkTangentFrameBatch.h
-  Filters/vtkTangentFrameLanes.h)
+  Filters/vtkTangentFrameLanes.h
+  Rendering/vtkNormalMapShading.h)
 
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_nowrap_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")

@@ -1,5 +1,6 @@
 #include "vtkNormalMapObjectFactory.h"
 
+#include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkVersion.h"
@@ -12,6 +13,17 @@ vtkObject* CreateNormalMapPolyDataMapper()
 {
   return vtkNormalMapPolyDataMapper::New();
 }
+
+vtkObject* CreateNormalMapCompositePolyDataMapper()
+{
+  return vtkNormalMapCompositePolyDataMapper::New();
+}
+
+/// The classes overridden, each with its replacement.
+const char* const Overrides[][2] = {
+  { "vtkPolyDataMapper", "vtkNormalMapPolyDataMapper" },
+  { "vtkCompositePolyDataMapper2", "vtkNormalMapCompositePolyDataMapper" },
+};
 
 /// The registered factory, or nullptr.
 vtkNormalMapObjectFactory* Registered()
@@ -38,6 +50,11 @@ vtkNormalMapObjectFactory::vtkNormalMapObjectFactory()
     "Normal-mapping polydata mapper",
     1,
     CreateNormalMapPolyDataMapper);
+  this->RegisterOverride("vtkCompositePolyDataMapper2",
+    "vtkNormalMapCompositePolyDataMapper",
+    "Normal-mapping composite polydata mapper",
+    1,
+    CreateNormalMapCompositePolyDataMapper);
 }
 
 //------------------------------------------------------------------------------
@@ -49,7 +66,8 @@ const char* vtkNormalMapObjectFactory::GetVTKSourceVersion()
 //------------------------------------------------------------------------------
 const char* vtkNormalMapObjectFactory::GetDescription()
 {
-  return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper";
+  return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
+         "vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper2";
 }
 
 //------------------------------------------------------------------------------
@@ -61,8 +79,11 @@ void vtkNormalMapObjectFactory::Install()
     vtkObjectFactory::RegisterFactory(factory);
   }
   // The first enabled override wins; VTK's OpenGL module registered its own earlier.
-  vtkObjectFactory::SetAllEnableFlags(false, "vtkPolyDataMapper");
-  vtkObjectFactory::SetAllEnableFlags(true, "vtkPolyDataMapper", "vtkNormalMapPolyDataMapper");
+  for (const auto& pair : Overrides)
+  {
+    vtkObjectFactory::SetAllEnableFlags(false, pair[0]);
+    vtkObjectFactory::SetAllEnableFlags(true, pair[0], pair[1]);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -72,7 +93,10 @@ void vtkNormalMapObjectFactory::Uninstall()
   {
     vtkObjectFactory::UnRegisterFactory(factory);
   }
-  vtkObjectFactory::SetAllEnableFlags(true, "vtkPolyDataMapper");
+  for (const auto& pair : Overrides)
+  {
+    vtkObjectFactory::SetAllEnableFlags(true, pair[0]);
+  }
 }
 
 //------------------------------------------------------------------------------

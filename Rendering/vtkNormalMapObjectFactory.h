@@ -1,16 +1,23 @@
 /**
  * @class   vtkNormalMapObjectFactory
- * @brief   Makes vtkPolyDataMapper::New() return a vtkNormalMapPolyDataMapper.
+ * @brief   Makes VTK's object factory create the module's normal-mapping mappers.
  *
  * For applications that create their mappers through VTK's object factory (ParaView-like
  * applications, readers and importers): after Install(), every vtkPolyDataMapper::New()
- * returns a vtkNormalMapPolyDataMapper, which renders exactly like VTK's mapper where no
- * normal texture is set. Nothing changes until Install() is called: linking the module does not
- * override anything. Uninstall() restores VTK's own mapper.
+ * returns a vtkNormalMapPolyDataMapper, and the factory creates a
+ * vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper2; both render exactly
+ * like VTK's mappers where no normal texture is set. Nothing changes until Install() is
+ * called: linking the module does not override anything. Uninstall() restores VTK's own.
+ *
+ * vtkCompositePolyDataMapper2::New() (VTK 9.1, 9.2) asks the object factory only in VTK builds
+ * with VTK_ALL_NEW_OBJECT_FACTORY (Debian's VTK 9.1 is built without it); elsewhere the
+ * override reaches code that creates the class by name (vtkObjectFactory::CreateInstance),
+ * and applications create vtkNormalMapCompositePolyDataMapper directly.
+ * vtkPolyDataMapper::New() always asks the factory.
  *
  * VTK's OpenGL module registers its own vtkPolyDataMapper override first, and the factory
- * returns the first enabled override, so Install() disables the others for that class and
- * Uninstall() enables them again.
+ * returns the first enabled override, so Install() disables the others for each overridden
+ * class and Uninstall() enables them again.
  */
 #ifndef vtkNormalMapObjectFactory_h
 #define vtkNormalMapObjectFactory_h

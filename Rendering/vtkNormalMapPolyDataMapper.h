@@ -37,6 +37,8 @@
  *
  * Flat, Gouraud, Phong and PBR interpolation all show the map (VTK lights every model per
  * fragment). Wireframe and point representations, vertices and lines draw without it.
+ *
+ * For multiblock data, vtkNormalMapCompositePolyDataMapper does the same per block.
  */
 #ifndef vtkNormalMapPolyDataMapper_h
 #define vtkNormalMapPolyDataMapper_h

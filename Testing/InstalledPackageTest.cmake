@@ -4,7 +4,9 @@
 # With PYTHON (the interpreter) and PYTHON_DESTINATION (the package's folder under the prefix),
 # it also runs the Python filter test against the installed package: with LD_LIBRARY_PATH unset,
 # and it checks that both the package and the module library it loads come from the prefix.
-# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR; PYTHON, PYTHON_DESTINATION optional.
+# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, VTK_DIR (the VTK the module was built against: with
+# only the prefix, find_package could pick another VTK, and two VTKs in one process crash);
+# PYTHON, PYTHON_DESTINATION optional.
 file(REMOVE_RECURSE "${WORK_DIR}")
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
@@ -15,7 +17,7 @@ function(run)
 endfunction()
 run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix")
 run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Examples" -B "${WORK_DIR}/examples"
-  -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+  -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix "-DVTK_DIR=${VTK_DIR}" -DCMAKE_BUILD_TYPE=Release)
 run("${CMAKE_COMMAND}" --build "${WORK_DIR}/examples")
 run("${WORK_DIR}/examples/TangentFramesDemo" --triangles 20000)
 run("${WORK_DIR}/examples/normalmap/normalmap" tangents

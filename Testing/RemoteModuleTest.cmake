@@ -2,7 +2,7 @@
 # VTK scans <tree>/Remote/NormalMapping/vtk.module and lets vtk_module_build add that directory,
 # so the root CMakeLists.txt runs as the module's body. (The real VTK tree is too large to build
 # here; this runs the same vtk_module_scan / vtk_module_build path against the installed VTK.)
-# Inputs: SOURCE_DIR (this project), WORK_DIR.
+# Inputs: SOURCE_DIR (this project), WORK_DIR, VTK_DIR (the VTK the project was configured with).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/src/Remote")
 file(COPY "${SOURCE_DIR}/" DESTINATION "${WORK_DIR}/src/Remote/NormalMapping"
@@ -25,6 +25,7 @@ function(run)
     message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}")
   endif()
 endfunction()
-run("${CMAKE_COMMAND}" -S "${WORK_DIR}/src" -B "${WORK_DIR}/build" -DCMAKE_BUILD_TYPE=Release)
+run("${CMAKE_COMMAND}" -S "${WORK_DIR}/src" -B "${WORK_DIR}/build" -DCMAKE_BUILD_TYPE=Release
+  "-DVTK_DIR=${VTK_DIR}")
 run("${CMAKE_COMMAND}" --build "${WORK_DIR}/build" --target NormalMapping)
 message("remote-module layout: VTK::NormalMapping built as a module of a project named VTK")

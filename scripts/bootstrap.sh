@@ -2,7 +2,8 @@
 # Set up a fresh Debian (bookworm) machine, build, and run one job:
 #   bash scripts/bootstrap.sh demo   # build and run `normalmap demo`: renders normalmap-demo.png
 #                                    # in the current folder
-#   bash scripts/bootstrap.sh test   # build and run every test, then the same tests and a
+#   bash scripts/bootstrap.sh test   # build and run every test, compile the library for ARM
+#                                    # (scripts/portability.sh), then the same tests and a
 #                                    # short fuzz run under ASan + UBSan (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmark set (scripts/bench.sh): writes
 #                                    # docs/benchmarks.md and docs/benchmarks.png
@@ -19,6 +20,8 @@ build="${BUILD_DIR:-$root/build}"
 packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
   libtinygltf-dev xvfb xauth clang-14 libclang-rt-14-dev nlohmann-json3-dev libstb-dev
   python3-vtk9 libpython3-dev libpng-dev libjpeg-dev)
+# g++-aarch64-linux-gnu: the test job compiles the library for 64-bit ARM (scripts/portability.sh).
+[ "$job" != test ] || packages+=(g++-aarch64-linux-gnu)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -33,7 +36,7 @@ if [ "${#missing[@]}" -gt 0 ]; then
 fi
 
 echo "== configuring and building in $build"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
 cmake --build "$build" -j "$(nproc)" 2>&1 | grep -E "error|warning: |Error" || true
 cmake --build "$build" -j "$(nproc)" >/dev/null
 
@@ -50,6 +53,8 @@ case "$job" in
     ;;
   test)
     (cd "$build" && ctest --output-on-failure -j "$(nproc)")
+    echo "== the library compiled for 64-bit ARM"
+    bash "$root/scripts/portability.sh" "$build"
     echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
     bash "$root/scripts/sanitize.sh"
     ;;

@@ -8,7 +8,10 @@
 #include <vtkCamera.h>
 #include <vtkImageData.h>
 #include <vtkLight.h>
+#include <vtkMapper.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkNormalMapCompositePolyDataMapper.h>
 #include <vtkNormalMapPolyDataMapper.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
@@ -56,6 +59,40 @@ std::string RendererString(vtkRenderWindow* window)
     }
   }
   return "unknown";
+}
+
+// An actor for `mapper` with the scene's material and this normal map.
+void AddActor(vtkRenderer* renderer,
+  vtkMapper* mapper,
+  const Scene& scene,
+  vtkTexture* normalMap,
+  double strength)
+{
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkProperty* property = actor->GetProperty();
+  property->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
+  if (scene.PBR)
+  {
+    property->SetInterpolationToPBR();
+    property->SetMetallic(0.0);
+    property->SetRoughness(0.45);
+  }
+  else
+  {
+    property->SetInterpolationToPhong();
+    property->SetAmbient(0.08);
+    property->SetDiffuse(0.85);
+    property->SetSpecular(0.35);
+    property->SetSpecularPower(30.0);
+  }
+  if (normalMap)
+  {
+    property->SetNormalTexture(normalMap);
+    property->SetNormalScale(strength);
+  }
+  renderer->AddActor(actor);
 }
 
 // The X display for VTK's X window, opened here: VTK 9.1 calls abort() when it cannot open one.
@@ -139,34 +176,23 @@ bool Render(const Scene& scene, Rendered& result, std::string& error)
     renderer->AddLight(light);
 
     vtkNew<vtkNormalMapPolyDataMapper> mapper;
-    mapper->SetInputData(scene.Mesh);
-    mapper->SetMapEncoding(scene.Encoding);
-    mapper->SetFrameSource(scene.FrameSource);
-    mapper->ScalarVisibilityOff();
-    vtkNew<vtkActor> actor;
-    actor->SetMapper(mapper);
-    vtkProperty* property = actor->GetProperty();
-    property->SetColor(scene.Color[0], scene.Color[1], scene.Color[2]);
-    if (scene.PBR)
+    std::vector<vtkSmartPointer<vtkNormalMapCompositePolyDataMapper>> composites;
+    if (scene.Parts.empty())
     {
-      property->SetInterpolationToPBR();
-      property->SetMetallic(0.0);
-      property->SetRoughness(0.45);
+      mapper->SetInputData(scene.Mesh);
+      mapper->SetMapEncoding(scene.Encoding);
+      mapper->SetFrameSource(scene.FrameSource);
+      AddActor(renderer, mapper, scene, scene.NormalMap, scene.Strength);
     }
-    else
+    for (const Part& part : scene.Parts)
     {
-      property->SetInterpolationToPhong();
-      property->SetAmbient(0.08);
-      property->SetDiffuse(0.85);
-      property->SetSpecular(0.35);
-      property->SetSpecularPower(30.0);
+      auto composite = vtkSmartPointer<vtkNormalMapCompositePolyDataMapper>::New();
+      composite->SetInputDataObject(part.Blocks);
+      composite->SetMapEncoding(scene.Encoding);
+      composite->SetFrameSource(scene.FrameSource);
+      AddActor(renderer, composite, scene, part.NormalMap, part.Strength);
+      composites.push_back(composite);
     }
-    if (scene.NormalMap)
-    {
-      property->SetNormalTexture(scene.NormalMap);
-      property->SetNormalScale(scene.Strength);
-    }
-    renderer->AddActor(actor);
 
     vtkCamera* camera = renderer->GetActiveCamera();
     if (scene.PlaceCamera)
@@ -202,8 +228,22 @@ bool Render(const Scene& scene, Rendered& result, std::string& error)
 
     result.Renderer = RendererString(window);
     result.Window = std::string(window->GetClassName()) + ", display " + displayName;
-    result.AppliedFrame =
-      vtkNormalMapPolyDataMapper::GetAppliedFrameName(mapper->GetLastAppliedFrame());
+    if (scene.Parts.empty())
+    {
+      result.AppliedFrame =
+        vtkNormalMapPolyDataMapper::GetAppliedFrameName(mapper->GetLastAppliedFrame());
+    }
+    for (size_t p = 0; p < scene.Parts.size(); ++p)
+    {
+      const std::vector<std::string>& names = scene.Parts[p].BlockNames;
+      for (unsigned int b = 0; b < names.size(); ++b)
+      {
+        // A multiblock's leaves have flat indices 1, 2, ... (0 is the dataset itself).
+        result.AppliedFrame += (result.AppliedFrame.empty() ? "" : "; ") + names[b] + ": " +
+          vtkNormalMapPolyDataMapper::GetAppliedFrameName(
+            composites[p]->GetLastAppliedFrame(b + 1));
+      }
+    }
 
     vtkNew<vtkWindowToImageFilter> grab;
     grab->SetInput(window);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Offscreen rendering for the normalmap tool's render and demo commands: one mesh drawn with
-// vtkNormalMapPolyDataMapper into an offscreen window, read back as an RGB image, and written
-// as PNG all-or-nothing.
+// vtkNormalMapPolyDataMapper, or groups of meshes (a glTF file's primitives, one group per
+// normal map) drawn with vtkNormalMapCompositePolyDataMapper, into an offscreen window, read
+// back as an RGB image, and written as PNG all-or-nothing.
 //
 // Debian's VTK 9.1 renders through X only (no OSMesa, no EGL), and VTK aborts the process when
 // it cannot open the display; Render() opens the display itself first, so a missing X server
@@ -15,6 +16,7 @@
 #include <vector>
 
 class vtkImageData;
+class vtkMultiBlockDataSet;
 class vtkPolyData;
 class vtkTexture;
 
@@ -28,11 +30,22 @@ namespace NormalMapRender
 /// The window's background (RGB, 0..1).
 constexpr double Background[3] = { 0.1, 0.1, 0.12 };
 
+/// Meshes drawn by one actor through vtkNormalMapCompositePolyDataMapper, with one normal map.
+struct Part
+{
+  vtkMultiBlockDataSet* Blocks = nullptr;
+  std::vector<std::string> BlockNames; // for the report, in block order
+  vtkTexture* NormalMap = nullptr;     // none: drawn without a map
+  double Strength = 1.0;
+};
+
 struct Scene
 {
   vtkPolyData* Mesh = nullptr;
   vtkTexture* NormalMap = nullptr; // none: drawn without a map
   double Strength = 1.0;
+  /// Instead of Mesh, NormalMap and Strength: one actor per part.
+  std::vector<Part> Parts;
   int Encoding = 0;    // vtkNormalMapPolyDataMapper::MapEncodings
   int FrameSource = 0; // vtkNormalMapPolyDataMapper::FrameSources
   bool PBR = false;    // PBR interpolation (metallic 0, roughness 0.45) instead of Phong
@@ -62,7 +75,8 @@ struct Rendered
   double NextFrameMs = 0.0;            // the same frame again
   std::string Renderer;                // GL_RENDERER, from ReportCapabilities
   std::string Window;                  // the render window class and the display it used
-  std::string AppliedFrame;            // vtkNormalMapPolyDataMapper::GetLastAppliedFrame()
+  std::string AppliedFrame;            // the mappers' GetLastAppliedFrame(): the frame's name, or
+                                       // "<block name>: <frame>; ..." for parts
   std::vector<std::string> Warnings;   // VTK's warnings during the render, one line each
 };
 

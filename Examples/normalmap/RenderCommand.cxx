@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// normalmap render: draws a mesh offscreen with vtkNormalMapPolyDataMapper and writes a PNG
-// (see UsageText below).
+// normalmap render: draws a mesh offscreen with vtkNormalMapPolyDataMapper, or a glTF file's
+// primitives with vtkNormalMapCompositePolyDataMapper, and writes a PNG (see UsageText below).
 #include "NormalMapFiles.h"
 #include "NormalMapGLTF.h"
 #include "NormalMapImages.h"
@@ -9,11 +9,11 @@
 #include "NormalMapTangents.h"
 #include "NormalMapTool.h"
 
-#include <vtkAppendPolyData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkNormalMapPolyDataMapper.h>
 #include <vtkPointData.h>
@@ -26,8 +26,10 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -37,19 +39,21 @@ constexpr const char* Name = "render";
 const char* UsageText =
   R"(usage: normalmap render IN -o OUT.png [options]
 
-Draws IN offscreen with vtkNormalMapPolyDataMapper and writes the picture as PNG.
+Draws IN offscreen and writes the picture as PNG.
 
-  IN   .vtp, .vtk, .ply, .obj, .gltf or .glb with texture coordinates (glTF: every triangle
-       primitive, with the first normal texture found)
+  IN   .vtp, .vtk, .ply, .obj (vtkNormalMapPolyDataMapper), .gltf or .glb with texture
+       coordinates: every triangle primitive with its material's normal texture, as blocks of
+       vtkNormalMapCompositePolyDataMapper (one per normal texture; primitives whose material
+       has none are drawn without a map, unless no material has one)
 
 options:
   -o, --output OUT.png      the picture (written whole or not at all)
-  --normal-map PNG          the normal map (PNG or JPEG); default: the glTF material's normal
-                            texture (a file, or PNG or JPEG embedded in the glTF), else a
-                            built-in procedural map (bricks with rivets)
+  --normal-map PNG          the normal map (PNG or JPEG) for every primitive; default: each
+                            glTF material's normal texture (a file, or PNG or JPEG embedded in
+                            the glTF), else a built-in procedural map (bricks with rivets)
   --encoding E              opengl (default; +Y green) | directx (-Y green) | rg (two
                             channels) | object (object-space normals; needs --normal-map)
-  --strength S              normal map strength (default 1, or the glTF normalTexture.scale)
+  --strength S              normal map strength (default 1, or each glTF normalTexture.scale)
   --frame F                 tangents: the file's tangents, else computed (MikkTSpace);
                             derivatives: per-pixel frames from screen-space derivatives;
                             default: the file's tangents if it has them, else derivatives
@@ -253,95 +257,101 @@ void FlipToVUp(vtkPolyData* mesh)
   mesh->GetFieldData()->RemoveArray(NormalMapTangents::VDownArrayName);
 }
 
-struct Input
+/// One mesh of the input: a glTF triangle primitive, or the whole file.
+struct Primitive
 {
   vtkSmartPointer<vtkPolyData> Mesh;
-  std::string NormalTextureFile; // from the glTF material
-  double NormalTextureScale = 1.0;
-  vtkSmartPointer<vtkImageData> EmbeddedTexture; // the glTF material's, decoded from the file
-  std::string EmbeddedTextureText;               // what it is, for the report
+  std::string Name;                // "mesh 0 primitive 1" (glTF), empty for other files
+  bool HasNormalTexture = false;   // its glTF material has a normal texture:
+  std::string NormalTextureFile;   // as a file (resolved), or
+  int EmbeddedImage = -1;          // embedded in the glTF file
+  double NormalTextureScale = 1.0; // glTF normalTexture.scale
+};
+
+struct Input
+{
+  std::vector<Primitive> Primitives;
+  bool GLTF = false;
+  NormalMapGLTF::Document Document; // glTF: the embedded images
   std::vector<std::string> Warnings;
 };
 
-// The normal texture image embedded in the glTF file (a data: URI or a buffer view), decoded;
-// when it cannot be, a warning and the built-in map.
-void DecodeEmbeddedTexture(const NormalMapGLTF::Document& doc, int image, Input& input)
+// The normal texture image embedded in the glTF file (a data: URI or a buffer view), decoded
+// and described; nullptr with `error` when it cannot be.
+vtkSmartPointer<vtkImageData> DecodeEmbeddedTexture(const NormalMapGLTF::Document& doc,
+  int image,
+  std::string& text,
+  std::string& error)
 {
   std::vector<unsigned char> bytes;
-  std::string mimeType, error;
+  std::string mimeType;
+  vtkSmartPointer<vtkImageData> decoded;
   if (NormalMapGLTF::EmbeddedImage(doc, image, bytes, mimeType, error))
   {
-    input.EmbeddedTexture = NormalMapImages::Decode(bytes.data(), bytes.size(), error);
-    if (!input.EmbeddedTexture && NormalMapImages::Format(bytes.data(), bytes.size()).empty() &&
+    decoded = NormalMapImages::Decode(bytes.data(), bytes.size(), error);
+    if (!decoded && NormalMapImages::Format(bytes.data(), bytes.size()).empty() &&
       !mimeType.empty())
     {
       error += " (its mimeType says " + mimeType + ")";
     }
   }
-  if (!input.EmbeddedTexture)
+  if (decoded)
   {
-    input.Warnings.push_back(
-      "cannot use the file's normal texture: " + error + "; using the built-in map");
-    return;
+    int dims[3];
+    decoded->GetDimensions(dims);
+    text = "embedded image " + std::to_string(image) + " (" +
+      NormalMapImages::Format(bytes.data(), bytes.size()) + ", " + std::to_string(dims[0]) + "x" +
+      std::to_string(dims[1]) + ")";
   }
-  int dims[3];
-  input.EmbeddedTexture->GetDimensions(dims);
-  input.EmbeddedTextureText = "embedded image " + std::to_string(image) + " (" +
-    NormalMapImages::Format(bytes.data(), bytes.size()) + ", " + std::to_string(dims[0]) + "x" +
-    std::to_string(dims[1]) + ")";
+  return decoded;
 }
 
 bool ReadGLTF(const std::string& path, Input& input, std::string& error)
 {
-  NormalMapGLTF::Document doc;
+  NormalMapGLTF::Document& doc = input.Document;
   if (!NormalMapGLTF::ReadDocument(path, doc, error))
   {
     return false;
   }
-  vtkNew<vtkAppendPolyData> append;
-  int kept = 0;
-  int embeddedImage = -1;
+  input.GLTF = true;
   for (const auto& id : NormalMapGLTF::TrianglePrimitives(doc))
   {
-    vtkSmartPointer<vtkPolyData> mesh = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
-    if (!mesh)
+    Primitive primitive;
+    primitive.Mesh = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
+    if (!primitive.Mesh)
     {
       error = "'" + path + "': " + error;
       return false;
     }
+    primitive.Name =
+      "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+    vtkPolyData* mesh = primitive.Mesh;
     const std::string uv = NormalMapGLTF::NormalTextureTexCoordName(doc, id);
     vtkDataArray* tcoords = NormalMapTangents::FindTCoords(mesh, uv);
     if (!tcoords)
     {
-      input.Warnings.push_back("mesh " + std::to_string(id.Mesh) + " primitive " +
-        std::to_string(id.Primitive) + " has no " + uv + "; not drawn");
+      input.Warnings.push_back(primitive.Name + " has no " + uv + "; not drawn");
       continue;
     }
     mesh->GetPointData()->SetTCoords(tcoords);
     FlipToVUp(mesh);
-    if (input.NormalTextureFile.empty() && FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
+    if (FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
     {
-      input.NormalTextureFile = FieldString(mesh, "NormalTextureFile");
-      input.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
-      if (input.NormalTextureFile.empty())
+      primitive.HasNormalTexture = true;
+      primitive.NormalTextureFile = FieldString(mesh, "NormalTextureFile");
+      primitive.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
+      if (primitive.NormalTextureFile.empty())
       {
-        embeddedImage = static_cast<int>(FieldNumber(mesh, "NormalTextureImage", -1));
+        primitive.EmbeddedImage = static_cast<int>(FieldNumber(mesh, "NormalTextureImage", -1));
       }
     }
-    append->AddInputData(mesh);
-    ++kept;
+    input.Primitives.push_back(primitive);
   }
-  if (kept == 0)
+  if (input.Primitives.empty())
   {
     error = "'" + path + "' has no triangle primitive with texture coordinates";
     return false;
   }
-  if (embeddedImage >= 0)
-  {
-    DecodeEmbeddedTexture(doc, embeddedImage, input);
-  }
-  append->Update();
-  input.Mesh = append->GetOutput();
   return true;
 }
 
@@ -352,12 +362,14 @@ bool ReadInput(const std::string& path, Input& input, std::string& error)
   {
     return ReadGLTF(path, input, error);
   }
-  input.Mesh = NormalMapFiles::ReadVTKMesh(path, error);
-  if (!input.Mesh)
+  Primitive whole;
+  whole.Mesh = NormalMapFiles::ReadVTKMesh(path, error);
+  if (!whole.Mesh)
   {
     return false;
   }
-  if (!NormalMapTangents::FindTCoords(input.Mesh, std::string()))
+  input.Primitives.push_back(whole);
+  if (!NormalMapTangents::FindTCoords(whole.Mesh, std::string()))
   {
     error = "'" + path + "' has no texture coordinates, which a normal map needs" +
       (ext == ".stl" ? " (STL files cannot store them)" : "");
@@ -365,6 +377,179 @@ bool ReadInput(const std::string& path, Input& input, std::string& error)
   }
   return true;
 }
+}
+
+/// Normals where a primitive has none, and point tangents (MikkTSpace) where --frame tangents
+/// asks for them and the file has none; `text` says what the frame is, for the report.
+bool PrepareFrames(const Arguments& args,
+  Input& input,
+  int& frameSource,
+  std::string& text,
+  std::string& error)
+{
+  const size_t total = input.Primitives.size();
+  size_t withTangents = 0, computed = 0;
+  NormalMapTangents::Counts counts;
+  for (Primitive& primitive : input.Primitives)
+  {
+    if (!primitive.Mesh->GetPointData()->GetNormals())
+    {
+      vtkNew<vtkPolyDataNormals> normals;
+      normals->SetInputData(primitive.Mesh);
+      normals->SplittingOff();
+      normals->Update();
+      primitive.Mesh = normals->GetOutput();
+    }
+    if (primitive.Mesh->GetPointData()->GetTangents())
+    {
+      ++withTangents;
+    }
+    else if (args.Frame == "tangents")
+    {
+      NormalMapTangents::Options options; // MikkTSpace: what normal maps are baked against
+      NormalMapTangents::Counts one;
+      primitive.Mesh =
+        NormalMapTangents::Compute(primitive.Mesh, options, one, input.Warnings, error);
+      if (!primitive.Mesh)
+      {
+        error = "'" + args.Input + "': " + error;
+        return false;
+      }
+      counts.Add(one);
+      ++computed;
+    }
+  }
+  // "k of n primitives" where some primitives differ from the others.
+  const auto some = [total](size_t k)
+  {
+    return total > 1 ? " (" + std::to_string(k) + " of " + std::to_string(total) + " primitives)"
+                     : std::string();
+  };
+  if (args.Frame == "derivatives")
+  {
+    frameSource = vtkNormalMapPolyDataMapper::SCREEN_DERIVATIVES;
+    text = "screen-space derivatives";
+  }
+  else if (args.Frame == "tangents")
+  {
+    frameSource = vtkNormalMapPolyDataMapper::POINT_TANGENTS;
+    text = computed == 0 ? "point tangents from the file"
+                         : "point tangents computed" + (withTangents ? some(computed) : "") +
+        " (MikkTSpace, " + std::to_string(counts.SplitPoints) + " points split)";
+  }
+  else if (withTangents == total)
+  {
+    text = "automatic: the file's point tangents";
+  }
+  else if (withTangents == 0)
+  {
+    text = "automatic: screen-space derivatives (no tangents in the file)";
+  }
+  else
+  {
+    text = "automatic: the file's point tangents" + some(withTangents) +
+      ", else screen-space derivatives";
+  }
+  return true;
+}
+
+/// The normal map a primitive is drawn with.
+struct MapChoice
+{
+  vtkSmartPointer<vtkImageData> Image; // none: drawn without a map
+  std::string Text;                    // what it is, for the report
+  double Strength = 1.0;
+};
+
+/// The built-in map, in the encoding asked for.
+MapChoice BuiltInMap(const Arguments& args)
+{
+  const auto encoding = args.Encoding == vtkNormalMapPolyDataMapper::TANGENT_SPACE_DIRECTX
+    ? NormalMapPatterns::Encoding::DirectX
+    : (args.Encoding == vtkNormalMapPolyDataMapper::TWO_CHANNEL_OPENGL
+          ? NormalMapPatterns::Encoding::TwoChannel
+          : NormalMapPatterns::Encoding::OpenGL);
+  MapChoice choice;
+  choice.Image = NormalMapPatterns::MakeBrickNormalMap(NormalMapPatterns::Bricks(), 512, encoding);
+  choice.Text = "built-in bricks with rivets (512x512, procedural)";
+  return choice;
+}
+
+/**
+ * Each primitive's normal map: --normal-map for all; else its glTF material's normal texture
+ * (a file, or an image embedded in the file; one that cannot be decoded gives a warning and
+ * the built-in map); a primitive whose material has none is drawn without a map, unless no
+ * primitive has one, when all get the built-in map. Images are read once each.
+ */
+bool ChooseMaps(const Arguments& args,
+  Input& input,
+  std::vector<MapChoice>& choices,
+  std::string& error)
+{
+  std::map<std::string, MapChoice> known; // by file path or "#<embedded image>"
+  bool anyTexture = false;
+  for (const Primitive& primitive : input.Primitives)
+  {
+    anyTexture = anyTexture || primitive.HasNormalTexture;
+  }
+  for (const Primitive& primitive : input.Primitives)
+  {
+    const std::string file = args.NormalMap.empty() ? primitive.NormalTextureFile : args.NormalMap;
+    const std::string key = !file.empty()
+      ? file
+      : (primitive.EmbeddedImage >= 0 ? "#" + std::to_string(primitive.EmbeddedImage) : "");
+    auto found = known.find(key);
+    if (found == known.end() && !file.empty())
+    {
+      MapChoice choice;
+      choice.Image = NormalMapRender::ReadImage(file, error);
+      if (!choice.Image)
+      {
+        return false;
+      }
+      int dims[3];
+      choice.Image->GetDimensions(dims);
+      choice.Text = file + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
+      found = known.emplace(key, choice).first;
+    }
+    else if (found == known.end() && primitive.EmbeddedImage >= 0)
+    {
+      MapChoice choice;
+      choice.Image =
+        DecodeEmbeddedTexture(input.Document, primitive.EmbeddedImage, choice.Text, error);
+      if (!choice.Image)
+      {
+        input.Warnings.push_back(
+          "cannot use the file's normal texture: " + error + "; using the built-in map");
+        choice = BuiltInMap(args);
+      }
+      found = known.emplace(key, choice).first;
+    }
+    MapChoice choice;
+    if (found != known.end())
+    {
+      choice = found->second;
+    }
+    else if (anyTexture)
+    {
+      choice.Text = "none (the material has no normal texture)";
+    }
+    else if (args.Encoding == vtkNormalMapPolyDataMapper::OBJECT_SPACE)
+    {
+      error =
+        "'" + args.Input + "' has no normal texture file, and --encoding object needs --normal-map";
+      return false;
+    }
+    else
+    {
+      choice = BuiltInMap(args);
+    }
+    choice.Strength = args.StrengthGiven
+      ? args.Strength
+      : (args.NormalMap.empty() ? primitive.NormalTextureScale : 1.0);
+    choices.push_back(choice);
+  }
+  return true;
 }
 
 int NormalMapTool::RenderCommand(int argc, char* argv[])
@@ -392,91 +577,66 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
   {
     return Fail(Name, error);
   }
-  vtkSmartPointer<vtkPolyData> mesh = input.Mesh;
-  if (!mesh->GetPointData()->GetNormals())
-  {
-    vtkNew<vtkPolyDataNormals> normals;
-    normals->SetInputData(mesh);
-    normals->SplittingOff();
-    normals->Update();
-    mesh = normals->GetOutput();
-  }
-
-  // The frame.
   std::string frameText;
   int frameSource = vtkNormalMapPolyDataMapper::AUTOMATIC;
-  const bool hasTangents = mesh->GetPointData()->GetTangents() != nullptr;
-  if (args.Frame == "derivatives")
+  if (!PrepareFrames(args, input, frameSource, frameText, error))
   {
-    frameSource = vtkNormalMapPolyDataMapper::SCREEN_DERIVATIVES;
-    frameText = "screen-space derivatives";
+    return Fail(Name, error);
   }
-  else if (args.Frame == "tangents")
+  std::vector<MapChoice> choices;
+  if (!ChooseMaps(args, input, choices, error))
   {
-    frameSource = vtkNormalMapPolyDataMapper::POINT_TANGENTS;
-    frameText = "point tangents from the file";
-    if (!hasTangents)
-    {
-      NormalMapTangents::Options options; // MikkTSpace: what normal maps are baked against
-      NormalMapTangents::Counts counts;
-      mesh = NormalMapTangents::Compute(mesh, options, counts, input.Warnings, error);
-      if (!mesh)
-      {
-        return Fail(Name, "'" + args.Input + "': " + error);
-      }
-      frameText = "point tangents computed (MikkTSpace, " + std::to_string(counts.SplitPoints) +
-        " points split)";
-    }
+    return Fail(
+      Name, error, error.find("--encoding object") != std::string::npos ? Usage : Failure);
   }
-  else
-  {
-    frameText = hasTangents ? "automatic: the file's point tangents"
-                            : "automatic: screen-space derivatives (no tangents in the file)";
-  }
-
-  // The normal map.
-  std::string mapText;
-  vtkSmartPointer<vtkImageData> image;
-  const std::string mapFile = args.NormalMap.empty() ? input.NormalTextureFile : args.NormalMap;
-  if (!mapFile.empty())
-  {
-    image = NormalMapRender::ReadImage(mapFile, error);
-    if (!image)
-    {
-      return Fail(Name, error);
-    }
-    int dims[3];
-    image->GetDimensions(dims);
-    mapText = mapFile + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
-  }
-  else if (input.EmbeddedTexture)
-  {
-    image = input.EmbeddedTexture;
-    mapText = input.EmbeddedTextureText;
-  }
-  else if (args.Encoding == vtkNormalMapPolyDataMapper::OBJECT_SPACE)
-  {
-    return Fail(Name,
-      "'" + args.Input + "' has no normal texture file, and --encoding object needs --normal-map",
-      Usage);
-  }
-  else
-  {
-    const auto encoding = args.Encoding == vtkNormalMapPolyDataMapper::TANGENT_SPACE_DIRECTX
-      ? NormalMapPatterns::Encoding::DirectX
-      : (args.Encoding == vtkNormalMapPolyDataMapper::TWO_CHANNEL_OPENGL
-            ? NormalMapPatterns::Encoding::TwoChannel
-            : NormalMapPatterns::Encoding::OpenGL);
-    image = NormalMapPatterns::MakeBrickNormalMap(NormalMapPatterns::Bricks(), 512, encoding);
-    mapText = "built-in bricks with rivets (512x512, procedural)";
-  }
-  vtkSmartPointer<vtkTexture> texture = NormalMapRender::MakeTexture(image);
 
   NormalMapRender::Scene scene;
-  scene.Mesh = mesh;
-  scene.NormalMap = texture;
-  scene.Strength =
-    args.StrengthGiven ? args.Strength : (args.NormalMap.empty() ? input.NormalTextureScale : 1.0);
+  // A glTF file's primitives: one composite actor per normal map, each primitive a block.
+  std::vector<vtkSmartPointer<vtkTexture>> textures;
+  std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> blocks;
+  std::vector<std::string> mapTexts;
+  std::map<std::pair<vtkImageData*, double>, size_t> parts; // by image and strength
+  for (size_t i = 0; i < input.Primitives.size(); ++i)
+  {
+    const MapChoice& choice = choices[i];
+    const auto key = std::make_pair(choice.Image.Get(), choice.Strength);
+    auto part = parts.find(key);
+    if (part == parts.end())
+    {
+      part = parts.emplace(key, scene.Parts.size()).first;
+      textures.push_back(choice.Image ? NormalMapRender::MakeTexture(choice.Image) : nullptr);
+      blocks.push_back(vtkSmartPointer<vtkMultiBlockDataSet>::New());
+      NormalMapRender::Part added;
+      added.Blocks = blocks.back();
+      added.NormalMap = textures.back();
+      added.Strength = choice.Strength;
+      scene.Parts.push_back(added);
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(1) << choice.Text;
+      if (choice.Image)
+      {
+        text << ", " << args.EncodingName << ", strength " << choice.Strength;
+      }
+      mapTexts.push_back(text.str());
+    }
+    NormalMapRender::Part& target = scene.Parts[part->second];
+    target.Blocks->SetBlock(target.Blocks->GetNumberOfBlocks(), input.Primitives[i].Mesh);
+    target.BlockNames.push_back(input.Primitives[i].Name);
+  }
+  if (!input.GLTF)
+  {
+    // Other files are one mesh, drawn with vtkNormalMapPolyDataMapper.
+    scene.Mesh = input.Primitives[0].Mesh;
+    scene.NormalMap = scene.Parts[0].NormalMap;
+    scene.Strength = scene.Parts[0].Strength;
+    scene.Parts.clear();
+  }
+  vtkIdType points = 0, polygons = 0;
+  for (const Primitive& primitive : input.Primitives)
+  {
+    points += primitive.Mesh->GetNumberOfPoints();
+    polygons += primitive.Mesh->GetNumberOfPolys();
+  }
   scene.Encoding = args.Encoding;
   scene.FrameSource = frameSource;
   scene.PBR = args.PBR;
@@ -505,11 +665,25 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
   }
   std::cout << std::fixed << std::setprecision(1) << "normalmap render: " << args.Input << " -> "
             << args.Output << "\n"
-            << "  mesh          " << mesh->GetNumberOfPoints() << " points, "
-            << mesh->GetNumberOfPolys() << " polygons\n"
-            << "  normal map    " << mapText << ", " << args.EncodingName << ", strength "
-            << scene.Strength << "\n"
-            << "  frame         " << frameText << "; the mapper applied: " << rendered.AppliedFrame
+            << "  mesh          " << points << " points, " << polygons << " polygons"
+            << (input.Primitives.size() > 1
+                   ? " in " + std::to_string(input.Primitives.size()) + " primitives"
+                   : std::string())
+            << "\n";
+  for (size_t p = 0; p < mapTexts.size(); ++p)
+  {
+    std::cout << "  normal map    " << mapTexts[p];
+    if (input.Primitives.size() > 1)
+    {
+      std::cout << " for";
+      for (size_t b = 0; b < scene.Parts[p].BlockNames.size(); ++b)
+      {
+        std::cout << (b ? ", " : " ") << scene.Parts[p].BlockNames[b];
+      }
+    }
+    std::cout << "\n";
+  }
+  std::cout << "  frame         " << frameText << "; the mapper applied: " << rendered.AppliedFrame
             << "\n"
             << "  lighting      " << (args.PBR ? "PBR" : "Phong") << "\n"
             << "  picture       " << args.Width << "x" << args.Height << "\n"

@@ -61,7 +61,7 @@ in vec4 nmTangentMCVSOutput;
 // Frame from the interpolated point tangent: Gram-Schmidt against the normal, bitangent =
 // sign * cross(N, T). A tangent parallel to the normal gives zero T and B columns, which
 // leaves the unperturbed normal.
-mat3 nmFrameMC(vec3 normalMC)
+mat3 nmTangentFrameMC(vec3 normalMC)
 {
   vec3 t = nmTangentMCVSOutput.xyz - dot(nmTangentMCVSOutput.xyz, normalMC) * normalMC;
   float len2 = dot(t, t);
@@ -88,7 +88,7 @@ vec2 nmDTCoordDy;
 // is dP/du made perpendicular to the normal, the sign is that of the UV map's orientation
 // against the normal. Same conventions as the point tangents, so both sources agree on flat
 // triangles. Degenerate texture coordinates give zero T and B columns: no perturbation.
-mat3 nmFrameMC(vec3 normalMC)
+mat3 nmDerivativeFrameMC(vec3 normalMC)
 {
   vec3 dpdx = nmDPositionDx * nmNormalMatrix;
   vec3 dpdy = nmDPositionDy * nmNormalMatrix;
@@ -108,6 +108,24 @@ mat3 nmFrameMC(vec3 normalMC)
   t *= inversesqrt(len2);
   float s = dot(cross(dpdu, dpdv), normalMC) < 0.0 ? -1.0 : 1.0;
   return mat3(t, s * cross(normalMC, t), normalMC);
+}
+//NM::End
+
+//NM::Begin FrameFromTangents
+mat3 nmFrameMC(vec3 normalMC) { return nmTangentFrameMC(normalMC); }
+//NM::End
+
+//NM::Begin FrameFromDerivatives
+mat3 nmFrameMC(vec3 normalMC) { return nmDerivativeFrameMC(normalMC); }
+//NM::End
+
+//NM::Begin FramePerDataset
+// Composite data drawn by one shader: the datasets with point tangents use them, the others
+// (whose tangent attribute is zero) use derivatives; the mapper sets this before each draw.
+uniform int nmDatasetHasTangents;
+mat3 nmFrameMC(vec3 normalMC)
+{
+  return nmDatasetHasTangents != 0 ? nmTangentFrameMC(normalMC) : nmDerivativeFrameMC(normalMC);
 }
 //NM::End
 

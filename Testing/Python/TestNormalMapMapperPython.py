@@ -14,18 +14,14 @@ surface with diffuse 1 and no ambient or specular, so a pixel is 255 N.L:
 """
 import math
 import os
-import sys
 
-from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow, vtkTexture, vtkWindowToImageFilter)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (VTK's OpenGL classes and factory)
+from vtkmodules.vtkRenderingCore import vtkPolyDataMapper
 
 from vtknormalmapping import (vtkNormalMapObjectFactory, vtkNormalMapPolyDataMapper,
                               vtkPolyDataTangentFrames)
 
-from normalmapping_testing import Checks, textured_mesh
+from normalmapping_testing import (Checks, constant_normal_map, half_values, needs_display,
+                                   render_tilted_light, textured_mesh)
 
 WIDTH, HEIGHT = 200, 100
 A = math.radians(30.0)
@@ -42,87 +38,12 @@ def mirrored_quad():
                          [(abs(x), y + 0.5) for x, y in xy], triangles)
 
 
-def constant_normal_map(normal, size=8):
-    """An RGB texture holding one tangent-space normal, encoded as 255 (n + 1) / 2."""
-    rgb = [int(round(255.0 * (c + 1.0) / 2.0)) for c in normal]
-    texels = vtkUnsignedCharArray()
-    texels.SetNumberOfComponents(3)
-    texels.SetNumberOfTuples(size * size)
-    for t in range(size * size):
-        texels.SetTuple3(t, *rgb)
-    image = vtkImageData()
-    image.SetDimensions(size, size, 1)
-    image.GetPointData().SetScalars(texels)
-    texture = vtkTexture()
-    texture.SetInputData(image)
-    texture.InterpolateOn()
-    return texture
-
-
 def render(mesh, mapper, texture, strength):
-    """Renders the mesh with `mapper` and returns the RGB pixels (bottom row first)."""
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)  # one sample per pixel: pixels are the shading itself
-    window.SetSize(WIDTH, HEIGHT)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.0, 0.0, 0.0)
-    renderer.AutomaticLightCreationOff()
-    light = vtkLight()
-    light.SetLightTypeToSceneLight()
-    light.SetPositional(False)
-    light.SetPosition(0.0, math.sin(B), math.cos(B))
-    light.SetFocalPoint(0.0, 0.0, 0.0)
-    renderer.AddLight(light)
-    mapper.SetInputData(mesh)
-    actor = vtkActor()
-    actor.SetMapper(mapper)
-    prop = actor.GetProperty()
-    prop.SetColor(1.0, 1.0, 1.0)
-    prop.SetAmbient(0.0)
-    prop.SetDiffuse(1.0)
-    prop.SetSpecular(0.0)
-    prop.SetNormalTexture(texture)
-    prop.SetNormalScale(strength)
-    renderer.AddActor(actor)
-    camera = renderer.GetActiveCamera()
-    camera.ParallelProjectionOn()
-    camera.SetPosition(0.0, 0.0, 5.0)
-    camera.SetFocalPoint(0.0, 0.0, 0.0)
-    camera.SetViewUp(0.0, 1.0, 0.0)
-    camera.SetParallelScale(0.5)  # the window shows y in [-1/2, 1/2], x in [-1, 1]
-    renderer.ResetCameraClippingRange()
-    window.AddRenderer(renderer)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.SetInputBufferTypeToRGB()
-    grab.ReadFrontBufferOff()
-    grab.Update()
-    pixels = grab.GetOutput().GetPointData().GetScalars()
-    info = window.ReportCapabilities()
-    renderer_line = [l for l in info.splitlines() if "OpenGL renderer string" in l]
-    window.Finalize()
-    return pixels, window.GetClassName(), (renderer_line[0].split(":", 1)[1].strip()
-                                           if renderer_line else "unknown")
+    """Renders the mesh with `mapper` under the light at angle B; the RGB pixels and more."""
+    return render_tilted_light(mesh, mapper, texture, strength, B, WIDTH, HEIGHT)
 
 
-def half_values(pixels, left):
-    """Red channel of the pixels well inside one half (20 pixels away from the seam and the
-    borders, where every pixel is a whole sample of that half's interior)."""
-    x0 = 20 if left else WIDTH // 2 + 20
-    values = []
-    for y in range(20, HEIGHT - 20):
-        for x in range(x0, x0 + WIDTH // 2 - 40):
-            values.append(pixels.GetComponent(y * WIDTH + x, 0))
-    return values
-
-
-# The window needs an X display with Debian's VTK (no OSMesa); VTK 9.1 aborts without one.
-if vtkRenderWindow().GetClassName() == "vtkXOpenGLRenderWindow" and not os.environ.get("DISPLAY"):
-    print("SKIPPED: this VTK renders through X and DISPLAY is not set "
-          "(run under Testing/Rendering/RunHeadless.sh)")
-    sys.exit(125)
+needs_display()
 
 frames = vtkPolyDataTangentFrames()
 frames.SetInputData(mirrored_quad())
@@ -174,15 +95,15 @@ for label, pixels, expected in (("map, point tangents", mapped, expected_mapped)
                                 ("map, derivatives", derivatives, expected_mapped),
                                 ("strength 0", flat, expected_flat)):
     for left in (True, False):
-        values = half_values(pixels, left)
+        values = half_values(pixels, left, WIDTH, HEIGHT)
         worst = max(abs(v - expected) for v in values)
         check(worst <= 3.0, "%s, %s half: %d pixels %.0f..%.0f, expected %.1f (worst off by %.1f)"
               % (label, "mirrored left" if left else "right", len(values), min(values),
                  max(values), expected, worst))
 
 # The map's effect, measured: every interior pixel brighter by 255 (cos(B - A) - cos B) = 66.
-effect = [m - f for m, f in zip(half_values(mapped, True) + half_values(mapped, False),
-                                half_values(flat, True) + half_values(flat, False))]
+effect = [m - f for m, f in zip(half_values(mapped, True, WIDTH, HEIGHT) + half_values(mapped, False, WIDTH, HEIGHT),
+                                half_values(flat, True, WIDTH, HEIGHT) + half_values(flat, False, WIDTH, HEIGHT))]
 check(min(effect) >= 60, "the map brightens every interior pixel by %.0f..%.0f levels (expected "
       "%.1f)" % (min(effect), max(effect), expected_mapped - expected_flat))
 

@@ -4,11 +4,15 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -26,6 +30,8 @@
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
 #include "vtkTexturedSphereSource.h"
+#include "vtkTransform.h"
+#include "vtkTransformPolyDataFilter.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
@@ -217,6 +223,147 @@ vtkSmartPointer<vtkPolyData> WithTangents(vtkPolyData* mesh)
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> WithTangentLayout(vtkPolyData* withTangents, TangentLayout layout)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(withTangents);
+  vtkPointData* pd = copy->GetPointData();
+  vtkSmartPointer<vtkDataArray> tangents = pd->GetArray("Tangents");
+  vtkSmartPointer<vtkDataArray> signs = pd->GetArray("TangentSigns");
+  if (layout == TangentLayout::ActiveWithSigns)
+  {
+    return copy;
+  }
+  pd->RemoveArray("Tangents");
+  pd->RemoveArray("TangentSigns");
+  switch (layout)
+  {
+    case TangentLayout::NamedFloat3WithSigns:
+      tangents->SetName("TANGENT");
+      pd->AddArray(tangents);
+      pd->AddArray(signs);
+      break;
+    case TangentLayout::NamedDouble4:
+    {
+      // VTK's Tangents attribute must have 3 components, so a 4-component array goes by name.
+      vtkNew<vtkDoubleArray> t4;
+      t4->SetName("TANGENT");
+      t4->SetNumberOfComponents(4);
+      for (vtkIdType i = 0; i < tangents->GetNumberOfTuples(); ++i)
+      {
+        const double* v = tangents->GetTuple3(i);
+        t4->InsertNextTuple4(v[0], v[1], v[2], signs->GetTuple1(i));
+      }
+      pd->AddArray(t4);
+      break;
+    }
+    case TangentLayout::Unsigned:
+      pd->SetTangents(tangents);
+      break;
+    default:
+      break;
+  }
+  return copy;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, double dx, double dy, double sy)
+{
+  vtkNew<vtkTransform> place;
+  place->Translate(dx, dy, 0.0);
+  place->Scale(1.0, sy, 1.0);
+  vtkNew<vtkTransformPolyDataFilter> filter;
+  filter->SetTransform(place);
+  filter->SetInputData(mesh);
+  filter->Update();
+  return filter->GetOutput();
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> Half(vtkPolyData* mesh, bool left)
+{
+  auto half = vtkSmartPointer<vtkPolyData>::New();
+  half->DeepCopy(mesh);
+  vtkNew<vtkCellArray> kept;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    mesh->GetCellPoints(c, ids);
+    double x = 0.0;
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      x += mesh->GetPoint(ids->GetId(k))[0];
+    }
+    if ((x < 0.0) == left)
+    {
+      kept->InsertNextCell(ids);
+    }
+  }
+  half->SetPolys(kept);
+  return half;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> WithoutTCoords(vtkPolyData* mesh)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->DeepCopy(mesh);
+  copy->GetPointData()->SetTCoords(nullptr);
+  copy->GetPointData()->RemoveArray("TCoords");
+  return copy;
+}
+
+//------------------------------------------------------------------------------
+Difference MirrorSymmetry(const std::vector<unsigned char>& pixels,
+  int width,
+  int height,
+  int bound)
+{
+  std::vector<unsigned char> mirrored(pixels.size());
+  std::vector<bool> mask(pixels.size() / 3, false);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const size_t p = static_cast<size_t>(y) * width + x;
+      const size_t q = static_cast<size_t>(y) * width + (width - 1 - x);
+      for (int c = 0; c < 3; ++c)
+      {
+        mirrored[3 * p + c] = pixels[3 * q + c];
+      }
+      const bool covered = pixels[3 * p] && pixels[3 * q];
+      mask[p] = covered && std::abs(2 * x + 1 - width) > 6;
+    }
+  }
+  // Drop pixels next to uncovered ones (the meshes' outer borders).
+  std::vector<bool> inner = mask;
+  for (int y = 3; y < height - 3; ++y)
+    for (int x = 3; x < width - 3; ++x)
+      for (int d = -3; d <= 3; ++d)
+        inner[y * width + x] =
+          inner[y * width + x] && mask[y * width + x + d] && mask[(y + d) * width + x];
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (y < 3 || y >= height - 3 || x < 3 || x >= width - 3)
+        inner[y * width + x] = false;
+  return Compare(pixels, mirrored, inner, bound);
+}
+
+//------------------------------------------------------------------------------
+MirrorScene MakeMirrorScene()
+{
+  MirrorScene scene;
+  scene.Setup.Width = 320;
+  scene.Setup.Height = 160;
+  scene.Setup.CameraDistance = 8.0;
+  scene.Setup.LightPosition = glm::dvec3(0.0, 1.5, 2.0); // on the mirror plane x = 0
+  scene.Texture = MakeNormalTexture(MakeNormalMapImage(Pattern::Rivets, 128, Storage::OpenGL));
+  scene.Left = WithTangents(Placed(MakeQuad(4, false), -1.0, 0.0));
+  scene.Right = WithTangents(Placed(MakeQuad(4, true), 1.0, 0.0));
+  return scene;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height)
 {
   auto window = vtkSmartPointer<vtkRenderWindow>::New();
@@ -295,6 +442,17 @@ int Checks::Result() const
 }
 
 //------------------------------------------------------------------------------
+void AddSceneLight(vtkRenderer* renderer, const glm::dvec3& position)
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(position.x, position.y, position.z);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->AddLight(light);
+}
+
+//------------------------------------------------------------------------------
 void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -315,16 +473,23 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.0, 0.0, 0.0);
   renderer->SetTwoSidedLighting(true);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(false);
-  light->SetPosition(setup.LightPosition.x, setup.LightPosition.y, setup.LightPosition.z);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
+  AddSceneLight(renderer, setup.LightPosition);
   for (const FlatActor& a : actors)
   {
     vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
-    if (a.StockMapper)
+    if (a.Blocks && a.StockMapper)
+    {
+      mapper = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
+    }
+    else if (a.Blocks)
+    {
+      auto ours = vtkSmartPointer<vtkNormalMapCompositePolyDataMapper>::New();
+      ours->SetMapEncoding(a.Encoding);
+      ours->SetFrameSource(a.FrameSource);
+      ours->SetTangentsArrayName(a.TangentsArrayName);
+      mapper = ours;
+    }
+    else if (a.StockMapper)
     {
       mapper = vtkSmartPointer<vtkOpenGLPolyDataMapper>::New();
     }
@@ -333,9 +498,17 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
       auto ours = vtkSmartPointer<vtkNormalMapPolyDataMapper>::New();
       ours->SetMapEncoding(a.Encoding);
       ours->SetFrameSource(a.FrameSource);
+      ours->SetTangentsArrayName(a.TangentsArrayName);
       mapper = ours;
     }
-    mapper->SetInputData(a.Mesh);
+    if (a.Blocks)
+    {
+      mapper->SetInputDataObject(a.Blocks);
+    }
+    else
+    {
+      mapper->SetInputData(a.Mesh);
+    }
     if (a.Shaders)
     {
       vtkNew<vtkCallbackCommand> capture;

@@ -18,6 +18,7 @@
 #include <vector>
 
 class vtkActor;
+class vtkDataObject;
 class vtkImageData;
 class vtkPolyData;
 class vtkRenderWindow;
@@ -62,6 +63,28 @@ vtkSmartPointer<vtkPolyData> MakeSphere(int resolution);
 /// Adds point Tangents and TangentSigns with vtkPolyDataTangentFrames (angle-weighted).
 vtkSmartPointer<vtkPolyData> WithTangents(vtkPolyData* mesh);
 
+/// How a mesh from WithTangents stores its tangents (for the mappers' array handling).
+enum class TangentLayout
+{
+  ActiveWithSigns,      // as WithTangents writes them: active float Tangents, TangentSigns
+  NamedFloat3WithSigns, // float "TANGENT" (3 components, not active) and TangentSigns
+  NamedDouble4,         // double "TANGENT", 4 components, the sign in w (glTF)
+  Unsigned,             // active float Tangents, no signs (VTK's vtkPolyDataTangents)
+  None                  // no tangents
+};
+
+/// A copy of a mesh with tangents and signs (WithTangents) in the given layout.
+vtkSmartPointer<vtkPolyData> WithTangentLayout(vtkPolyData* withTangents, TangentLayout layout);
+
+/// A copy of a mesh moved by (dx, dy) after scaling y by sy.
+vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, double dx, double dy, double sy = 1.0);
+
+/// A copy of a mesh with only the triangles whose centroid is left (or right) of x = 0.
+vtkSmartPointer<vtkPolyData> Half(vtkPolyData* mesh, bool left);
+
+/// A copy of a mesh without texture coordinates.
+vtkSmartPointer<vtkPolyData> WithoutTCoords(vtkPolyData* mesh);
+
 /// An offscreen render window of the given size, ready for a renderer.
 vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height);
 
@@ -95,6 +118,16 @@ Difference Compare(const std::vector<unsigned char>& a,
   int bound);
 
 /**
+ * Mirror symmetry of an image about its middle column, over the pixels covered on both sides
+ * and at least 3 pixels from uncovered ones and from the middle seam (where the rasterizer's
+ * fill rule, not shading, decides).
+ */
+Difference MirrorSymmetry(const std::vector<unsigned char>& pixels,
+  int width,
+  int height,
+  int bound);
+
+/**
  * vtkRegressionTestImage against Testing/Data/Baseline/<test>.png with VTK's default
  * threshold (see the definition for what it allows); EXIT_SUCCESS when it passes.
  */
@@ -114,6 +147,10 @@ struct FlatActor
   double Scale[3] = { 1.0, 1.0, 1.0 };
   std::string* Shaders = nullptr; // when set: receives the vertex + fragment shader source
   int* AppliedFrame = nullptr;    // when set (our mapper): receives GetLastAppliedFrame()
+  /// When set, drawn instead of Mesh through a composite mapper: ours
+  /// (vtkNormalMapCompositePolyDataMapper), or VTK's vtkCompositePolyDataMapper2 (StockMapper).
+  vtkDataObject* Blocks = nullptr;
+  std::string TangentsArrayName; // our mappers' setting (empty: the active tangents)
 };
 
 /// The fixed camera and light of the flat scenes, shared with the CPU reference.
@@ -136,6 +173,21 @@ struct FlatSetup
  */
 vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
   const std::vector<FlatActor>& actors);
+
+/**
+ * The mirror-symmetry scene: a Rivets-mapped quad with tangents at x in [-2, 0] (u along +x)
+ * and its mirror image at x in [0, 2] (u along -x), under a light on the mirror plane x = 0.
+ */
+struct MirrorScene
+{
+  FlatSetup Setup;
+  vtkSmartPointer<vtkTexture> Texture;
+  vtkSmartPointer<vtkPolyData> Left, Right;
+};
+MirrorScene MakeMirrorScene();
+
+/// Adds a directional scene light from `position` towards the origin.
+void AddSceneLight(vtkRenderer* renderer, const glm::dvec3& position);
 
 /// Points the renderer's camera as the setup says (perspective, or parallel with the same framing).
 void SetFlatCamera(vtkRenderer* renderer, const FlatSetup& setup);

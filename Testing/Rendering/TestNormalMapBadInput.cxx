@@ -144,22 +144,7 @@ int TestNormalMapBadInput(int, char*[])
       "unsigned tangents on an unmirrored quad: the same image");
   }
   { // glTF-style 4-component double tangents (sign in w): no warning, the same image.
-    auto gltf = vtkSmartPointer<vtkPolyData>::New();
-    gltf->DeepCopy(quad);
-    vtkDataArray* t = quad->GetPointData()->GetArray("Tangents");
-    vtkDataArray* s = quad->GetPointData()->GetArray("TangentSigns");
-    vtkNew<vtkDoubleArray> t4;
-    t4->SetName("TANGENT");
-    t4->SetNumberOfComponents(4);
-    for (vtkIdType i = 0; i < t->GetNumberOfTuples(); ++i)
-    {
-      const double* v = t->GetTuple3(i);
-      t4->InsertNextTuple4(v[0], v[1], v[2], s->GetTuple1(i));
-    }
-    // VTK's Tangents attribute must have 3 components, so a 4-component array goes by name.
-    gltf->GetPointData()->RemoveArray("TangentSigns");
-    gltf->GetPointData()->RemoveArray("Tangents");
-    gltf->GetPointData()->AddArray(t4);
+    auto gltf = nmtest::WithTangentLayout(quad, nmtest::TangentLayout::NamedDouble4);
     Scene scene(gltf, texture);
     scene.NormalMapper->SetTangentsArrayName("TANGENT");
     const auto pixels = scene.Render();

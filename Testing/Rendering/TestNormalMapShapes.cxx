@@ -4,7 +4,6 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkNormalMappingMeshes.h"
@@ -35,11 +34,7 @@ int TestNormalMapShapes(int argc, char* argv[])
       vtkNew<vtkRenderer> renderer;
       renderer->SetViewport(column / 3.0, (1 - row) / 2.0, (column + 1) / 3.0, (2 - row) / 2.0);
       renderer->SetBackground(0.1, 0.1, 0.12);
-      vtkNew<vtkLight> light;
-      light->SetLightTypeToSceneLight();
-      light->SetPosition(-1.0, 1.5, 2.0);
-      light->SetFocalPoint(0.0, 0.0, 0.0);
-      renderer->AddLight(light);
+      nmtest::AddSceneLight(renderer, glm::dvec3(-1.0, 1.5, 2.0));
 
       vtkNew<vtkNormalMapPolyDataMapper> mapper;
       mapper->SetInputData(meshes[column]);

@@ -17,6 +17,10 @@ round studs:
   quad_outside.glb     like quad_png.glb with the image's buffer view running 1000 bytes past
                        the end of the binary chunk
   quad_garbage.gltf    a data:image/png URI whose bytes are not an image
+  three_quads.gltf     one mesh of three primitives, quads side by side (x from 0, 1.25, 2.5),
+                       everything in data: URIs: primitive 0 with material 0 (the PNG, scale
+                       0.8), primitive 1 with TANGENT (1, 0, 0, 1) and material 1 (the JPEG,
+                       scale 0.5), primitive 2 with material 2 (no normal texture)
 """
 import base64
 import json
@@ -135,6 +139,55 @@ def write_gltf(path, mime_type, image):
         f.write("\n")
 
 
+def write_three_quads(path, png, jpeg):
+    """Three primitives of one mesh, each with its own positions, and their materials."""
+    indices, positions, normals, uvs = quad_bytes()
+    shifted = [b"".join(struct.pack("<3f", x + 1.25 * k, y, z)
+                        for x, y, z in struct.iter_unpack("<3f", positions)) for k in range(3)]
+    tangents = b"".join(struct.pack("<4f", 1.0, 0.0, 0.0, 1.0) for _ in range(4))
+    parts = [indices, normals, uvs, tangents] + shifted
+    binary = b"".join(parts)
+    views, offset = [], 0
+    for part in parts:
+        views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(part)})
+        offset += len(part)
+    accessors = [
+        {"bufferView": 0, "componentType": 5123, "count": 6, "type": "SCALAR"},
+        {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+        {"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}]
+    for k in range(3):
+        accessors.append({"bufferView": 4 + k, "componentType": 5126, "count": 4,
+                          "type": "VEC3", "min": [1.25 * k, 0, 0], "max": [1.25 * k + 1, 1, 0]})
+    primitives = []
+    for k in range(3):
+        attributes = {"POSITION": 4 + k, "NORMAL": 1, "TEXCOORD_0": 2}
+        if k == 1:
+            attributes["TANGENT"] = 3
+        primitives.append({"attributes": attributes, "indices": 0, "material": k})
+    doc = {
+        "asset": {"version": "2.0",
+                  "generator": "NormalMapping test data (make_embedded_data.py)"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "name": "three quads"}],
+        "meshes": [{"name": "three quads", "primitives": primitives}],
+        "materials": [{"name": "studs png", "normalTexture": {"index": 0, "scale": SCALE}},
+                      {"name": "studs jpeg", "normalTexture": {"index": 1, "scale": 0.5}},
+                      {"name": "plain"}],
+        "textures": [{"source": 0}, {"source": 1}],
+        "images": [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()},
+                   {"uri": "data:image/jpeg;base64," + base64.b64encode(jpeg).decode()}],
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(binary), "uri": "data:application/octet-stream;base64," +
+                     base64.b64encode(binary).decode()}],
+    }
+    with open(path, "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "Data", "embedded")
@@ -155,6 +208,7 @@ def main():
     write_glb(os.path.join(folder, "quad_outside.glb"), png, extra_view_length=1000)
     write_gltf(os.path.join(folder, "quad_garbage.gltf"), "image/png",
                b"this is not an image, only text pretending to be one" * 4)
+    write_three_quads(os.path.join(folder, "three_quads.gltf"), png, jpeg)
     print("wrote the embedded-texture test data in " + folder)
 
 

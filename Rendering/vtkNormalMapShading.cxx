@@ -1,0 +1,536 @@
+#include "vtkNormalMapShading.h"
+
+#include "vtkActor.h"
+#include "vtkArrayDispatch.h"
+#include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkNormalMapPolyDataMapper.h"
+#include "vtkOpenGLActor.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTexture.h"
+
+#include "vtkNormalMapFS.h"
+#include "vtkNormalMapGS.h"
+#include "vtkNormalMapVS.h"
+
+#include <algorithm>
+
+using Mapper = vtkNormalMapPolyDataMapper;
+
+/// Reasons the mappers warn about, once per actor and datasets each.
+enum class vtkNormalMapShading::Reason : unsigned
+{
+  NoTCoords = 1u << 0,
+  OneChannel = 1u << 1,
+  TwoChannelAsRGB = 1u << 2,
+  ObjectSpaceTwoChannel = 1u << 3,
+  UnsignedTangents = 1u << 4,
+  MissingTangents = 1u << 5,
+  BadTangents = 1u << 6,
+  SRGBTexture = 1u << 7,
+  BadSigns = 1u << 8
+};
+
+namespace
+{
+const char* const NormalTextureName = "normalTex";
+
+/// The block "//NM::Begin <name>" ... "//NM::End" of an embedded shader source.
+std::string Block(const char* source, const char* name)
+{
+  const std::string text(source);
+  const std::string begin = std::string("//NM::Begin ") + name + "\n";
+  const auto start = text.find(begin);
+  const auto stop = start == std::string::npos ? start : text.find("//NM::End", start);
+  if (stop == std::string::npos)
+  {
+    // Only reachable if the embedded sources and this file disagree: a build defect.
+    vtkGenericWarningMacro("vtkNormalMapShading: shader block " << name << " not found");
+    return std::string();
+  }
+  return text.substr(start + begin.size(), stop - start - begin.size());
+}
+
+/// Put `code` in front of `tag`, keeping the tag for VTK's own replacements that follow.
+bool InsertBefore(std::string& source, const std::string& tag, const std::string& code)
+{
+  return vtkShaderProgram::Substitute(source, tag, code + tag, false);
+}
+
+/// Number of components of a normal texture's image (0 when it has none). VTK uploads images
+/// of 1 or 2 components as RGBA (luminance, luminance-alpha), so the texture object cannot tell.
+int TextureChannels(vtkTexture* texture)
+{
+  vtkImageData* image = texture->GetInput();
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  return scalars ? scalars->GetNumberOfComponents() : 0;
+}
+
+bool IsTangentSpace(int encoding)
+{
+  return encoding != Mapper::OBJECT_SPACE;
+}
+
+bool IsTwoChannel(int encoding)
+{
+  return encoding == Mapper::TWO_CHANNEL_OPENGL || encoding == Mapper::TWO_CHANNEL_DIRECTX;
+}
+
+/// What the normal-map code of one shader program will be.
+struct ShaderPlan
+{
+  int Frame = Mapper::NOT_APPLIED;
+  bool PerDatasetFrame = false; // tangents for some datasets, derivatives for others
+  bool TwoChannel = false;
+  bool LuminanceAlpha = false; // a 2-component image: x in red, y in alpha
+  bool SRGB = false;
+};
+
+/// Copies tangents (3 or 4 components, any real type) into 4 floats per point, w the sign.
+struct PackTangents
+{
+  template<typename TangentArray>
+  void operator()(TangentArray* tangents, vtkDataArray* signs, vtkFloatArray* packed) const
+  {
+    const auto in = vtk::DataArrayTupleRange(tangents);
+    auto out = vtk::DataArrayTupleRange<4>(packed);
+    const int components = tangents->GetNumberOfComponents();
+    for (vtkIdType i = 0; i < in.size(); ++i)
+    {
+      float sign = 1.0f;
+      if (components == 4)
+      {
+        sign = static_cast<float>(in[i][3]);
+      }
+      else if (signs)
+      {
+        sign = static_cast<float>(signs->GetComponent(i, 0));
+      }
+      out[i][0] = static_cast<float>(in[i][0]);
+      out[i][1] = static_cast<float>(in[i][1]);
+      out[i][2] = static_cast<float>(in[i][2]);
+      out[i][3] = sign < 0.0f ? -1.0f : 1.0f;
+    }
+  }
+};
+}
+
+//------------------------------------------------------------------------------
+unsigned vtkNormalMapShading::FrameMix::Key() const
+{
+  return (this->PointTangents ? 1u : 0u) | (this->SeparateSigns ? 2u : 0u) |
+    (this->Unsigned ? 4u : 0u) | (this->Derivatives ? 8u : 0u);
+}
+
+//------------------------------------------------------------------------------
+vtkTexture* vtkNormalMapShading::NormalTexture(vtkActor* actor)
+{
+  return actor->GetProperty()->GetTexture(NormalTextureName);
+}
+
+//------------------------------------------------------------------------------
+bool vtkNormalMapShading::WantsMap(vtkActor* actor)
+{
+  return NormalTexture(actor) && actor->GetProperty()->GetNormalScale() != 0.0;
+}
+
+//------------------------------------------------------------------------------
+bool vtkNormalMapShading::WantsPointTangents(vtkActor* actor, const Settings& settings)
+{
+  return WantsMap(actor) && IsTangentSpace(settings.MapEncoding) &&
+    settings.FrameSource != Mapper::SCREEN_DERIVATIVES;
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor)
+{
+  vtkTexture* texture = NormalTexture(actor);
+  if (WantsMap(actor) && texture->GetInterpolate() && !texture->GetMipmap())
+  {
+    // Trilinear filtering of a minified normal map needs mipmaps. The property rendered the
+    // texture already this frame; load it again so the first frame has them too.
+    texture->MipmapOn();
+    texture->Load(renderer);
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkNormalMapShading::Tangents vtkNormalMapShading::FindTangents(vtkPolyData* poly,
+  vtkActor* actor,
+  const Settings& settings)
+{
+  Tangents found;
+  if (!poly || !WantsPointTangents(actor, settings))
+  {
+    return found;
+  }
+  vtkPointData* pd = poly->GetPointData();
+  vtkDataArray* tangents = settings.TangentsArrayName.empty()
+    ? pd->GetTangents()
+    : pd->GetArray(settings.TangentsArrayName.c_str());
+  if (!tangents)
+  {
+    found.Missing = settings.FrameSource == Mapper::POINT_TANGENTS;
+    return found;
+  }
+  const vtkIdType n = poly->GetNumberOfPoints();
+  const int comps = tangents->GetNumberOfComponents();
+  if (comps != 3 && comps != 4)
+  {
+    found.Problem = "tangent array '" +
+      std::string(tangents->GetName() ? tangents->GetName() : "") + "' has " +
+      std::to_string(comps) + " components (3 or 4 needed)";
+    return found;
+  }
+  if (tangents->GetNumberOfTuples() != n)
+  {
+    found.Problem = "tangent array has " + std::to_string(tangents->GetNumberOfTuples()) +
+      " tuples for " + std::to_string(n) + " points";
+    return found;
+  }
+  found.Vectors = tangents;
+  found.Use = comps == 4 ? TangentUse::Signed : TangentUse::Unsigned;
+  if (comps == 3 && !settings.TangentSignsArrayName.empty())
+  {
+    vtkDataArray* signs = pd->GetArray(settings.TangentSignsArrayName.c_str());
+    if (signs && signs->GetNumberOfComponents() == 1 && signs->GetNumberOfTuples() == n)
+    {
+      found.Signs = signs;
+      found.Use = TangentUse::SeparateSigns;
+    }
+    else if (signs)
+    {
+      found.Problem =
+        "sign array '" + settings.TangentSignsArrayName + "' is not one value per point";
+    }
+  }
+  return found;
+}
+
+//------------------------------------------------------------------------------
+vtkFloatArray* vtkNormalMapShading::NewPackedTangents(const Tangents& tangents)
+{
+  if (tangents.Use == TangentUse::Derivatives)
+  {
+    return nullptr;
+  }
+  vtkFloatArray* packed = vtkFloatArray::New();
+  packed->SetNumberOfComponents(4);
+  packed->SetNumberOfTuples(tangents.Vectors->GetNumberOfTuples());
+  PackTangents worker;
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(
+        tangents.Vectors, worker, tangents.Signs, packed))
+  {
+    worker(tangents.Vectors, tangents.Signs, packed); // integer tangents: the generic path
+  }
+  return packed;
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::Warn(vtkObject* reporter,
+  const vtkActor* actor,
+  const std::string& where,
+  Reason reason,
+  const std::string& message)
+{
+  unsigned& done = this->Warned[std::make_pair(actor, where)];
+  if (!(done & static_cast<unsigned>(reason)))
+  {
+    done |= static_cast<unsigned>(reason);
+    vtkWarningWithObjectMacro(reporter, << where << message);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::WarnAboutTangents(vtkObject* reporter,
+  const vtkActor* actor,
+  const Tangents& tangents,
+  const Settings& settings,
+  const std::string& where)
+{
+  if (!tangents.Problem.empty())
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      tangents.Vectors ? Reason::BadSigns : Reason::BadTangents,
+      "Point tangents: " + tangents.Problem +
+        (tangents.Vectors ? "; using sign +1." : "; using screen-space derivatives."));
+  }
+  else if (tangents.Missing)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::MissingTangents,
+      "FrameSource is PointTangents but the input has no tangent array" +
+        (settings.TangentsArrayName.empty() ? std::string()
+                                            : " named '" + settings.TangentsArrayName + "'") +
+        "; using screen-space derivatives.");
+  }
+  else if (tangents.Use == TangentUse::Unsigned)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::UnsignedTangents,
+      "Point tangents have no handedness sign (no 4th component, no '" +
+        settings.TangentSignsArrayName +
+        "' array); using +1, so mirrored UVs shade inverted. vtkPolyDataTangentFrames "
+        "writes the signs.");
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::FilterTextures(
+  std::vector<std::pair<vtkTexture*, std::string>>& textures) const
+{
+  if (this->HidingNormalTexture)
+  {
+    textures.erase(
+      std::remove_if(textures.begin(),
+        textures.end(),
+        [](const std::pair<vtkTexture*, std::string>& t) { return t.second == NormalTextureName; }),
+      textures.end());
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
+  vtkActor* actor,
+  unsigned framesKey)
+{
+  // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
+  // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes).
+  unsigned key = 0;
+  vtkTexture* texture = NormalTexture(actor);
+  if (texture)
+  {
+    key = 1u + (texture->GetUseSRGBColorSpace() ? 2u : 0u) +
+      (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5);
+  }
+  unsigned& stored = this->ShaderKeys[cellBO];
+  if (stored != key)
+  {
+    stored = key;
+    return true;
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader*>& shaders,
+  const ShaderContext& context,
+  const Settings& settings)
+{
+  vtkActor* actor = context.Actor;
+  vtkProperty* property = actor->GetProperty();
+  vtkTexture* texture = NormalTexture(actor);
+  if (!texture || property->GetNormalScale() == 0.0 || context.DrawingVertices ||
+    property->GetRepresentation() != VTK_SURFACE || context.LightComplexity == 0)
+  {
+    // Nothing to show: no map, zero strength, or an unlit or non-surface drawing.
+    return Mapper::NOT_APPLIED;
+  }
+  vtkObject* reporter = context.Reporter;
+  const std::string& where = context.Where;
+
+  if (context.TCoordComponents != 2)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::NoTCoords,
+      context.TCoordComponents == 0
+        ? std::string("The normal texture is not applied: the input has no texture coordinates.")
+        : "The normal texture is not applied: texture coordinates have " +
+          std::to_string(context.TCoordComponents) + " components (2 needed).");
+    return Mapper::NOT_APPLIED;
+  }
+
+  ShaderPlan plan;
+  const int encoding = settings.MapEncoding;
+  const int channels = TextureChannels(texture);
+  if (channels < 2)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::OneChannel,
+      "The normal texture is not applied: it has " + std::to_string(channels) +
+        " channel(s); a normal map needs 2 (RG), 3 or 4.");
+    return Mapper::NOT_APPLIED;
+  }
+  plan.TwoChannel = IsTwoChannel(encoding);
+  if (channels == 2 && IsTangentSpace(encoding) && !plan.TwoChannel)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::TwoChannelAsRGB,
+      "The normal texture has 2 channels but the encoding is " +
+        std::string(Mapper::GetMapEncodingName(encoding)) +
+        "; decoding it as a two-channel map (z reconstructed).");
+    plan.TwoChannel = true;
+  }
+  plan.LuminanceAlpha = channels == 2;
+  if (channels == 2 && !IsTangentSpace(encoding))
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::ObjectSpaceTwoChannel,
+      "The normal texture is not applied: an object-space map needs 3 channels, it has 2.");
+    return Mapper::NOT_APPLIED;
+  }
+  plan.SRGB = texture->GetUseSRGBColorSpace();
+  if (plan.SRGB)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::SRGBTexture,
+      "The normal texture is marked sRGB; a normal map holds data, not colour. Decoding it "
+      "back to its stored values (turn UseSRGBColorSpace off to avoid the round trip).");
+  }
+
+  const FrameMix& frames = context.Frames;
+  if (!IsTangentSpace(encoding))
+  {
+    plan.Frame = Mapper::APPLIED_OBJECT_SPACE;
+  }
+  else if (!frames.PointTangents)
+  {
+    plan.Frame = Mapper::APPLIED_DERIVATIVES;
+  }
+  else
+  {
+    plan.Frame =
+      frames.Unsigned ? Mapper::APPLIED_UNSIGNED_TANGENTS : Mapper::APPLIED_POINT_TANGENTS;
+    plan.PerDatasetFrame = frames.Derivatives;
+  }
+
+  std::string vs = shaders[vtkShader::Vertex]->GetSource();
+  std::string gs = shaders[vtkShader::Geometry]->GetSource();
+  std::string fs = shaders[vtkShader::Fragment]->GetSource();
+
+  const bool pointTangents =
+    plan.Frame == Mapper::APPLIED_POINT_TANGENTS || plan.Frame == Mapper::APPLIED_UNSIGNED_TANGENTS;
+  const bool derivatives = plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame;
+  if (pointTangents)
+  {
+    InsertBefore(vs,
+      "//VTK::Normal::Dec",
+      Block(vtkNormalMapVS, frames.SeparateSigns ? "TangentSignDec" : "TangentDec"));
+    InsertBefore(vs,
+      "//VTK::Normal::Impl",
+      Block(vtkNormalMapVS, frames.SeparateSigns ? "TangentSignImpl" : "TangentImpl"));
+    if (!gs.empty())
+    {
+      InsertBefore(gs, "//VTK::Normal::Dec", Block(vtkNormalMapGS, "TangentDec"));
+      InsertBefore(gs, "//VTK::Normal::Impl", Block(vtkNormalMapGS, "TangentImpl"));
+    }
+  }
+
+  // Declarations go before VTK's lighting declarations (after its normal ones, which a cell
+  // normal path consumes); the code goes just before the lighting, where the normal is final.
+  std::string declarations =
+    Block(vtkNormalMapFS, "Dec") + Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear");
+  std::string code;
+  if (plan.Frame == Mapper::APPLIED_OBJECT_SPACE)
+  {
+    code = Block(vtkNormalMapFS, "ImplObjectSpace");
+  }
+  else
+  {
+    std::string decode = Block(vtkNormalMapFS, plan.TwoChannel ? "DecodeTwoChannel" : "DecodeRGB");
+    vtkShaderProgram::Substitute(decode, "@XY@", plan.LuminanceAlpha ? "ra" : "rg");
+    declarations += decode;
+    if (pointTangents)
+    {
+      declarations += Block(vtkNormalMapFS, "TangentDec");
+    }
+    if (derivatives)
+    {
+      declarations += Block(vtkNormalMapFS, "DerivativeDec");
+      std::string flow = Block(vtkNormalMapFS, "DerivativeUniformFlow");
+      vtkShaderProgram::Substitute(flow, "@TCOORD@", context.TCoordName);
+      InsertBefore(fs, "//VTK::UniformFlow::Impl", flow);
+    }
+    declarations += Block(vtkNormalMapFS,
+      plan.PerDatasetFrame ? "FramePerDataset"
+                           : (pointTangents ? "FrameFromTangents" : "FrameFromDerivatives"));
+    code = Block(vtkNormalMapFS, "ImplTangentSpace");
+  }
+  vtkShaderProgram::Substitute(code, "@TCOORD@", context.TCoordName);
+  InsertBefore(fs, "//VTK::Light::Dec", declarations);
+  InsertBefore(fs, "//VTK::Light::Impl", code);
+
+  shaders[vtkShader::Vertex]->SetSource(vs);
+  shaders[vtkShader::Geometry]->SetSource(gs);
+  shaders[vtkShader::Fragment]->SetSource(fs);
+  return plan.Frame;
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::SetCameraUniforms(vtkShaderProgram* program,
+  vtkRenderer* renderer,
+  vtkActor* actor)
+{
+  if (!program->IsUniformUsed("nmNormalMatrix") && !program->IsUniformUsed("nmNormalMatrixInverse"))
+  {
+    return;
+  }
+  // The same normal matrix as VTK's (model to view, inverse transpose, without the vertex
+  // buffer's shift and scale, which normals and tangents do not have), and its inverse.
+  vtkMatrix4x4* wcvc;
+  vtkMatrix3x3* normals;
+  vtkMatrix4x4* vcdc;
+  vtkMatrix4x4* wcdc;
+  static_cast<vtkOpenGLCamera*>(renderer->GetActiveCamera())
+    ->GetKeyMatrices(renderer, wcvc, normals, vcdc, wcdc);
+  vtkNew<vtkMatrix3x3> normalMatrix;
+  if (actor->GetIsIdentity())
+  {
+    normalMatrix->DeepCopy(normals);
+  }
+  else
+  {
+    vtkMatrix4x4* mcwc;
+    vtkMatrix3x3* actorNormals;
+    static_cast<vtkOpenGLActor*>(actor)->GetKeyMatrices(mcwc, actorNormals);
+    vtkMatrix3x3::Multiply3x3(actorNormals, normals, normalMatrix);
+  }
+  vtkNew<vtkMatrix3x3> inverse;
+  vtkMatrix3x3::Invert(normalMatrix, inverse);
+  program->SetUniformMatrix("nmNormalMatrix", normalMatrix);
+  program->SetUniformMatrix("nmNormalMatrixInverse", inverse);
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapShading::SetMapUniforms(vtkShaderProgram* program,
+  vtkActor* actor,
+  const Settings& settings)
+{
+  if (program->IsUniformUsed("nmNormalScale"))
+  {
+    program->SetUniformf(
+      "nmNormalScale", static_cast<float>(actor->GetProperty()->GetNormalScale()));
+  }
+  if (program->IsUniformUsed("nmGreenSign"))
+  {
+    const bool directX = settings.MapEncoding == Mapper::TANGENT_SPACE_DIRECTX ||
+      settings.MapEncoding == Mapper::TWO_CHANNEL_DIRECTX;
+    program->SetUniformf("nmGreenSign", directX ? -1.0f : 1.0f);
+  }
+}

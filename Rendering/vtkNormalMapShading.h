@@ -1,0 +1,171 @@
+/**
+ * The normal-mapping logic that vtkNormalMapPolyDataMapper and the per-block helpers of
+ * vtkNormalMapCompositePolyDataMapper share: which tangent frame a dataset gets, the warnings,
+ * the shader plan and its GLSL substitutions, the uniforms and the shader rebuild key. Each
+ * mapper keeps its VTK hooks (they need its protected state) and delegates to one of these.
+ * Private to the module: not installed, not wrapped.
+ */
+#ifndef vtkNormalMapShading_h
+#define vtkNormalMapShading_h
+
+#include "vtkShader.h" // For vtkShader::Type
+
+#include <map>     // For per-shader and per-actor state
+#include <string>  // For array names and messages
+#include <utility> // For std::pair
+#include <vector>  // For the texture list
+
+class vtkActor;
+class vtkDataArray;
+class vtkFloatArray;
+class vtkObject;
+class vtkOpenGLHelper;
+class vtkPolyData;
+class vtkRenderer;
+class vtkShaderProgram;
+class vtkTexture;
+
+class vtkNormalMapShading
+{
+public:
+  /// The vertex attributes of the point tangents and of their signs (vtkNormalMapVS.glsl).
+  static constexpr const char* TangentAttribute = "nmTangentMC";
+  static constexpr const char* SignAttribute = "nmTangentSignMC";
+
+  /// The settings of a normal-mapping mapper (values of vtkNormalMapPolyDataMapper's enums).
+  struct Settings
+  {
+    int MapEncoding = 0;
+    int FrameSource = 0;
+    std::string TangentsArrayName;
+    std::string TangentSignsArrayName = "TangentSigns";
+
+    bool operator==(const Settings& other) const
+    {
+      return this->MapEncoding == other.MapEncoding && this->FrameSource == other.FrameSource &&
+        this->TangentsArrayName == other.TangentsArrayName &&
+        this->TangentSignsArrayName == other.TangentSignsArrayName;
+    }
+  };
+
+  /// The settings of either mapper class (they have the same getters).
+  template<class MapperType>
+  static Settings SettingsOf(MapperType* mapper)
+  {
+    Settings settings;
+    settings.MapEncoding = mapper->GetMapEncoding();
+    settings.FrameSource = mapper->GetFrameSource();
+    settings.TangentsArrayName = mapper->GetTangentsArrayName();
+    settings.TangentSignsArrayName = mapper->GetTangentSignsArrayName();
+    return settings;
+  }
+
+  /// How one dataset's tangent frame is obtained.
+  enum class TangentUse
+  {
+    Derivatives,   // no usable point tangents (or not wanted): screen-space derivatives
+    Signed,        // 4-component tangents, the sign in w
+    SeparateSigns, // 3-component tangents and a sign array
+    Unsigned       // 3-component tangents without signs: sign +1
+  };
+
+  /// One dataset's tangent arrays, checked against the settings.
+  struct Tangents
+  {
+    TangentUse Use = TangentUse::Derivatives;
+    vtkDataArray* Vectors = nullptr; // 3 or 4 components, one tuple per point
+    vtkDataArray* Signs = nullptr;   // with SeparateSigns: 1 component per point
+    std::string Problem;             // why a present tangent or sign array cannot be used
+    bool Missing = false;            // FrameSource is PointTangents and there is no array
+  };
+
+  /// Which frames the datasets drawn by one shader program use.
+  struct FrameMix
+  {
+    bool PointTangents = false; // some dataset has point tangents (attribute nmTangentMC)
+    bool SeparateSigns = false; // ... whose signs are their own attribute (nmTangentSignMC)
+    bool Unsigned = false;      // every dataset with tangents has them without signs
+    bool Derivatives = false;   // some dataset has none: frame from screen-space derivatives
+    /// A small number that changes whenever the shader code would.
+    unsigned Key() const;
+  };
+
+  /// What a mapper knows when VTK builds the shader of one primitive type.
+  struct ShaderContext
+  {
+    vtkObject* Reporter = nullptr; // the mapper the application holds: warnings come from it
+    vtkActor* Actor = nullptr;
+    bool SurfacePrimitive = false; // triangles or strips, not the vertex glyphs
+    bool DrawingVertices = false;
+    int LightComplexity = 0;
+    std::string TCoordName;   // the normal texture's texture coordinate attribute
+    int TCoordComponents = 0; // its components in the vertex buffers
+    FrameMix Frames;          // of the tangent-space map
+    std::string Where;        // names the datasets in warnings ("" or "Blocks 1, 3: ")
+  };
+
+  /// The normal texture of the actor's property, or nullptr.
+  static vtkTexture* NormalTexture(vtkActor* actor);
+  /// Whether the actor asks for a normal map (a normal texture and a non-zero strength).
+  static bool WantsMap(vtkActor* actor);
+  /// Whether a dataset's point tangents will be used (read from the settings and the actor).
+  static bool WantsPointTangents(vtkActor* actor, const Settings& settings);
+  /// Turns the normal texture's mipmaps on when it interpolates (trilinear filtering).
+  static void EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor);
+
+  /// The tangent arrays of a dataset, checked (Derivatives when point tangents are not wanted).
+  static Tangents FindTangents(vtkPolyData* poly, vtkActor* actor, const Settings& settings);
+
+  /**
+   * The tangents as 4 floats per point, the handedness sign in w (+1 for unsigned tangents);
+   * nullptr when the dataset's frame comes from derivatives.
+   */
+  static vtkFloatArray* NewPackedTangents(const Tangents& tangents);
+
+  /// Warns once per actor, datasets and reason why point tangents are not used as they are.
+  void WarnAboutTangents(vtkObject* reporter,
+    const vtkActor* actor,
+    const Tangents& tangents,
+    const Settings& settings,
+    const std::string& where);
+
+  /// While hiding, the normal texture is removed from the list (VTK's own code must not see it).
+  void SetHidingNormalTexture(bool hiding) { this->HidingNormalTexture = hiding; }
+  void FilterTextures(std::vector<std::pair<vtkTexture*, std::string>>& textures) const;
+
+  /**
+   * Adds the normal-map code to the shaders VTK built for one primitive type (after VTK's
+   * own normal code) and returns the frame applied (vtkNormalMapPolyDataMapper::AppliedFrames),
+   * or NOT_APPLIED with a warning where the map cannot be applied.
+   */
+  int ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader*>& shaders,
+    const ShaderContext& context,
+    const Settings& settings);
+
+  /// True when the shader must be rebuilt for the normal map (the texture or the frames changed).
+  bool NeedsRebuild(const vtkOpenGLHelper* cellBO, vtkActor* actor, unsigned framesKey);
+
+  /// The normal matrix and its inverse (nmNormalMatrix, nmNormalMatrixInverse).
+  static void SetCameraUniforms(vtkShaderProgram* program, vtkRenderer* renderer, vtkActor* actor);
+  /// The strength and the green channel's sign (nmNormalScale, nmGreenSign).
+  static void SetMapUniforms(vtkShaderProgram* program, vtkActor* actor, const Settings& settings);
+
+  /// Forgets the shader state (the graphics resources were released).
+  void ReleaseShaders() { this->ShaderKeys.clear(); }
+
+private:
+  enum class Reason : unsigned;
+  void Warn(vtkObject* reporter,
+    const vtkActor* actor,
+    const std::string& where,
+    Reason reason,
+    const std::string& message);
+
+  bool HidingNormalTexture = false;
+  /// Per shader program (one per primitive type), the normal-map state it was built for.
+  std::map<const vtkOpenGLHelper*, unsigned> ShaderKeys;
+  /// Reasons already warned about, per actor and datasets.
+  std::map<std::pair<const vtkActor*, std::string>, unsigned> Warned;
+};
+
+#endif
