@@ -1,0 +1,69 @@
+/**
+ * @class   vtkNormalMappedSurfaceRepresentation
+ * @brief   ParaView's surface representation, drawn through vtkNormalMapCompositePolyDataMapper.
+ *
+ * Everything ParaView's Surface representation does (it derives from the same class and keeps
+ * its properties), with the front-face mappers replaced by the normal-mapping composite mapper:
+ * - mirrored texture coordinates shade right: the handedness sign comes from the point array
+ *   named by SetTangentSignsArray (what vtkPolyDataTangentFrames writes) or from the w of a
+ *   4-component tangent array;
+ * - a normal texture applies without a tangent array, with a frame from screen-space
+ *   derivatives, and object-space maps need no frame at all;
+ * - the map encodings of vtkNormalMapPolyDataMapper (OpenGL or DirectX green, two-channel,
+ *   object space).
+ *
+ * The normal texture is ParaView's own NormalTexture (SetNormalTexture), whose panel widget is
+ * enabled only for data with tangents, or this representation's SetNormalMapTexture, offered for
+ * any data with texture coordinates. When both are set, SetNormalMapTexture's wins. The tangent
+ * array is ParaView's (SetTangentArray makes it the active tangents, which the mapper reads).
+ *
+ * The LOD mapper (interactive rendering of large data) is ours too. The back-face mappers
+ * (ParaView's Backface Representation other than "Follow Frontface") stay ParaView's own.
+ */
+#ifndef vtkNormalMappedSurfaceRepresentation_h
+#define vtkNormalMappedSurfaceRepresentation_h
+
+#include "vtkGeometryRepresentationWithFaces.h"
+#include "vtkNormalMappingRepresentationsModule.h" // For export macro
+#include "vtkSmartPointer.h"                       // For the textures
+
+class vtkNormalMapCompositePolyDataMapper;
+
+class VTKNORMALMAPPINGREPRESENTATIONS_EXPORT vtkNormalMappedSurfaceRepresentation
+  : public vtkGeometryRepresentationWithFaces
+{
+public:
+  static vtkNormalMappedSurfaceRepresentation* New();
+  vtkTypeMacro(vtkNormalMappedSurfaceRepresentation, vtkGeometryRepresentationWithFaces);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// vtkNormalMapPolyDataMapper::MapEncodings, forwarded to both mappers (full and LOD).
+  void SetMapEncoding(int encoding);
+  /// vtkNormalMapPolyDataMapper::FrameSources, forwarded to both mappers.
+  void SetFrameSource(int source);
+  /// Point array with the handedness signs (empty or null: "TangentSigns").
+  void SetTangentSignsArray(const char* name);
+
+  /// ParaView's NormalTexture property.
+  void SetNormalTexture(vtkTexture* texture) override;
+  /// This representation's normal texture, which needs no tangent array; wins over the above.
+  void SetNormalMapTexture(vtkTexture* texture);
+
+protected:
+  vtkNormalMappedSurfaceRepresentation();
+  ~vtkNormalMappedSurfaceRepresentation() override;
+
+private:
+  vtkNormalMappedSurfaceRepresentation(const vtkNormalMappedSurfaceRepresentation&) = delete;
+  void operator=(const vtkNormalMappedSurfaceRepresentation&) = delete;
+
+  /// The full-resolution and the LOD mapper, both ours.
+  vtkNormalMapCompositePolyDataMapper* NormalMapper(int which) const;
+  /// Gives the actor's property the texture in effect.
+  void ApplyNormalTexture();
+
+  vtkSmartPointer<vtkTexture> ParaViewNormalTexture;
+  vtkSmartPointer<vtkTexture> NormalMapTexture;
+};
+
+#endif
