@@ -1388,17 +1388,8 @@ int vtkPolyDataTangentFrames::Internals::Run(vtkPolyDataTangentFrames* self,
   ex.Filter = self;
   ex.Method = static_cast<TangentMethod>(self->Method);
   ex.Splitting = self->Splitting;
-  {
-    // The instruction set the tests may limit, and this build's code for it.
-    namespace mikk = vtkNormalMapping::mikk;
-    using vtkNormalMapping::detail::BatchCode;
-    const mikk::InstructionSet isa = mikk::CurrentInstructionSet();
-    ex.Code = std::min(vtkNormalMapping::detail::BestBatchCode(),
-      isa == mikk::InstructionSet::AVX512
-        ? BatchCode::AVX512
-        : (isa == mikk::InstructionSet::AVX2 ? BatchCode::AVX2 : BatchCode::Scalar));
-    ex.Vector = ex.Code >= BatchCode::AVX2;
-  }
+  ex.Code = vtkNormalMapping::detail::BestBatchCode();
+  ex.Vector = ex.Code >= vtkNormalMapping::detail::BatchCode::AVX2;
   ex.NumberOfPoints = input->GetNumberOfPoints();
   ex.Cells[0] = input->GetPolys();
   ex.Cells[1] = input->GetStrips();

@@ -18,8 +18,7 @@
 // Paired runs (MeasurePaired): each of our methods and VTK's filter updated alternately on the
 // million-triangle float mesh, 1 and 2 threads, the median and quartiles of the per-pair ratios;
 // once with memory the allocator reuses, once with fresh pages (after the peak memory); and on
-// the double-precision mesh, memory reused; and the default method, float and double, with the
-// vector code limited to AVX2. Scaling
+// the double-precision mesh, memory reused. Scaling
 // (MeasureScaling): each filter alone, updated alternately with one and with two threads, on the
 // million-triangle mesh; VTK's filter and the default method also on every other size.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
@@ -604,22 +603,6 @@ int main(int argc, char** argv)
   std::cout << "paired runs (double input) in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - doubleStart).count()
             << " s" << std::endl;
-  // The default method with the vector code limited to AVX2, as on the many CPUs without AVX-512
-  // (VTK's filter is scalar code either way): float and double input, one thread, memory reused.
-  // On a CPU without AVX2 the limit gives its best code; the table says which ran.
-  namespace mikk = vtkNormalMapping::mikk;
-  const mikk::InstructionSet best = mikk::LimitInstructionSet(mikk::InstructionSet::AVX512);
-  const mikk::InstructionSet limited = mikk::LimitInstructionSet(mikk::InstructionSet::AVX2);
-  std::vector<Paired> pairedAVX2;
-  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
-                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
-    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
-  for (bool doublePrecision : { false, true })
-  {
-    pairedAVX2.push_back(
-      MeasurePaired(angleWeighted, Torus(summarySize, doublePrecision), 1, pairs));
-  }
-  mikk::LimitInstructionSet(best);
   // Two threads against one, each filter alone (memory reused).
   std::vector<Paired> scaling;
   const auto scalingStart = std::chrono::steady_clock::now();
@@ -789,26 +772,6 @@ int main(int argc, char** argv)
     {
       md << "| " << one.Name << threadColumns(pairedDouble, one) << " |\n";
     }
-  }
-
-  const auto isaName = [](mikk::InstructionSet isa)
-  {
-    return isa == mikk::InstructionSet::AVX512
-      ? "AVX-512"
-      : (isa == mikk::InstructionSet::AVX2 ? "AVX2" : "the baseline (no AVX2)");
-  };
-  md << "\n### Paired runs, AVX2 only: "
-     << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
-     << " triangles, one thread, memory reused\n\n"
-     << "AngleWeighted (the default) against VTK's filter as above, with our vector code limited "
-        "to AVX2 as on CPUs without AVX-512 (VTK's filter is scalar code either way). This run: "
-     << isaName(limited) << " (the CPU's best: " << isaName(best) << ").\n\n"
-     << "| input | median [quartiles] | fastest runs |\n"
-     << "|---|---:|---:|\n";
-  for (size_t i = 0; i < pairedAVX2.size(); ++i)
-  {
-    const Paired& p = pairedAVX2[i];
-    md << "| " << (i == 0 ? "float" : "double") << " | " << p.Cells() << " |\n";
   }
 
   md << "\n### Two threads against one: paired runs, "
