@@ -154,18 +154,19 @@ struct Member
   Idx Link[2];    // member across the edge vertex->Next, across Prev->vertex; -1: none
   Idx Group;      // same-orientation edge-connected component
   uint8_t Flags;  // of the triangle
-  // On the vertex's tangent plane: the triangle's directions, the edges to Prev and Next
-  // (normalised), and the corner angle (0 for GWA members, which never contribute).
+  // The triangle's directions (its Frame; CornerMath projects them on the vertex's tangent
+  // plane), the edges to Prev and Next on that plane (normalised), and the corner angle (0 for
+  // GWA members, which never contribute).
   V3 S, T, E1, E2;
-  float Angle;
+  float MagS, MagT, Angle;
 };
 
 // Per-thread scratch of the vertex phase.
 struct Scratch
 {
   std::vector<Member> M;
-  std::vector<uint64_t> Edges;
-  std::vector<float> X, Y, Z; // vectors to project, see CornerMath
+  std::vector<uint64_t> Edges; // index of PairEdges
+  std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
   std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart;
   std::vector<Frame> SubFrames;
 };
@@ -173,30 +174,61 @@ struct Scratch
 // Links the members' half-edges as the reference pairs them: the half-edges of one undirected
 // edge (vertex, x) in triangle order, each unpaired one with the first later unpaired one of
 // opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
-// evaluated locally: sort the half-edges by (x, member), pair within runs of equal x.
-void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& edges)
+// evaluated locally, member by member in triangle order. A small fan scans the later members;
+// a large one (a polygon of thousands of corners fan-triangulated around its first) looks
+// them up in `index`, its half-edges sorted by (x, member), so that the pairing stays
+// O(k log k).
+void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
 {
-  edges.clear();
-  for (size_t j = 0; j < m.size(); ++j)
+  constexpr size_t kScanLimit = 32;
+  const Idx k = Idx(m.size());
+  index.clear();
+  for (Idx j = 0; j < k; ++j)
   {
-    m[j].Link[0] = m[j].Link[1] = -1;
-    edges.push_back(uint64_t(m[j].Next) << 32 | uint64_t(j) << 1);
-    edges.push_back(uint64_t(m[j].Prev) << 32 | uint64_t(j) << 1 | 1);
-  }
-  std::sort(edges.begin(), edges.end());
-  const auto member = [](uint64_t e) { return Idx(uint32_t(e) >> 1); };
-  for (size_t a = 0; a < edges.size(); ++a)
-  {
-    const Idx ma = member(edges[a]);
-    const int da = int(edges[a] & 1);
-    for (size_t j = a + 1; m[ma].Link[da] < 0 && j < edges.size() && edges[j] >> 32 == edges[a] >> 32; ++j)
+    Member& a = m[size_t(j)];
+    a.Link[0] = a.Link[1] = -1;
+    if (m.size() > kScanLimit)
     {
-      const Idx mj = member(edges[j]);
-      const int dj = int(edges[j] & 1);
-      if (dj != da && m[mj].Link[dj] < 0)
+      index.push_back(uint64_t(a.Next) << 32 | uint64_t(j) << 1);
+      index.push_back(uint64_t(a.Prev) << 32 | uint64_t(j) << 1 | 1);
+    }
+  }
+  std::sort(index.begin(), index.end());
+  // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
+  const auto pair = [&](Idx j, int side)
+  {
+    const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
+    const auto tryLink = [&](Idx q)
+    {
+      Member& b = m[size_t(q)];
+      if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
       {
-        m[ma].Link[da] = mj;
-        m[mj].Link[dj] = ma;
+        m[size_t(j)].Link[side] = q;
+        b.Link[1 - side] = j;
+      }
+      return m[size_t(j)].Link[side] >= 0;
+    };
+    if (index.empty())
+    {
+      for (Idx q = j + 1; q < k && !tryLink(q); ++q)
+      {
+      }
+      return;
+    }
+    const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
+    for (auto e = std::lower_bound(index.begin(), index.end(), key);
+         e != index.end() && Idx(*e >> 32) == x && !tryLink(Idx(uint32_t(*e) >> 1));
+         ++e)
+    {
+    }
+  };
+  for (Idx j = 0; j < k; ++j)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      if (m[size_t(j)].Link[side] < 0)
+      {
+        pair(j, side);
       }
     }
   }
@@ -222,7 +254,7 @@ struct Kernel
   long long NumFaceChunks = 0;
   std::vector<Idx> ChunkTriBase; // first triangle of each chunk of faces
   Idx NumTris = 0;
-  bool AnyMulti = false;     // some face has more than 3 corners
+  bool AnyMulti = false; // some face has more than 3 corners
   struct Triangle
   {
     Idx Slot[3]; // face corner indices
@@ -326,8 +358,9 @@ bool LoadPoint(const MeshInput& in, Idx p, float (&values)[8])
 // 32-bit hash of a point's value bit patterns, -0 as +0 (equal values give equal hashes).
 uint32_t HashPoint(const float (&values)[8])
 {
-  static constexpr uint64_t kOdd[8] = { 0x9e3779b1, 0x27d4eb2f, 0x85ebca77, 0xc2b2ae3d, 0xd3a2646d,
-    0xb55a4f09, 0x165667b1, 0xfd7046c5 };
+  static constexpr uint64_t kOdd[8] = {
+    0x9e3779b1, 0x27d4eb2f, 0x85ebca77, 0xc2b2ae3d, 0xd3a2646d, 0xb55a4f09, 0x165667b1, 0xfd7046c5
+  };
   uint64_t h = 0;
   for (int j = 0; j < 8; ++j)
   {
@@ -384,7 +417,8 @@ void Kernel::Weld()
   SortByUpperHalf(keys);
   std::vector<Idx> heads;
   float values[8], other[8];
-  const auto equalValues = [&](Idx h) { return LoadPoint(In, h, other), std::equal(values, values + 8, other); };
+  const auto equalValues = [&](Idx h)
+  { return LoadPoint(In, h, other), std::equal(values, values + 8, other); };
   for (size_t r0 = 0, r1; r0 < keys.size(); r0 = r1)
   {
     for (r1 = r0 + 1; r1 < keys.size() && keys[r1] >> 32 == keys[r0] >> 32; ++r1)
@@ -590,8 +624,8 @@ void Kernel::BuildTriangles()
           {
             const Idx slots[3] = { base, base + k + 1, base + k + 2 };
             SetupTriangle(t + k, slots);
-            Tris[size_t(t + k)].Flags |= uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) |
-              (k + 1 < nTri ? kMulti0 << 2 : 0));
+            Tris[size_t(t + k)].Flags |=
+              uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
           }
         }
         for (Idx u = t; u < t + nTri; ++u)
@@ -660,6 +694,10 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     m[j].Next = tri.Weld[(i + 1) % 3];
     m[j].Prev = tri.Weld[(i + 2) % 3];
     m[j].Flags = tri.Flags;
+    m[j].S = tri.Dir.S;
+    m[j].T = tri.Dir.T;
+    m[j].MagS = tri.Dir.MagS;
+    m[j].MagT = tri.Dir.MagT;
   }
 }
 
@@ -751,8 +789,8 @@ void ProjectNormalizeAll(float* x, float* y, float* z, size_t count, const V3& n
 // The reference's EvalTspace inputs at vertex v: the triangles' directions and the corners'
 // edges projected on the plane perpendicular to the vertex normal and normalised, and the corner
 // angle acos(e1.e2) (in double, rounded to float, as the reference). The edge to a neighbour is
-// the same for the two members sharing it: projected once per run of s.Edges (sorted by
-// neighbour).
+// the same for the two members sharing it: a member's edge to Prev is its partner's (Link[1])
+// edge to Next, projected once.
 void Kernel::CornerMath(Idx v, Scratch& s) const
 {
   const Idx pv = PointOfWeld(v);
@@ -771,27 +809,34 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   const auto get = [&s](size_t row) { return V3{ s.X[row], s.Y[row], s.Z[row] }; };
   for (size_t j = 0; j < k; ++j)
   {
-    const Frame& dir = Tris[size_t(s.M[j].Corner / 3)].Dir;
-    set(j, dir.S);
-    set(k + j, dir.T);
+    set(j, s.M[j].S);
+    set(k + j, s.M[j].T);
   }
-  for (size_t r = 0; r < s.Edges.size(); ++r)
+  // rows [2k, 3k): the edge to Next of each member, then the edges to Prev of members whose
+  // in-edge is unpaired (a paired one is its partner's edge to Next)
+  for (size_t j = 0; j < k; ++j)
   {
-    const Idx x = Idx(s.Edges[r] >> 32);
-    if (r == 0 || x != Idx(s.Edges[r - 1] >> 32))
+    const V3 e = Sub(Pos(PointOfWeld(s.M[j].Next)), p);
+    s.X.push_back(e.x);
+    s.Y.push_back(e.y);
+    s.Z.push_back(e.z);
+  }
+  for (const Member& a : s.M)
+  {
+    if (a.Link[1] < 0)
     {
-      const V3 e = Sub(Pos(PointOfWeld(x)), p);
+      const V3 e = Sub(Pos(PointOfWeld(a.Prev)), p);
       s.X.push_back(e.x);
       s.Y.push_back(e.y);
       s.Z.push_back(e.z);
     }
   }
   ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), s.X.size(), n);
-  for (size_t r = 0, row = 2 * k - 1; r < s.Edges.size(); ++r)
+  for (size_t j = 0, extra = 3 * k; j < k; ++j)
   {
-    row += (r == 0 || s.Edges[r] >> 32 != s.Edges[r - 1] >> 32) ? 1 : 0;
-    Member& m = s.M[size_t(uint32_t(s.Edges[r]) >> 1)];
-    (s.Edges[r] & 1 ? m.E1 : m.E2) = get(row);
+    Member& a = s.M[j];
+    a.E2 = get(2 * k + j);
+    a.E1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
   }
   // the cosines of all members first, then the acos calls
   for (size_t j = 0; j < k; ++j)
@@ -872,9 +917,8 @@ void Kernel::ProcessVertex(Idx v, Scratch& s)
 // member; a group of GWA triangles only is never seeded and its corners stay default.
 void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
 {
-  const Idx* seed = std::find_if(members,
-    members + count,
-    [&s](Idx j) { return !(s.M[size_t(j)].Flags & kGWA); });
+  const Idx* seed =
+    std::find_if(members, members + count, [&s](Idx j) { return !(s.M[size_t(j)].Flags & kGWA); });
   if (seed == members + count)
   {
     return;
@@ -916,11 +960,10 @@ Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
     {
       continue;
     }
-    const Frame& dir = Tris[size_t(a.Corner / 3)].Dir;
     r.S = Add(r.S, Scale(a.S, a.Angle));
     r.T = Add(r.T, Scale(a.T, a.Angle));
-    r.MagS += a.Angle * dir.MagS;
-    r.MagT += a.Angle * dir.MagT;
+    r.MagS += a.Angle * a.MagS;
+    r.MagT += a.Angle * a.MagT;
     angleSum += a.Angle;
   }
   r.S = NormalizeNonZero(r.S);
@@ -935,8 +978,7 @@ Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
 
 // The reference's sub-groups: the list of member f holds every member t with (either GWA) or
 // (same face) or (cosS > -1 and cosT > -1); equal lists share a frame.
-void Kernel::GeneralSubgroups(
-  Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx key)
+void Kernel::GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx key)
 {
   s.SubList.clear();
   s.SubStart.assign(1, 0);
@@ -978,7 +1020,8 @@ bool Kernel::SameFace(Idx ta, Idx tb) const
 {
   const Idx* a = Tris[size_t(ta)].Slot;
   const Idx* b = Tris[size_t(tb)].Slot;
-  return ta == tb || std::any_of(a, a + 3, [b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
+  return ta == tb ||
+    std::any_of(a, a + 3, [b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
 }
 
 void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx key)
@@ -1075,8 +1118,8 @@ void Kernel::CopyDegenerates()
               ++missing;
             }
             const V3 dst = Pos(Idx(Conn[missing]));
-            const Idx* src = std::find_if(
-              gs, gs + 3, [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
+            const Idx* src =
+              std::find_if(gs, gs + 3, [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
             if (src != gs + 3)
             {
               Out[size_t(missing)] = Out[size_t(*src)];
@@ -1261,8 +1304,9 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
 } // namespace
 
 //------------------------------------------------------------------------------
-Result ComputeMikkTSpace(
-  const MeshInput& in, int numThreads, const std::function<bool(double progress)>& progressAndAbort)
+Result ComputeMikkTSpace(const MeshInput& in,
+  int numThreads,
+  const std::function<bool(double progress)>& progressAndAbort)
 {
   if (numThreads <= 0)
   {
