@@ -3,9 +3,10 @@
 // shared/docs/MIKKTSPACE.md; see vtkMikkTSpaceKernel.h for the contract.
 //
 // Phases (parallel with vtkSMPTools unless noted):
-//  1. Weld points (sequential): a hash table keyed by the 8 values finds, for every point, the
-//     smallest point id with equal values (==, so -0 == +0). Points with a NaN never weld: each
-//     face corner using one gets its own welded id.
+//  1. Weld points: a hash of the 8 values per point (parallel), a radix sort by hash and an
+//     exact comparison within equal hashes (sequential) give every point the smallest point id
+//     with equal values (==, so -0 == +0). Points with a NaN never weld: each face corner using
+//     one gets its own welded id.
 //  2. Faces -> triangles (quad diagonal rule, fans), degeneracy, per-triangle frame, quad
 //     orientation forcing.
 //  3. Counting sort (sequential) of the corners of non-degenerate triangles by welded id: the
