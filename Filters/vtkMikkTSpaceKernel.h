@@ -34,10 +34,11 @@
  * and negating Sign.
  *
  * Threading: the per-triangle, per-vertex (grouping and accumulation) and per-face phases run
- * with vtkSMPTools; results are bit-identical for any number of threads. Point welding (a hash
- * table), the counting sort of corners by welded vertex and the orientation adoption of
- * zero-UV-area ("group with any") triangles, which the reference defines sequentially, run on
- * the calling thread; the adoption only visits vertices touching such triangles.
+ * with vtkSMPTools; results are bit-identical for any number of threads. The radix sort and
+ * comparison of point welding, the counting sort of corners by welded vertex and the orientation
+ * adoption of zero-UV-area ("group with any") triangles, which the reference defines
+ * sequentially, run on the calling thread; the adoption only visits vertices touching such
+ * triangles.
  *
  * Limits: 3 * (number of face corners) + NumberOfPoints must be below 2^31; larger inputs
  * return Result::TooLarge with default frames.
