@@ -34,21 +34,20 @@
  * and negating Sign.
  *
  * Threading: the per-triangle, per-vertex (grouping and accumulation) and per-face phases run
- * with vtkSMPTools; results are bit-identical for any number of threads. Point welding and the
- * orientation adoption of zero-UV-area ("group with any") triangles, which the reference defines
- * sequentially, are resolved in a sequential pass that only visits vertices touching such
+ * with vtkSMPTools; results are bit-identical for any number of threads. The radix sort and
+ * comparison of point welding, the counting sort of corners by welded vertex and the orientation
+ * adoption of zero-UV-area ("group with any") triangles, which the reference defines
+ * sequentially, run on the calling thread; the adoption only visits vertices touching such
  * triangles.
  *
  * Limits: 3 * (number of face corners) + NumberOfPoints must be below 2^31; larger inputs
  * return Result::TooLarge with default frames.
  *
- * SIMD (chosen at run time, see InstructionSet): the triangle setup and the per-corner math
- * run 8 lanes wide with AVX2 when the CPU has it, the corner angles' acos 8 lanes wide in
- * double with AVX-512, else 4 lanes with SSE2; all paths use the same IEEE operations and
- * give identical bits.
- *
- * Compile this translation unit without -ffast-math. It disables floating-point contraction
- * itself (FMA would change rounding compared to the reference by up to ~2e-7).
+ * Arithmetic: scalar float operations in the reference's order, acos evaluated in double and
+ * rounded to float. Compile this translation unit without -ffast-math and without
+ * floating-point contraction (the module's CMake adds -ffp-contract=off for GCC and Clang, the
+ * source carries the STDC pragma for other compilers): a fused multiply-add changes results
+ * compared to the reference by up to ~2e-7.
  */
 #ifndef vtkMikkTSpaceKernel_h
 #define vtkMikkTSpaceKernel_h
@@ -95,23 +94,6 @@ struct Result
 
 /// Default frame of a corner that no group reached (the reference's initial value).
 constexpr CornerFrame DefaultCornerFrame = { { 1.0f, 0.0f, 0.0f }, -1.0f };
-
-/// Instruction sets the kernel can use, chosen at run time. Every one gives the same bits; the
-/// best one the CPU has is used unless limited with LimitInstructionSet (for tests).
-enum class InstructionSet
-{
-  Baseline = 0, ///< SSE2 on x86-64, plain C++ elsewhere
-  AVX2 = 1,
-  AVX512 = 2 ///< AVX2 and, for the double-precision acos, AVX-512
-};
-
-/// Limits the instruction set of later ComputeMikkTSpace calls in this process (to compare
-/// them); returns the one they will use: `maximum`, or less if the CPU or build lacks it.
-InstructionSet LimitInstructionSet(InstructionSet maximum);
-
-/// The instruction set that vector code uses now: the best the CPU and build have, up to the
-/// LimitInstructionSet limit. vtkPolyDataTangentFrames' weighted methods follow it too.
-InstructionSet CurrentInstructionSet();
 
 /**
  * Compute MikkTSpace tangents for every face corner.

@@ -1,34 +1,39 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Throughput of the MikkTSpace kernel (vtkMikkTSpaceKernel.h) in triangles per second, and of
-// vtkPolyDataTangentFrames with Method MIKKTSPACE on the 1M torus (BM_MikkTSpaceFilter).
+// Throughput of the MikkTSpace kernel (vtkMikkTSpaceKernel.h) in triangles per second on three
+// meshes made by others, and of vtkPolyDataTangentFrames with Method MIKKTSPACE on the torus
+// (BM_MikkTSpaceFilter):
+//  - Sphere: vtkTexturedSphereSource, 1024 x 512 (theta x phi resolution);
+//  - Torus: vtkParametricTorus through vtkParametricFunctionSource, 1024 x 512 with texture
+//    coordinates, through vtkTriangleFilter;
+//  - FlightHelmet: the largest model of shared/data/gltf-external, all its primitives in one
+//    mesh, texture coordinates as stored (skipped when the shared data is absent).
+// Each runs with 1 and 2 threads (vtkSMPTools).
 //
-// Meshes: tori of 65,536 and 1,048,576 triangles (quads split in two, u and v seams) and a
-// 65,536-triangle latitude-longitude sphere whose 512 pole triangles are degenerate (two
-// coincident corners). Each runs with 1 and 2 threads (vtkSMPTools).
-//
-// The "x_ref" counter is the throughput divided by the reference mikktspace.c's documented
-// single-core figure on this kind of machine, 0.91 million triangles/s (0.85-0.97 M/s, see
-// shared/docs/MIKKTSPACE.md; 0.56 M/s on the degenerate-pole sphere). Measured side-by-side
-// ratios are in docs/mikktspace.md.
+// The "x_ref" counter is the throughput divided by the reference mikktspace.c's single-thread
+// throughput on the same mesh (thread CPU time), measured side by side on the machine described
+// in docs/mikktspace.md (the reference itself is not part of this repository).
 
 #include "MikkTSpaceKernelMesh.h"
+#include "NormalMappingReferenceData.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkPolyDataTangentFrames.h"
 
 #include <vtkCellArray.h>
-#include <vtkFloatArray.h>
+#include <vtkDataArray.h>
+#include <vtkGLTFDocumentLoader.h>
 #include <vtkNew.h>
+#include <vtkParametricFunctionSource.h>
+#include <vtkParametricTorus.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
-#include <vtkTypeInt64Array.h>
+#include <vtkSmartPointer.h>
+#include <vtkTexturedSphereSource.h>
+#include <vtkTriangleFilter.h>
 
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
-#include <cmath>
-#include <vector>
+#include <string>
 
 namespace
 {
@@ -36,98 +41,128 @@ namespace mikk = vtkNormalMapping::mikk;
 
 struct BenchMesh : NormalMappingTesting::KernelMesh
 {
+  vtkSmartPointer<vtkPolyData> PolyData; // the source's output (all primitives appended)
   long long NumberOfTriangles = 0;
-  double ReferenceTrianglesPerSecond = 0.91e6; // documented reference figure
-
-  void Triangle(long long a, long long b, long long c)
-  {
-    this->AddFace({ a, b, c });
-    ++NumberOfTriangles;
-  }
+  double ReferenceTrianglesPerSecond = 0; // mikktspace.c on this mesh (docs/mikktspace.md)
 };
 
-// (nu+1) x (nv+1) grid of points (duplicated seam columns/rows), 2*nu*nv triangles.
-template<typename PointFunction>
-BenchMesh Grid(int nu, int nv, PointFunction point)
+// Appends the polygons of pd (with point normals and texture coordinates) to m, as floats.
+void Append(BenchMesh& m, vtkPolyData* pd, vtkDataArray* normals, vtkDataArray* tcoords)
+{
+  const long long base = static_cast<long long>(m.P.size() / 3);
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    double p[3], n[3];
+    pd->GetPoint(i, p);
+    normals->GetTuple(i, n);
+    m.AddPoint({ float(p[0]), float(p[1]), float(p[2]) },
+      { float(n[0]), float(n[1]), float(n[2]) },
+      { float(tcoords->GetComponent(i, 0)), float(tcoords->GetComponent(i, 1)) });
+  }
+  vtkIdType npts;
+  const vtkIdType* ids;
+  vtkCellArray* polys = pd->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
+  {
+    for (vtkIdType k = 0; k < npts; ++k)
+    {
+      m.Conn.push_back(base + ids[k]);
+    }
+    m.Offsets.push_back(static_cast<long long>(m.Conn.size()));
+    m.NumberOfTriangles += npts - 2;
+  }
+}
+
+BenchMesh FromPolyData(vtkPolyData* pd, double referenceTrianglesPerSecond)
 {
   BenchMesh m;
-  for (int j = 0; j <= nv; ++j)
-  {
-    for (int i = 0; i <= nu; ++i)
-    {
-      float p[3], n[3];
-      const float u = float(i) / float(nu), v = float(j) / float(nv);
-      point(u, v, p, n);
-      m.P.insert(m.P.end(), { p[0], p[1], p[2] });
-      m.N.insert(m.N.end(), { n[0], n[1], n[2] });
-      m.U.insert(m.U.end(), { u, v });
-    }
-  }
-  const long long row = nu + 1;
-  for (long long j = 0; j < nv; ++j)
-  {
-    for (long long i = 0; i < nu; ++i)
-    {
-      const long long p00 = j * row + i, p10 = p00 + 1, p01 = p00 + row, p11 = p01 + 1;
-      m.Triangle(p00, p10, p11);
-      m.Triangle(p00, p11, p01);
-    }
-  }
+  m.PolyData = pd;
+  m.ReferenceTrianglesPerSecond = referenceTrianglesPerSecond;
+  Append(m, pd, pd->GetPointData()->GetNormals(), pd->GetPointData()->GetTCoords());
   return m;
 }
 
-const float kTwoPi = 6.28318531f;
-
-BenchMesh Torus(int nu, int nv)
+BenchMesh Sphere()
 {
-  return Grid(nu,
-    nv,
-    [](float u, float v, float* p, float* n)
-    {
-      const float a = kTwoPi * u, b = kTwoPi * v;
-      const float ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
-      p[0] = (2.0f + 0.7f * cb) * ca;
-      p[1] = (2.0f + 0.7f * cb) * sa;
-      p[2] = 0.7f * sb;
-      n[0] = cb * ca;
-      n[1] = cb * sa;
-      n[2] = sb;
-    });
+  vtkNew<vtkTexturedSphereSource> sphere;
+  sphere->SetThetaResolution(1024);
+  sphere->SetPhiResolution(512);
+  sphere->Update();
+  return FromPolyData(sphere->GetOutput(), 0.36e6);
 }
 
-// Latitude-longitude sphere: the pole rows are nu coincident points with different u, so
-// each pole quad has one degenerate triangle (2 * nu in total).
-BenchMesh Sphere(int nu, int nv)
+BenchMesh Torus()
 {
-  BenchMesh m = Grid(nu,
-    nv,
-    [](float u, float v, float* p, float* n)
+  vtkNew<vtkParametricTorus> torus;
+  vtkNew<vtkParametricFunctionSource> source;
+  source->SetParametricFunction(torus);
+  source->SetUResolution(1024);
+  source->SetVResolution(512);
+  source->GenerateTextureCoordinatesOn();
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(source->GetOutputPort());
+  triangles->Update();
+  return FromPolyData(triangles->GetOutput(), 0.74e6);
+}
+
+// Every primitive of FlightHelmet.gltf appended; empty when the shared data is absent. The
+// geometry comes from vtkGLTFDocumentLoader: the copy in the shared data has no texture images,
+// on which vtkGLTFReader fails (the loader reports them and builds the geometry anyway).
+BenchMesh Helmet()
+{
+  BenchMesh m;
+  m.ReferenceTrianglesPerSecond = 0.80e6;
+  const std::string dir = NormalMappingTestData::FindSharedData(nullptr);
+  if (dir.empty())
+  {
+    return m;
+  }
+  vtkNew<vtkGLTFDocumentLoader> loader;
+  const bool warnings = vtkObject::GetGlobalWarningDisplay();
+  vtkObject::GlobalWarningDisplayOff();
+  const bool read =
+    loader->LoadModelMetaDataFromFile(dir + "/gltf-external/FlightHelmet/FlightHelmet.gltf");
+  if (read)
+  {
+    loader->LoadModelData({});
+    loader->BuildModelVTKGeometry();
+  }
+  vtkObject::SetGlobalWarningDisplay(warnings);
+  if (!read)
+  {
+    return m;
+  }
+  for (const auto& mesh : loader->GetInternalModel()->Meshes)
+  {
+    for (const auto& primitive : mesh.Primitives)
     {
-      const float a = kTwoPi * u, b = 3.14159265f * v;
-      const float st = (v == 0.0f || v == 1.0f) ? 0.0f : std::sin(b);
-      const float ct = v == 0.0f ? 1.0f : (v == 1.0f ? -1.0f : std::cos(b));
-      n[0] = st * std::cos(a);
-      n[1] = st * std::sin(a);
-      n[2] = ct;
-      p[0] = n[0];
-      p[1] = n[1];
-      p[2] = n[2];
-    });
-  m.ReferenceTrianglesPerSecond = 0.56e6; // documented reference figure for this mesh
+      vtkPolyData* pd = primitive.Geometry;
+      vtkPointData* attributes = pd ? pd->GetPointData() : nullptr;
+      if (attributes && attributes->GetArray("NORMAL") && attributes->GetArray("TEXCOORD_0"))
+      {
+        Append(m, pd, attributes->GetArray("NORMAL"), attributes->GetArray("TEXCOORD_0"));
+      }
+    }
+  }
   return m;
 }
 
 const BenchMesh& Mesh(int which)
 {
-  static const BenchMesh torus64k = Torus(256, 128);   // 65,536 triangles
-  static const BenchMesh torus1m = Torus(1024, 512);   // 1,048,576 triangles
-  static const BenchMesh sphere64k = Sphere(256, 128); // 65,536 triangles, 512 degenerate
-  return which == 0 ? torus64k : (which == 1 ? torus1m : sphere64k);
+  static const BenchMesh sphere = Sphere();
+  static const BenchMesh torus = Torus();
+  static const BenchMesh helmet = Helmet();
+  return which == 0 ? sphere : (which == 1 ? torus : helmet);
 }
 
 void BM_MikkTSpace(benchmark::State& state, int which)
 {
   const BenchMesh& m = Mesh(which);
+  if (m.NumberOfTriangles == 0)
+  {
+    state.SkipWithError("shared test data not found");
+    return;
+  }
   const int threads = static_cast<int>(state.range(0));
   const mikk::MeshInput in = m.Input();
   long long degenerate = 0;
@@ -143,44 +178,16 @@ void BM_MikkTSpace(benchmark::State& state, int which)
     benchmark::Counter(static_cast<double>(m.NumberOfTriangles) / m.ReferenceTrianglesPerSecond,
       benchmark::Counter::kIsIterationInvariantRate);
 }
-// The same meshes through vtkPolyDataTangentFrames (Method MIKKTSPACE): kernel plus input
-// conversion to float, per-point assignment/splitting and output arrays.
-vtkSmartPointer<vtkPolyData> ToPolyData(const BenchMesh& m)
-{
-  const auto floats = [](const std::vector<float>& v, int comps, const char* name)
-  {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(comps);
-    a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()) / comps);
-    std::copy(v.begin(), v.end(), a->GetPointer(0));
-    return vtkSmartPointer<vtkFloatArray>(a.Get());
-  };
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetData(floats(m.P, 3, "Points"));
-  pd->SetPoints(points);
-  pd->GetPointData()->SetNormals(floats(m.N, 3, "Normals"));
-  pd->GetPointData()->SetTCoords(floats(m.U, 2, "TCoords"));
-  vtkNew<vtkTypeInt64Array> offsets, conn;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(m.Offsets.size()));
-  std::copy(m.Offsets.begin(), m.Offsets.end(), offsets->GetPointer(0));
-  conn->SetNumberOfValues(static_cast<vtkIdType>(m.Conn.size()));
-  std::copy(m.Conn.begin(), m.Conn.end(), conn->GetPointer(0));
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, conn);
-  pd->SetPolys(polys);
-  return pd;
-}
 
+// The torus through vtkPolyDataTangentFrames (Method MIKKTSPACE): kernel plus input conversion,
+// per-point assignment/splitting and output arrays.
 void BM_MikkTSpaceFilter(benchmark::State& state, int which)
 {
   const BenchMesh& m = Mesh(which);
   const int threads = static_cast<int>(state.range(0));
-  vtkSmartPointer<vtkPolyData> input = ToPolyData(m);
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetMethodToMikkTSpace();
-  filter->SetInputData(input);
+  filter->SetInputData(m.PolyData);
   // VTK 9.1's TBB backend ignores a LocalScope whose count equals the previous scope's: enter
   // one with another count first (as ComputeMikkTSpace does).
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads == 1 ? 2 : 1 },
@@ -205,26 +212,26 @@ void BM_MikkTSpaceFilter(benchmark::State& state, int which)
 }
 } // namespace
 
-BENCHMARK_CAPTURE(BM_MikkTSpace, Torus64K, 0)
+BENCHMARK_CAPTURE(BM_MikkTSpace, Sphere, 0)
   ->Arg(1)
   ->Arg(2)
   ->ArgName("threads")
   ->UseRealTime()
   ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MikkTSpace, Torus1M, 1)
+BENCHMARK_CAPTURE(BM_MikkTSpace, Torus, 1)
   ->Arg(1)
   ->Arg(2)
   ->ArgName("threads")
   ->UseRealTime()
   ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MikkTSpace, Sphere64KDegeneratePoles, 2)
+BENCHMARK_CAPTURE(BM_MikkTSpace, FlightHelmet, 2)
   ->Arg(1)
   ->Arg(2)
   ->ArgName("threads")
   ->UseRealTime()
   ->Unit(benchmark::kMillisecond);
 
-BENCHMARK_CAPTURE(BM_MikkTSpaceFilter, Torus1M, 1)
+BENCHMARK_CAPTURE(BM_MikkTSpaceFilter, Torus, 1)
   ->Arg(1)
   ->Arg(2)
   ->ArgName("threads")
