@@ -21,7 +21,6 @@ set(_nm_sources
 # Not installed. vtkTangentFrameKernels.h (the math, over GLM vectors) is reachable from the
 # build tree, so that the tests call its functions directly.
 set(_nm_private_headers
-  Filters/vtkNormalMappingHugePages.h
   Filters/vtkNormalMappingPrivate.h
   Filters/vtkPolyDataTangentFramesMikkTSpace.h
   Filters/vtkTangentFrameKernels.h

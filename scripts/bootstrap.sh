@@ -3,7 +3,8 @@
 #   bash scripts/bootstrap.sh demo   # build and run `normalmap demo`: renders normalmap-demo.png
 #                                    # in the current folder
 #   bash scripts/bootstrap.sh test   # build and run every test, compile the library for ARM
-#                                    # (scripts/portability.sh), then the same tests and a
+#                                    # (scripts/portability.sh), build and test the ParaView
+#                                    # plugin (scripts/paraview.sh), then the same tests and a
 #                                    # short fuzz run under ASan + UBSan (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmark set (scripts/bench.sh): writes
 #                                    # docs/benchmarks.md and docs/benchmarks.png
@@ -55,6 +56,8 @@ case "$job" in
     (cd "$build" && ctest --output-on-failure -j "$(nproc)")
     echo "== the library compiled for 64-bit ARM"
     bash "$root/scripts/portability.sh" "$build"
+    echo "== the ParaView plugin, built against ParaView's VTK, and its pvbatch tests"
+    bash "$root/scripts/paraview.sh"
     echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
     bash "$root/scripts/sanitize.sh"
     ;;
