@@ -731,16 +731,38 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
 
 /**
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
- * tangent plane, and their neighbours' majority sign (+1 when none).
+ * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
+ * corners in order collects, per fallback point, its neighbours in triangle order (the order of
+ * the links, which this pass does not need).
  */
 template<typename OutT>
 void FillFallbacks(const Triangles& tris,
-  const Links& links,
   const dvec3* normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
   const FrameArrays<OutT>& out)
 {
+  std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
+  std::vector<int> votes(fallbacks.size(), 0);
+  for (vtkIdType c = 0; c < 3 * tris.Count; ++c)
+  {
+    const vtkIdType p = tris.Ids[c];
+    if (kinds[p] != PointKind::Fallback)
+    {
+      continue;
+    }
+    const size_t i = std::lower_bound(fallbacks.begin(), fallbacks.end(), p) - fallbacks.begin();
+    const vtkIdType* triangle = tris.Ids + 3 * (c / 3);
+    for (int m = 0; m < 3; ++m)
+    {
+      const vtkIdType q = triangle[m];
+      if (q != p && kinds[q] != PointKind::Fallback)
+      {
+        sums[i] += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
+        votes[i] += out.Signs[q] < 0 ? -1 : 1;
+      }
+    }
+  }
   vtkSMPTools::For(0,
     static_cast<vtkIdType>(fallbacks.size()),
     [&](vtkIdType begin, vtkIdType end)
@@ -748,22 +770,8 @@ void FillFallbacks(const Triangles& tris,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = fallbacks[i];
-        dvec3 sum(0.0);
-        int votes = 0;
-        links.ForEach(p,
-          [&](vtkIdType t, int)
-          {
-            for (int m = 0; m < 3; ++m)
-            {
-              const vtkIdType q = tris.Ids[3 * t + m];
-              if (q != p && kinds[q] != PointKind::Fallback)
-              {
-                sum += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
-                votes += out.Signs[q] < 0 ? -1 : 1;
-              }
-            }
-          });
-        out.Write(p, normals[p], PerpendicularTangent(normals[p], sum), votes < 0 ? -1.0 : 1.0);
+        out.Write(
+          p, normals[p], PerpendicularTangent(normals[p], sums[i]), votes[i] < 0 ? -1.0 : 1.0);
       }
     });
 }
@@ -1142,7 +1150,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(this->Tris, this->PointLinksOf(), normals, kinds.get(), fallbacks, frameArrays());
+    FillFallbacks(this->Tris, normals, kinds.get(), fallbacks, frameArrays());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
