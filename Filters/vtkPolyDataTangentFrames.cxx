@@ -384,25 +384,25 @@ struct VisitTriangleFrames
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
     const auto visitRange = [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType t = begin; t < end; ++t)
       {
-        for (vtkIdType t = begin; t < end; ++t)
+        dvec3 p[3];
+        dvec2 uv[3];
+        for (int k = 0; k < 3; ++k)
         {
-          dvec3 p[3];
-          dvec2 uv[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            const vtkIdType id = tris.Ids[3 * t + k];
-            const auto point = points[id];
-            const auto texture = uvs[id];
-            p[k] = dvec3(point[0], point[1], point[2]);
-            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
-          }
-          double corner[3] = { 0.0, 0.0, 0.0 };
-          const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
-            p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-          visit(t, f, corner);
+          const vtkIdType id = tris.Ids[3 * t + k];
+          const auto point = points[id];
+          const auto texture = uvs[id];
+          p[k] = dvec3(point[0], point[1], point[2]);
+          uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
         }
-      };
+        double corner[3] = { 0.0, 0.0, 0.0 };
+        const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
+          p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
+        visit(t, f, corner);
+      }
+    };
     if (inOrder)
     {
       visitRange(0, tris.Count);
@@ -494,8 +494,10 @@ struct PointSums
 {
   dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
   double Weight[2] = { 0.0, 0.0 };
-  /// Whether a corner of positive weight has this handedness.
-  bool Has[2] = { false, false };
+
+  /// Whether a corner has this handedness: the weights added are positive (corner angles, areas
+  /// clamped to DBL_MAX, or 1), so a side's sum is positive once it has one.
+  bool Has(int side) const { return this->Weight[side] > 0.0; }
 
   /// Adds one corner: its triangle's tangent with the corner's signed weight (TriangleFrames).
   void Add(double signedWeight, const dvec3& tangent)
@@ -508,7 +510,6 @@ struct PointSums
     const double w = std::abs(signedWeight);
     this->Tangent[side] += w * tangent;
     this->Weight[side] += w;
-    this->Has[side] = true;
   }
 };
 
@@ -685,12 +686,13 @@ PointKind WriteFrame(const PointSums& s,
   bool splitting,
   const FrameArrays<OutT>& out)
 {
-  if (!s.Has[0] && !s.Has[1])
+  if (!s.Has(0) && !s.Has(1))
   {
     return PointKind::Fallback;
   }
-  const bool conflict = s.Has[0] && s.Has[1];
-  const int side = conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has[0] ? 0 : 1);
+  const bool conflict = s.Has(0) && s.Has(1);
+  const int side =
+    conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
   out.Write(p, n, PerpendicularTangent(n, s.Tangent[side]), side == 0 ? 1.0 : -1.0);
   return conflict ? PointKind::Conflict : PointKind::Framed;
 }
@@ -1005,8 +1007,8 @@ struct vtkPolyDataTangentFrames::Internals
     {
       out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
     }
-    const auto repoint =
-      MirroredCorners(this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    const auto repoint = MirroredCorners(
+      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
     const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
     const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
     const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;

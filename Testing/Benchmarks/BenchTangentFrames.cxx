@@ -10,9 +10,9 @@
 //
 // Writes DIR/filter.md (the markdown section of docs/benchmarks.md) and DIR/filter.tsv (one
 // tab-separated line per configuration, read by BenchChart). --smoke: one 10,000-triangle size, one
-// short repetition (for the ctest smoke test). --paired-only PAIRS: only the paired runs, with PAIRS
-// pairs each, printed to the console (a quick check while changing the filter). scripts/bench.sh
-// runs it.
+// short repetition (for the ctest smoke test). --paired-only PAIRS: only the paired runs, with
+// PAIRS pairs each, printed to the console (a quick check while changing the filter).
+// scripts/bench.sh runs it.
 //
 // Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
 // configurations (so a burst of load from other processes does not hit one configuration's
