@@ -35,17 +35,19 @@
 
 /*
  * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
- * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order, and
- *    every point gets the list of its triangle corners in that order (the links).
+ * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where a
+ *    pass needs them, every point gets the list of its triangle corners in that order (the links).
  * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
  *    input has none) the area-weighted sum of its triangles' normals, through the links.
  * 3. Every triangle gets its frame (ComputeTriangleFrame) and, per corner, its weight signed
  *    with the handedness it gives that corner's point (the triangle's orientation, flipped where
  *    its winding disagrees with the point's normal).
- * 4. Every point sums, through its links, the weighted tangents of its triangles per handedness,
- *    then takes the frame of its one handedness, or on a mirror seam the +1 frame (the -1 frame
- *    goes to the point's copy) or the heavier side. Because each point adds its triangles in
- *    triangle order, the output is bit-identical for any number of threads.
+ * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
+ *    on one thread the frames pass adds each triangle to its three points as it goes; on several
+ *    the frames are stored and every point gathers them through its links. Either way each point
+ *    adds the same terms in the same order, so the output is bit-identical for any number of
+ *    threads. A point then takes the frame of its one handedness, or on a mirror seam the +1
+ *    frame (the -1 frame goes to the point's copy) or the heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -351,9 +353,21 @@ struct TriangleFrames
   bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
 };
 
+/// A corner's weight signed with the handedness the triangle gives it (TriangleFrames).
+double SignedCornerWeight(TangentMethod method,
+  const TriangleFrame& f,
+  const double* angles,
+  int corner,
+  const dvec3& pointNormal)
+{
+  return vtkNormalMapping::CornerSign(f, pointNormal) *
+    vtkNormalMapping::CornerWeight(method, f, angles, corner);
+}
+
 /**
  * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
- * angles when asked for), in parallel, for any point and texture coordinate arrays.
+ * angles when asked for), for any point and texture coordinate arrays: in parallel, or in
+ * triangle order on the calling thread when `inOrder`.
  */
 struct VisitTriangleFrames
 {
@@ -363,33 +377,40 @@ struct VisitTriangleFrames
     const Triangles& tris,
     const DegeneracyTolerance& tol,
     bool angles,
+    bool inOrder,
     const Visit& visit) const
   {
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
-    vtkSMPTools::For(0,
-      tris.Count,
-      [&](vtkIdType begin, vtkIdType end)
+    const auto visitRange = [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType t = begin; t < end; ++t)
       {
-        for (vtkIdType t = begin; t < end; ++t)
+        dvec3 p[3];
+        dvec2 uv[3];
+        for (int k = 0; k < 3; ++k)
         {
-          dvec3 p[3];
-          dvec2 uv[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            const vtkIdType id = tris.Ids[3 * t + k];
-            const auto point = points[id];
-            const auto texture = uvs[id];
-            p[k] = dvec3(point[0], point[1], point[2]);
-            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
-          }
-          double corner[3] = { 0.0, 0.0, 0.0 };
-          const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
-            p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-          visit(t, f, corner);
+          const vtkIdType id = tris.Ids[3 * t + k];
+          const auto point = points[id];
+          const auto texture = uvs[id];
+          p[k] = dvec3(point[0], point[1], point[2]);
+          uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
         }
-      });
+        double corner[3] = { 0.0, 0.0, 0.0 };
+        const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
+          p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
+        visit(t, f, corner);
+      }
+    };
+    if (inOrder)
+    {
+      visitRange(0, tris.Count);
+    }
+    else
+    {
+      vtkSMPTools::For(0, tris.Count, visitRange);
+    }
   }
 };
 
@@ -473,28 +494,31 @@ struct PointSums
 {
   dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
   double Weight[2] = { 0.0, 0.0 };
-  /// Whether a corner of positive weight has this handedness.
-  bool Has[2] = { false, false };
+
+  /// Whether a corner has this handedness: the weights added are positive (corner angles, areas
+  /// clamped to DBL_MAX, or 1), so a side's sum is positive once it has one.
+  bool Has(int side) const { return this->Weight[side] > 0.0; }
+
+  /// Adds one corner: its triangle's tangent with the corner's signed weight (TriangleFrames).
+  void Add(double signedWeight, const dvec3& tangent)
+  {
+    if (signedWeight == 0.0)
+    {
+      return;
+    }
+    const int side = signedWeight > 0.0 ? 0 : 1;
+    const double w = std::abs(signedWeight);
+    this->Tangent[side] += w * tangent;
+    this->Weight[side] += w;
+  }
 };
 
 /// The sums of point p over its triangles, in triangle order.
 PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p)
 {
   PointSums s;
-  links.ForEach(p,
-    [&](vtkIdType t, int k)
-    {
-      const double signedWeight = frames.SignedWeight[3 * t + k];
-      if (signedWeight == 0.0)
-      {
-        return;
-      }
-      const int side = signedWeight > 0.0 ? 0 : 1;
-      const double w = std::abs(signedWeight);
-      s.Tangent[side] += w * frames.TangentOf(t);
-      s.Weight[side] += w;
-      s.Has[side] = true;
-    });
+  links.ForEach(
+    p, [&](vtkIdType t, int k) { s.Add(frames.SignedWeight[3 * t + k], frames.TangentOf(t)); });
   return s;
 }
 
@@ -541,15 +565,20 @@ struct SplitPoint
   dvec3 Tangent;
 };
 
-/// The handedness (+1, -1, or 0 without a frame or weight) triangle t gives its corner at point id.
-int CornerHandedness(const Triangles& tris, const TriangleFrames& frames, vtkIdType t, vtkIdType id)
+/// The sign of a signed corner weight: the handedness, or 0 without a frame or weight.
+signed char SideOf(double signedWeight)
+{
+  return signedWeight > 0.0 ? 1 : (signedWeight < 0.0 ? -1 : 0);
+}
+
+/// The handedness (CornerSides) triangle t gives its corner at point id.
+int CornerHandedness(const Triangles& tris, const signed char* sides, vtkIdType t, vtkIdType id)
 {
   for (int k = 0; k < 3; ++k)
   {
     if (tris.Ids[3 * t + k] == id)
     {
-      const double w = frames.SignedWeight[3 * t + k];
-      return w > 0.0 ? 1 : (w < 0.0 ? -1 : 0);
+      return sides[3 * t + k];
     }
   }
   return 0;
@@ -562,7 +591,7 @@ int CornerHandedness(const Triangles& tris, const TriangleFrames& frames, vtkIdT
  */
 std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
-  const TriangleFrames& frames,
+  const signed char* sides,
   const std::vector<SplitPoint>& splits,
   vtkIdType numPoints)
 {
@@ -598,7 +627,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
             int vote = 0;
             for (vtkIdType j = first; j <= last; ++j)
             {
-              vote += CornerHandedness(tris, frames, firstTriangle + j, id);
+              vote += CornerHandedness(tris, sides, firstTriangle + j, id);
             }
             if (vote < 0)
             {
@@ -646,39 +675,44 @@ void CellTangentArray(const Triangles& tris,
 }
 
 /**
- * Every point's frame from its triangles, written to `out`: the frame of its one handedness, or
- * on a mirror seam (kinds: Conflict) the +1 frame with splitting, else the heavier side's.
- * Points with no usable triangle are only marked (kinds: Fallback).
+ * Point p's frame from its sums, written to `out`: the frame of its one handedness, or on a
+ * mirror seam (Conflict) the +1 frame with splitting, else the heavier side's. A point with no
+ * usable triangle is only marked (Fallback).
  */
 template<typename OutT>
-void GatherFrames(const Links& links,
-  const TriangleFrames& frames,
+PointKind WriteFrame(const PointSums& s,
+  vtkIdType p,
+  const dvec3& n,
+  bool splitting,
+  const FrameArrays<OutT>& out)
+{
+  if (!s.Has(0) && !s.Has(1))
+  {
+    return PointKind::Fallback;
+  }
+  const bool conflict = s.Has(0) && s.Has(1);
+  const int side =
+    conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
+  out.Write(p, n, PerpendicularTangent(n, s.Tangent[side]), side == 0 ? 1.0 : -1.0);
+  return conflict ? PointKind::Conflict : PointKind::Framed;
+}
+
+/// Every point's frame (WriteFrame), with `sumsOf(p)` giving its sums.
+template<typename OutT, typename SumsOf>
+void WriteFrames(vtkIdType numPoints,
+  const SumsOf& sumsOf,
   const dvec3* normals,
   bool splitting,
   const FrameArrays<OutT>& out,
   PointKind* kinds)
 {
   vtkSMPTools::For(0,
-    static_cast<vtkIdType>(links.Start.size()) - 1,
+    numPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType p = begin; p < end; ++p)
       {
-        const PointSums s = SumPoint(links, frames, p);
-        if (!s.Has[0] && !s.Has[1])
-        {
-          kinds[p] = PointKind::Fallback;
-          continue;
-        }
-        int side = s.Has[0] ? 0 : 1;
-        kinds[p] = PointKind::Framed;
-        if (s.Has[0] && s.Has[1])
-        {
-          kinds[p] = PointKind::Conflict;
-          side = splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1;
-        }
-        out.Write(
-          p, normals[p], PerpendicularTangent(normals[p], s.Tangent[side]), side == 0 ? 1.0 : -1.0);
+        kinds[p] = WriteFrame(sumsOf(p), p, normals[p], splitting, out);
       }
     });
 }
@@ -699,16 +733,38 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
 
 /**
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
- * tangent plane, and their neighbours' majority sign (+1 when none).
+ * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
+ * corners in order collects, per fallback point, its neighbours in triangle order (the order of
+ * the links, which this pass does not need).
  */
 template<typename OutT>
 void FillFallbacks(const Triangles& tris,
-  const Links& links,
   const dvec3* normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
   const FrameArrays<OutT>& out)
 {
+  std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
+  std::vector<int> votes(fallbacks.size(), 0);
+  for (vtkIdType c = 0; c < 3 * tris.Count; ++c)
+  {
+    const vtkIdType p = tris.Ids[c];
+    if (kinds[p] != PointKind::Fallback)
+    {
+      continue;
+    }
+    const size_t i = std::lower_bound(fallbacks.begin(), fallbacks.end(), p) - fallbacks.begin();
+    const vtkIdType* triangle = tris.Ids + 3 * (c / 3);
+    for (int m = 0; m < 3; ++m)
+    {
+      const vtkIdType q = triangle[m];
+      if (q != p && kinds[q] != PointKind::Fallback)
+      {
+        sums[i] += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
+        votes[i] += out.Signs[q] < 0 ? -1 : 1;
+      }
+    }
+  }
   vtkSMPTools::For(0,
     static_cast<vtkIdType>(fallbacks.size()),
     [&](vtkIdType begin, vtkIdType end)
@@ -716,29 +772,15 @@ void FillFallbacks(const Triangles& tris,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = fallbacks[i];
-        dvec3 sum(0.0);
-        int votes = 0;
-        links.ForEach(p,
-          [&](vtkIdType t, int)
-          {
-            for (int m = 0; m < 3; ++m)
-            {
-              const vtkIdType q = tris.Ids[3 * t + m];
-              if (q != p && kinds[q] != PointKind::Fallback)
-              {
-                sum += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
-                votes += out.Signs[q] < 0 ? -1 : 1;
-              }
-            }
-          });
-        out.Write(p, normals[p], PerpendicularTangent(normals[p], sum), votes < 0 ? -1.0 : 1.0);
+        out.Write(
+          p, normals[p], PerpendicularTangent(normals[p], sums[i]), votes[i] < 0 ? -1.0 : 1.0);
       }
     });
 }
 
-/// The -1 frames of the seam points, for their copies.
-std::vector<SplitPoint> SplitFrames(const Links& links,
-  const TriangleFrames& frames,
+/// The -1 frames of the seam points, for their copies, with `sumsOf(p)` giving their sums.
+template<typename SumsOf>
+std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
   const dvec3* normals,
   const std::vector<vtkIdType>& conflicts)
 {
@@ -750,7 +792,7 @@ std::vector<SplitPoint> SplitFrames(const Links& links,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = conflicts[i];
-        const PointSums s = SumPoint(links, frames, p);
+        const PointSums& s = sumsOf(p);
         splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
       }
     });
@@ -798,6 +840,8 @@ struct vtkPolyDataTangentFrames::Internals
   Triangles Tris;
   std::unique_ptr<TriangleFrames> Frames;
   std::unique_ptr<Links> PointLinks;
+  /// Per corner, the handedness the triangle gives it (SideOf its signed weight).
+  Buffer<signed char> CornerSides;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction)
@@ -812,7 +856,7 @@ struct vtkPolyDataTangentFrames::Internals
     return true;
   }
 
-  /// Triangles and links; false after an error (input passed through).
+  /// The triangles; false after an error (input passed through).
   bool Prepare()
   {
     if (!BuildTriangles(this->Cells, this->PolysAreTriangles, this->NumberOfPoints, this->Tris))
@@ -823,13 +867,22 @@ struct vtkPolyDataTangentFrames::Internals
       this->Output->ShallowCopy(this->Input);
       return false;
     }
-    this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
     return true;
+  }
+
+  /// The point links, built on first use.
+  const Links& PointLinksOf()
+  {
+    if (!this->PointLinks)
+    {
+      this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
+    }
+    return *this->PointLinks;
   }
 
   /// visit(t, frame, angles) for every triangle (VisitTriangleFrames).
   template<typename Visit>
-  void VisitFrames(bool angles, const Visit& visit)
+  void VisitFrames(bool angles, const Visit& visit, bool inOrder = false)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -839,6 +892,7 @@ struct vtkPolyDataTangentFrames::Internals
       this->Tris,
       tol,
       angles,
+      inOrder,
       visit);
   }
 
@@ -878,7 +932,7 @@ struct vtkPolyDataTangentFrames::Internals
           }
         });
     }
-    return AreaWeightedNormals(*this->PointLinks, weighted, empty);
+    return AreaWeightedNormals(this->PointLinksOf(), weighted, empty);
   }
 
   /// The frames pass: tangents and signed corner weights with the points' shading normals.
@@ -892,9 +946,10 @@ struct vtkPolyDataTangentFrames::Internals
       {
         for (int k = 0; k < 3; ++k)
         {
-          const int sign = vtkNormalMapping::CornerSign(f, normals[ids[3 * t + k]]);
           out.Tangent[3 * t + k] = f.Tangent[k];
-          out.SignedWeight[3 * t + k] = sign * vtkNormalMapping::CornerWeight(method, f, angles, k);
+          out.SignedWeight[3 * t + k] =
+            SignedCornerWeight(method, f, angles, k, normals[ids[3 * t + k]]);
+          this->CornerSides[3 * t + k] = SideOf(out.SignedWeight[3 * t + k]);
         }
         if (out.Area)
         {
@@ -907,10 +962,40 @@ struct vtkPolyDataTangentFrames::Internals
       });
   }
 
+  /**
+   * Every point's sums, each triangle added to its corners in triangle order on this thread: the
+   * order in which SumPoint adds them through the links, so the same bits, without the links or
+   * stored frames. Counts the triangles without a frame in `degenerate`.
+   */
+  std::vector<PointSums> ScatterSums(TangentMethod method,
+    const dvec3* normals,
+    vtkIdType& degenerate)
+  {
+    std::vector<PointSums> sums(static_cast<size_t>(this->NumberOfPoints));
+    const vtkIdType* ids = this->Tris.Ids;
+    this->VisitFrames(
+      method == TangentMethod::AngleWeighted,
+      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+      {
+        degenerate += f.Orientation == 0 ? 1 : 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const vtkIdType id = ids[3 * t + k];
+          const double signedWeight = SignedCornerWeight(method, f, angles, k, normals[id]);
+          sums[id].Add(signedWeight, f.Tangent);
+          this->CornerSides[3 * t + k] = SideOf(signedWeight);
+        }
+      },
+      true);
+    return sums;
+  }
+
   template<typename OutT>
   int Run();
   template<typename OutT>
-  int RunWeighted(vtkSmartPointer<OutArray<OutT>> computedNormals, const dvec3* normals);
+  int RunWeighted(TangentMethod method,
+    vtkSmartPointer<OutArray<OutT>> computedNormals,
+    const dvec3* normals);
 
   /// The split points' -1 frames, written after the input points, and the cells on their
   /// mirrored side re-pointed to them in the output.
@@ -922,8 +1007,8 @@ struct vtkPolyDataTangentFrames::Internals
     {
       out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
     }
-    const auto repoint =
-      MirroredCorners(this->Cells, this->Tris, *this->Frames, splits, this->NumberOfPoints);
+    const auto repoint = MirroredCorners(
+      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
     const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
     const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
     const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;
@@ -1008,27 +1093,16 @@ int vtkPolyDataTangentFrames::Internals::Run()
     self->NumberOfSplitPoints += counts.SplitPoints;
     return result;
   }
-  this->ComputeFrames(method, normals.get(), self->ComputeCellTangents);
-  if (!this->Continue(0.4))
-  {
-    return 1;
-  }
-  return this->RunWeighted<OutT>(computedNormals, normals.get());
+  return this->RunWeighted<OutT>(method, computedNormals, normals.get());
 }
 
 template<typename OutT>
-int vtkPolyDataTangentFrames::Internals::RunWeighted(
+int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkSmartPointer<OutArray<OutT>> computedNormals,
   const dvec3* normals)
 {
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
-  const Links& links = *this->PointLinks;
-  const TriangleFrames& frames = *this->Frames;
-  for (vtkIdType t = 0; t < this->Tris.Count; ++t)
-  {
-    self->NumberOfDegenerateTriangles += frames.HasFrame(t) ? 0 : 1;
-  }
 
   auto tangents = NewArray<OutT>(TangentsArrayName(), 3, numPoints);
   auto signs = NewArray<OutT>(SignsArrayName(), 1, numPoints);
@@ -1044,8 +1118,28 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
       bitangents ? bitangents->GetPointer(0) : nullptr };
   };
 
+  // One thread scatters the triangles to their points; several gather them through the links.
+  const bool scatter =
+    vtkSMPTools::GetEstimatedNumberOfThreads() == 1 && !self->ComputeCellTangents;
+  std::vector<PointSums> scattered;
+  this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
+  if (scatter)
+  {
+    scattered = this->ScatterSums(method, normals, self->NumberOfDegenerateTriangles);
+  }
+  else
+  {
+    this->ComputeFrames(method, normals, self->ComputeCellTangents);
+    this->PointLinksOf();
+    for (vtkIdType t = 0; t < this->Tris.Count; ++t)
+    {
+      self->NumberOfDegenerateTriangles += this->Frames->HasFrame(t) ? 0 : 1;
+    }
+  }
+  const auto sumsOf = [&](vtkIdType p)
+  { return scatter ? scattered[p] : SumPoint(*this->PointLinks, *this->Frames, p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  GatherFrames(links, frames, normals, self->Splitting, frameArrays(), kinds.get());
+  WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
   const std::vector<vtkIdType> conflicts =
     PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
   const std::vector<vtkIdType> fallbacks =
@@ -1056,9 +1150,12 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
   {
     return 1;
   }
-  FillFallbacks(this->Tris, links, normals, kinds.get(), fallbacks, frameArrays());
+  if (!fallbacks.empty())
+  {
+    FillFallbacks(this->Tris, normals, kinds.get(), fallbacks, frameArrays());
+  }
   const std::vector<SplitPoint> splits =
-    self->Splitting ? SplitFrames(links, frames, normals, conflicts) : std::vector<SplitPoint>();
+    self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
   if (!this->Continue(0.85))
   {
     return 1;
@@ -1105,7 +1202,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(
     const vtkIdType numCells = input->GetNumberOfCells();
     auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
     CellTangentArray(
-      this->Tris, frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
+      this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
     output->GetCellData()->SetTangents(cellTangents);
   }
   this->Continue(1.0);

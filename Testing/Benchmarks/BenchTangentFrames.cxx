@@ -6,11 +6,13 @@
 // VTK's filter and to the floor, run with the same input, precision and thread count.
 //
 //   BenchTangentFrames [--out DIR] [--smoke] [--sizes N,N,...] [--repetitions N]
-//                      [google benchmark flags]
+//                      [--paired-only PAIRS] [google benchmark flags]
 //
 // Writes DIR/filter.md (the markdown section of docs/benchmarks.md) and DIR/filter.tsv (one
 // tab-separated line per configuration, read by BenchChart). --smoke: one 10,000-triangle size, one
-// short repetition (for the ctest smoke test). scripts/bench.sh runs it.
+// short repetition (for the ctest smoke test). --paired-only PAIRS: only the paired runs, with
+// PAIRS pairs each, printed to the console (a quick check while changing the filter).
+// scripts/bench.sh runs it.
 //
 // Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
 // configurations (so a burst of load from other processes does not hit one configuration's
@@ -554,6 +556,29 @@ std::vector<PairingMesh> PairingMeshes(bool smoke, std::string& note)
   return meshes;
 }
 
+/// The paired runs alone, `pairs` pairs per mesh and thread count, printed to the console.
+int PrintPairedRuns(int pairs)
+{
+  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
+                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
+    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+  std::string note;
+  for (const PairingMesh& m : PairingMeshes(false, note))
+  {
+    for (int threads : { 1, 2 })
+    {
+      const Paired p = MeasurePaired(angleWeighted, m.Mesh, threads, pairs);
+      std::cout << m.Name << " (" << m.Mesh->GetNumberOfPolys() << " triangles), " << threads
+                << " thread" << (threads > 1 ? "s" : "") << ": x VTK " << p.Cells() << std::endl;
+    }
+  }
+  if (!note.empty())
+  {
+    std::cout << note << std::endl;
+  }
+  return 0;
+}
+
 std::string MemoryCell(const Measured& m)
 {
   if (m.PeakBytes < 0)
@@ -571,6 +596,7 @@ int main(int argc, char** argv)
   bool smoke = false;
   std::vector<long long> sizes{ 10000, 100000, 1000000, 4000000 };
   int repetitions = 5;
+  int pairedOnly = 0;
   std::vector<char*> args{ argv[0] };
   std::string interleave = "--benchmark_enable_random_interleaving=true";
   args.push_back(&interleave[0]);
@@ -595,10 +621,18 @@ int main(int argc, char** argv)
     {
       repetitions = std::max(1, std::atoi(argv[++i]));
     }
+    else if (arg == "--paired-only" && i + 1 < argc)
+    {
+      pairedOnly = std::max(1, std::atoi(argv[++i]));
+    }
     else
     {
       args.push_back(argv[i]);
     }
+  }
+  if (pairedOnly > 0)
+  {
+    return PrintPairedRuns(pairedOnly);
   }
   std::vector<Config> configs;
   for (long long size : sizes)
