@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmark set and writes docs/benchmarks.md and docs/benchmarks.png:
-#   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR]
+#   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR] [--headless osmesa|xvfb]
 # `bash scripts/bootstrap.sh bench` builds the project and runs this. The programs are in
 # BUILD/bin (--build, else $BUILD_DIR, else ./build):
 #   BenchTangentAccuracy     filter accuracy (analytic tangents, MikkTSpace reference meshes)
@@ -13,18 +13,22 @@
 # --out (default: docs/). --smoke: tiny meshes and few repetitions, only to check that
 # everything runs (ctest BenchmarkSmoke); its numbers mean nothing.
 # The rendering programs run headless (Testing/Rendering/RunHeadless.sh): exit status 125 when
-# that is impossible (no Xvfb), 1 when a program fails.
+# that is impossible (no Xvfb), 1 when a program fails. --headless: the way the build's VTK
+# renders (ctest BenchmarkSmoke passes the build's own); without it, that of the VTK in
+# /usr/include (Debian's: xvfb).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
 out="$root/docs"
 smoke=()
+mode=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --smoke) smoke=(--smoke) ;;
     --out) out="$2"; shift ;;
     --build) build="$2"; shift ;;
-    *) echo "usage: $0 [--smoke] [--out DIR] [--build DIR]" >&2; exit 2 ;;
+    --headless) mode="$2"; shift ;;
+    *) echo "usage: $0 [--smoke] [--out DIR] [--build DIR] [--headless osmesa|xvfb]" >&2; exit 2 ;;
   esac
   shift
 done
@@ -41,9 +45,12 @@ mkdir -p "$work" "$out"
 rm -f "$work"/{filter,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
 
 # Debian's VTK renders through X only: a private Xvfb; a VTK with OSMesa needs no X server.
-mode=xvfb
-if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
-  mode=osmesa
+if [ -z "$mode" ]; then
+  mode=xvfb
+  if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h
+  then
+    mode=osmesa
+  fi
 fi
 
 start=$(date +%s)

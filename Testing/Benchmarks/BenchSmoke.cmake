@@ -2,11 +2,12 @@
 # WORK_DIR and checks that it wrote benchmarks.md with every section and every table complete
 # (the expected number of rows, every row as wide as its header, no empty, NaN or infinite
 # cell) and a PNG chart. It checks no timing and no accuracy: the unit tests do that.
-# Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR.
+# Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR, HEADLESS_MODE (osmesa or
+# xvfb: how the build's VTK renders, as Testing/Rendering decided).
 file(REMOVE_RECURSE "${WORK_DIR}")
 get_filename_component(build "${BIN}" DIRECTORY)
 execute_process(COMMAND bash "${ROOT}/scripts/bench.sh" --smoke --out "${WORK_DIR}"
-    --build "${build}"
+    --build "${build}" --headless "${HEADLESS_MODE}"
   RESULT_VARIABLE rc OUTPUT_VARIABLE output ERROR_VARIABLE output)
 message("${output}")
 if(rc EQUAL 125)
