@@ -23,6 +23,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkTestUtilities.h"
 #include "vtkTexture.h"
 #include "vtkWindowToImageFilter.h"
 
@@ -217,6 +218,11 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
   const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
   const std::string root = std::string(shared ? shared : "") + "/gltf";
   nmtest::Checks check;
+  // The renders are also written to the test's temporary folder (-T, as ctest passes it), to be
+  // looked at.
+  char* temporary = vtkTestUtilities::GetArgOrEnvOrDefault("-T", argc, argv, "VTK_TEMP_DIR", "");
+  const std::string folder = temporary;
+  delete[] temporary;
   for (const char* name : { "NormalTangentTest", "NormalTangentMirrorTest" })
   {
     const std::string dir = root + "/" + name + "/";
@@ -232,8 +238,7 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
     png->SetFileName((dir + name + "_Normal.png").c_str());
     auto texture = nmtest::MakeNormalTexture(nullptr);
     texture->SetInputConnection(png->GetOutputPort());
-    // With a directory argument the renders are also written there, to be looked at.
-    const std::string picture = std::string(argc > 1 ? argv[1] : "") + "/" + name + ".png";
+    const std::string picture = folder + "/" + name + ".png";
     const int size = 512;
     // A cell is 53-70 pixels wide; the real hemisphere and the mapped one differ at its rim
     // (a geometric silhouette against texels) and by the map's 8 bits: measured worst cells
@@ -242,7 +247,7 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
     const int bound = 12;
     int cells = 0;
     const double worst = WorstCell(
-      Render(model, texture, size, argc > 1 ? picture.c_str() : nullptr), size, bound, cells);
+      Render(model, texture, size, folder.empty() ? nullptr : picture.c_str()), size, bound, cells);
     std::cout << name << ": " << cells << " normal-mapped cells, worst " << 100.0 * worst
               << "% of its pixels within " << bound << " levels of its geometry cell" << std::endl;
     check(cells >= 15, std::string(name) + ": the grid's cells were found");
