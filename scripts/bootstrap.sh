@@ -4,15 +4,22 @@
 #                                    # in the current folder
 #   bash scripts/bootstrap.sh test   # build and run every test, compile the library for ARM
 #                                    # (scripts/portability.sh), build and test the ParaView
-#                                    # plugin (scripts/paraview.sh), then the same tests and a
-#                                    # short fuzz run under ASan + UBSan (what CI runs)
+#                                    # plugin (scripts/paraview.sh), the same tests and a short
+#                                    # fuzz run under ASan + UBSan, then every test against an
+#                                    # OSMesa VTK with no X server (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmark set (scripts/bench.sh): writes
 #                                    # docs/benchmarks.md and docs/benchmarks.png
+#   bash scripts/bootstrap.sh osmesa # every test against a VTK 9.1 with OSMesa, built once from
+#                                    # Debian's source into a cache folder, with no X server
+#                                    # (scripts/osmesa.sh; the test job runs it last)
 # Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build.
 set -euo pipefail
 job="${1:-demo}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build}"
+
+# The OSMesa job has its own set-up (scripts/osmesa.sh): a VTK of its own, built once and cached.
+[ "$job" != osmesa ] || exec bash "$root/scripts/osmesa.sh"
 
 # clang-14 + libclang-rt-14-dev: the sanitizer and libFuzzer build (scripts/sanitize.sh);
 # nlohmann-json3-dev + libstb-dev: tinygltf compiled from its header in that build.
@@ -60,12 +67,14 @@ case "$job" in
     bash "$root/scripts/paraview.sh"
     echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
     bash "$root/scripts/sanitize.sh"
+    echo "== every test again against a VTK with OSMesa, with no X server"
+    bash "$root/scripts/osmesa.sh"
     ;;
   bench)
     bash "$root/scripts/bench.sh" --build "$build"
     ;;
   *)
-    echo "usage: $0 demo|test|bench" >&2
+    echo "usage: $0 demo|test|bench|osmesa" >&2
     exit 2
     ;;
 esac
