@@ -95,7 +95,7 @@ parts="$(printf '%s, ' "${timings[@]}")"
     echo
   fi
   echo "Written by \`$command\` (what \`bash scripts/bootstrap.sh bench\` runs after building);"
-  echo "do not edit by hand. $(date -u '+%Y-%m-%d %H:%M UTC'); the whole run took $seconds s"
+  echo "do not edit by hand. $(date -u '+%Y-%m-%d'); the whole run took $seconds s"
   echo "(${parts%, })."
   echo
   echo "- Machine: ${cpu:-unknown CPU}, $(nproc) cores, $memory GiB of memory, $(uname -sr)."
