@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmark set and writes docs/benchmarks.md and docs/benchmarks.png:
-#   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR] [--headless osmesa|xvfb]
+#   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR] [--headless offscreen|xvfb]
 # `bash scripts/bootstrap.sh bench` builds the project and runs this. The programs are in
 # BUILD/bin (--build, else $BUILD_DIR, else ./build):
 #   BenchTangentAccuracy     filter accuracy (analytic tangents, MikkTSpace reference meshes)
@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift ;;
     --build) build="$2"; shift ;;
     --headless) mode="$2"; shift ;;
-    *) echo "usage: $0 [--smoke] [--out DIR] [--build DIR] [--headless osmesa|xvfb]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--smoke] [--out DIR] [--build DIR] [--headless offscreen|xvfb]" >&2; exit 2 ;;
   esac
   shift
 done
@@ -44,12 +44,11 @@ work="$build/bench"
 mkdir -p "$work" "$out"
 rm -f "$work"/{filter,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
 
-# Debian's VTK renders through X only: a private Xvfb; a VTK with OSMesa needs no X server.
+# Debian's VTK renders through X only: a private Xvfb; a VTK without X (OSMesa, EGL) needs none.
 if [ -z "$mode" ]; then
-  mode=xvfb
-  if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h
-  then
-    mode=osmesa
+  mode=offscreen
+  if grep -qs "^#define VTK_USE_X" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
+    mode=xvfb
   fi
 fi
 

@@ -51,10 +51,10 @@ cmake --build "$build" -j "$(nproc)" >/dev/null
 case "$job" in
   demo)
     # Debian's VTK renders through X only (no OSMesa): the demo gets a private Xvfb server, as
-    # the rendering tests do. A VTK with OSMesa renders with no X server at all.
-    mode=xvfb
-    if grep -qs "^#define VTK_OPENGL_HAS_OSMESA" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
-      mode=osmesa
+    # the rendering tests do. A VTK without X (OSMesa, EGL) renders with no X server at all.
+    mode=offscreen
+    if grep -qs "^#define VTK_USE_X" /usr/include/vtk-*/vtkRenderingOpenGLConfigure.h; then
+      mode=xvfb
     fi
     "$root/Testing/Rendering/RunHeadless.sh" "$mode" "$build/bin/normalmap" demo
     echo "== the picture is $(pwd)/normalmap-demo.png"

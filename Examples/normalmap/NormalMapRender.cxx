@@ -116,12 +116,12 @@ public:
       return true;
     }
     const char* variable = std::getenv("DISPLAY");
-    name = variable && *variable ? variable : "(DISPLAY not set)";
+    name = std::string("X display ") + (variable && *variable ? variable : "(DISPLAY not set)");
 #if defined(VTK_USE_X) && defined(NORMALMAP_HAVE_X11)
     this->Display = XOpenDisplay(nullptr);
     if (!this->Display)
     {
-      error = "cannot open the X display " + name +
+      error = "cannot open the " + name +
         ": this VTK renders through X only, even offscreen (run under Xvfb, e.g. "
         "xvfb-run -a normalmap ...)";
       return false;
@@ -227,7 +227,7 @@ bool Render(const Scene& scene, Rendered& result, std::string& error)
     result.NextFrameMs = MillisecondsSince(start);
 
     result.Renderer = RendererString(window);
-    result.Window = std::string(window->GetClassName()) + ", display " + displayName;
+    result.Window = std::string(window->GetClassName()) + ", " + displayName;
     if (scene.Parts.empty())
     {
       result.AppliedFrame =

@@ -2,7 +2,7 @@
 # WORK_DIR and checks that it wrote benchmarks.md with every section and every table complete
 # (the expected number of rows, every row as wide as its header, no empty, NaN or infinite
 # cell) and a PNG chart. It checks no timing and no accuracy: the unit tests do that.
-# Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR, HEADLESS_MODE (osmesa or
+# Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR, HEADLESS_MODE (offscreen or
 # xvfb: how the build's VTK renders, as Testing/Rendering decided).
 file(REMOVE_RECURSE "${WORK_DIR}")
 get_filename_component(build "${BIN}" DIRECTORY)

@@ -25,7 +25,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
-#include "vtkRenderingOpenGLConfigure.h" // VTK_OPENGL_HAS_OSMESA
+#include "vtkRenderingOpenGLConfigure.h" // VTK_USE_X, VTK_OPENGL_HAS_OSMESA, VTK_OPENGL_HAS_EGL
 #include "vtkShader.h"
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
@@ -393,12 +393,16 @@ void ReportRenderPath(vtkRenderWindow* window)
       renderer = line.substr(line.find(':') + 1);
     }
   }
-#ifdef VTK_OPENGL_HAS_OSMESA
-  const char* path = "OSMesa (no X server)";
-#else
+#if defined(VTK_USE_X)
   const char* path = std::getenv("NORMALMAPPING_HEADLESS_PATH")
     ? std::getenv("NORMALMAPPING_HEADLESS_PATH")
     : "X display";
+#elif defined(VTK_OPENGL_HAS_OSMESA)
+  const char* path = "OSMesa, no X server";
+#elif defined(VTK_OPENGL_HAS_EGL)
+  const char* path = "EGL, no X server";
+#else
+  const char* path = "the platform's window system";
 #endif
   std::cout << "Rendering path: " << path << "; " << window->GetClassName() << ";" << renderer
             << std::endl;

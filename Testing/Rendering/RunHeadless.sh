@@ -1,8 +1,9 @@
 #!/bin/sh
 # Run one rendering test headless, on Mesa's llvmpipe software rasterizer:
-#   RunHeadless.sh osmesa|xvfb <command...>
-# osmesa: VTK renders offscreen through OSMesa, no X server at all.
-# xvfb:   VTK needs an X display (Debian's VTK has no OSMesa or EGL): a private Xvfb server.
+#   RunHeadless.sh offscreen|xvfb <command...>
+# offscreen: VTK is built without X (OSMesa or EGL) and renders with no X server at all.
+# xvfb:      VTK is built with X (Debian's): it needs a display even offscreen, so the command
+#            gets a private Xvfb server.
 #         Xvfb picks a free display number itself (-displayfd), so tests can run in parallel
 #         without racing for display numbers (xvfb-run -a does race under load). -noreset:
 #         by default the server resets whenever its last client leaves, and a test that closes
@@ -11,8 +12,9 @@ mode="$1"
 shift
 export LIBGL_ALWAYS_SOFTWARE=1
 export GALLIUM_DRIVER=llvmpipe
-if [ "$mode" = osmesa ]; then
-  export NORMALMAPPING_HEADLESS_PATH="OSMesa, no X server"
+if [ "$mode" = offscreen ]; then
+  unset DISPLAY
+  export NORMALMAPPING_HEADLESS_PATH="no X server"
   exec "$@"
 fi
 if ! command -v Xvfb >/dev/null 2>&1; then
