@@ -188,9 +188,14 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(vtkPolyData* input,
     out.Tangents = outPD->GetArray(TangentsArrayName());
     out.Signs = outPD->GetArray(SignsArrayName());
     out.Bitangents = outPD->GetArray(BitangentsArrayName());
-    if (!sourceIds || !out.Tangents || !out.Signs || sourceIds->GetNumberOfTuples() != numOut)
+    // After an error ComputeBlock passes the input through (its arrays, shared: never written)
+    // and after an abort the output is empty.
+    vtkPointData* inPD = input->GetPointData();
+    if (!sourceIds || !out.Tangents || !out.Signs || sourceIds->GetNumberOfTuples() != numOut ||
+      out.Tangents == inPD->GetArray(TangentsArrayName()) ||
+      out.Signs == inPD->GetArray(SignsArrayName()))
     {
-      return 1; // ComputeBlock reported an error and passed the input through, or was aborted
+      return 1;
     }
   }
   else

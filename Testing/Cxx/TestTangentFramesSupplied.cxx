@@ -359,3 +359,39 @@ TEST(TangentFramesSupplied, KeptSignsFollowTheOutputConvention)
       << vtkPolyDataTangentFrames::GetMethodName(method);
   }
 }
+
+TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
+{
+  // A triangle with a point id out of range: ComputeBlock's error and pass-through. The input's
+  // own Tangents / TangentSigns (3 + 1 components, one sign wrong so that frames are computed)
+  // come through unchanged.
+  auto mesh = Plane(false);
+  auto vec4 = SuppliedVec4(mesh, 0.0, false);
+  vtkNew<vtkFloatArray> tangents, signs;
+  tangents->SetName("Tangents");
+  tangents->SetNumberOfComponents(3);
+  signs->SetName("TangentSigns");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    tangents->InsertNextTuple3(1.0, 0.0, 0.0);
+    signs->InsertNextValue(p == 0 ? -1.0 : 1.0);
+  }
+  mesh->GetPointData()->SetTangents(tangents);
+  mesh->GetPointData()->AddArray(signs);
+  const vtkIdType bad[3] = { 0, 1, 1000 };
+  mesh->GetPolys()->InsertNextCell(3, bad);
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, "");
+    run.Filter->SetMethod(method);
+    run.Filter->GLTFSignConventionOn(); // kept signs would be negated for the weighted method
+    run.Update();
+    EXPECT_TRUE(run.Messages->GetError()) << vtkPolyDataTangentFrames::GetMethodName(method);
+    EXPECT_EQ(tangents.Get(), run.Output->GetPointData()->GetTangents());
+    EXPECT_EQ(-1.0, signs->GetValue(0));
+    EXPECT_EQ(1.0, signs->GetValue(1));
+    EXPECT_EQ(
+      nullptr, run.Output->GetPointData()->GetArray("vtkPolyDataTangentFrames_SourcePointIds"));
+  }
+}
