@@ -8,6 +8,7 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -393,5 +394,32 @@ TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
     EXPECT_EQ(1.0, signs->GetValue(1));
     EXPECT_EQ(
       nullptr, run.Output->GetPointData()->GetArray("vtkPolyDataTangentFrames_SourcePointIds"));
+  }
+}
+
+TEST(TangentFramesSupplied, CompositeInputSumsTheCountsOverTheBlocks)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto mesh = Plane(false);
+    auto supplied = SuppliedVec4(mesh, Turn, false);
+    supplied->SetComponent(b, 3, -1.0); // one flipped w per block
+    blocks->SetBlock(b, mesh);
+  }
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(blocks);
+  filter->SetSuppliedTangentsToKeepValid();
+  filter->SetSuppliedTangentsArrayName("TANGENT");
+  filter->Update();
+  EXPECT_EQ(2, filter->GetNumberOfReplacedTangents());
+  EXPECT_EQ(2, filter->GetNumberOfWrongSignTangents());
+  auto* out = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(nullptr, out);
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto* block = vtkPolyData::SafeDownCast(out->GetBlock(b));
+    ASSERT_NE(nullptr, block);
+    EXPECT_EQ(1.0, block->GetPointData()->GetArray("TangentSigns")->GetComponent(b, 0));
   }
 }
