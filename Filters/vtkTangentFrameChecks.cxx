@@ -118,6 +118,22 @@ std::vector<unsigned char> PointWindings(vtkPolyData* mesh,
   return windings;
 }
 
+/// How far a finite tangent is from unit length, and |cos| of its angle to the normal: 0 for a
+/// zero tangent, -1 when the normal is zero or non-finite (nothing to measure against).
+struct FrameMeasures
+{
+  double LengthError;
+  double Cosine;
+};
+
+FrameMeasures Measure(const glm::dvec3& normal, const glm::dvec3& tangent)
+{
+  const double length = glm::length(tangent);
+  const glm::dvec3 n = SafeNormalize(normal);
+  const double cosine = length > 0.0 ? std::abs(glm::dot(n, tangent)) / length : 0.0;
+  return { std::abs(length - 1.0), n == glm::dvec3(0.0) ? -1.0 : cosine };
+}
+
 /// The FrameDefect bits of one point.
 unsigned char PointDefects(const glm::dvec3& normal,
   const glm::dvec3& tangent,
@@ -131,12 +147,9 @@ unsigned char PointDefects(const glm::dvec3& normal,
     return DefectNonFinite;
   }
   unsigned char defects = 0;
-  const double length = glm::length(tangent);
-  const glm::dvec3 n = SafeNormalize(normal);
-  defects |= std::abs(length - 1.0) > tol.Unit ? DefectNotUnit : 0;
-  defects |= n == glm::dvec3(0.0) || !(std::abs(glm::dot(n, tangent)) <= tol.Perpendicular * length)
-    ? DefectNotPerpendicular
-    : 0;
+  const FrameMeasures m = Measure(normal, tangent);
+  defects |= m.LengthError > tol.Unit ? DefectNotUnit : 0;
+  defects |= m.Cosine < 0.0 || m.Cosine > tol.Perpendicular ? DefectNotPerpendicular : 0;
   defects |= std::abs(std::abs(sign) - 1.0) > tol.Sign ? DefectSignNotUnit : 0;
   if (winding == (PositiveWinding | NegativeWinding))
   {
@@ -179,16 +192,10 @@ FrameCheckCounts CountDefects(const std::vector<unsigned char>& defects,
     }
     double t[3], sign;
     SuppliedFrame(supplied, p, t, sign);
-    const glm::dvec3 tangent(t[0], t[1], t[2]);
-    const double length = glm::length(tangent);
+    const FrameMeasures m = Measure(Tuple3(normals, p), glm::dvec3(t[0], t[1], t[2]));
     counts.PositiveSigns += sign > 0.0 ? 1 : 0;
-    counts.MaxLengthError = std::max(counts.MaxLengthError, std::abs(length - 1.0));
-    const glm::dvec3 n = SafeNormalize(Tuple3(normals, p));
-    if (length > 0.0 && n != glm::dvec3(0.0))
-    {
-      counts.MaxCosineToNormal =
-        std::max(counts.MaxCosineToNormal, std::abs(glm::dot(n, tangent)) / length);
-    }
+    counts.MaxLengthError = std::max(counts.MaxLengthError, m.LengthError);
+    counts.MaxCosineToNormal = std::max(counts.MaxCosineToNormal, m.Cosine);
   }
   return counts;
 }
