@@ -32,20 +32,21 @@ namespace vtkNormalMapping
 /**
  * How far a supplied frame may be from the ideal before it counts as broken. The defaults
  * accept tangents and normals stored as 8-bit normalized integers (KHR_mesh_quantization:
- * steps of 1/127 per component move a unit vector's length and its dot product with another
- * unit vector by up to about 0.007) and reject anything a renderer would show.
+ * rounding each component to a step of 1/127 moves a unit vector by up to sqrt(3)/254, about
+ * 0.007, in length and in its dot product with an exact unit vector; twice that between two
+ * rounded ones) and reject the defects real files have (0.2 to 1 for |T.N|, see the docs).
  */
 struct FrameCheckTolerances
 {
   /// Largest | |T| - 1 |. Renderers normalize the interpolated tangent, so a length error of
   /// 1% changes no pixel; unnormalized tangent sums are off by far more.
   double Unit = 1e-2;
-  /// Largest |T.N| / |T|, the cosine of the angle between the tangent and the normal: 0.01 is
-  /// 0.57 degree out of the tangent plane, less than the shading normal moves between adjacent
-  /// 8-bit normal-map texels; tangents never made perpendicular reach 0.2 to 1.
-  double Perpendicular = 1e-2;
-  /// Largest | |w| - 1 |. glTF requires w = +1 or -1; stored as a float it is exact, as an
-  /// 8-bit normalized integer within 1/127.
+  /// Largest |T.N| / |T|, the cosine of the angle between the tangent and the normal: 0.02 (1.1
+  /// degrees out of the tangent plane) is above the 0.014 of two 8-bit rounded vectors; a shader
+  /// that re-orthogonalizes turns such a frame by no more than that angle.
+  double Perpendicular = 2e-2;
+  /// Largest | |w| - 1 |. glTF requires w = +1 or -1, which floats and 8-bit normalized integers
+  /// (127 / 127) store exactly; anything beyond rounding is a wrong value.
   double Sign = 1e-2;
 };
 

@@ -173,7 +173,9 @@ int Json(const std::string& dataDir)
   }
   Expect(json.at("file") == path, "file");
   Expect(json.at("ok") == false, "ok is false");
-  Expect(json.at("tolerances").at("perpendicular") == 0.01, "tolerances are given");
+  Expect(json.at("tolerances").at("perpendicular") ==
+      vtkNormalMapping::FrameCheckTolerances().Perpendicular,
+    "tolerances are given");
   const nlohmann::json& p = json.at("primitives").at(0);
   Expect(p.at("vertices") == 4 && p.at("sign_against_winding") == 4, "4 vertices, all against");
   Expect(p.at("not_unit") == 0 && p.at("not_perpendicular") == 0, "unit and perpendicular");
