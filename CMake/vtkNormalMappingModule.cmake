@@ -11,12 +11,15 @@ set(_nm_classes
 # constants of namespaces, so these free functions and plain structs would give nothing usable.
 set(_nm_nowrap_headers
   Filters/vtkMikkTSpaceKernel.h
-  Filters/vtkNormalMappingMeshes.h)
+  Filters/vtkNormalMappingMeshes.h
+  Filters/vtkTangentFrameChecks.h)
 set(_nm_sources
   Filters/vtkMikkTSpaceKernel.cxx
   Filters/vtkNormalMappingMeshes.cxx
   Filters/vtkNormalMappingPrivate.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
+  Filters/vtkPolyDataTangentFramesSupplied.cxx
+  Filters/vtkTangentFrameChecks.cxx
   Rendering/vtkNormalMapShading.cxx)
 # Not installed. vtkTangentFrameKernels.h (the math, over GLM vectors) is reachable from the
 # build tree, so that the tests call its functions directly.

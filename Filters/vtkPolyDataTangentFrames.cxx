@@ -1295,6 +1295,11 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   this->NumberOfHandednessConflicts = 0;
   this->NumberOfSplitPoints = 0;
   this->NumberOfInvalidNormals = 0;
+  this->NumberOfReplacedTangents = 0;
+  this->NumberOfNonFiniteTangents = 0;
+  this->NumberOfNonUnitTangents = 0;
+  this->NumberOfNonPerpendicularTangents = 0;
+  this->NumberOfWrongSignTangents = 0;
   vtkCompositeDataSet* inComposite = vtkCompositeDataSet::GetData(inputVector[0], 0);
   if (!inComposite)
   {
@@ -1444,12 +1449,34 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
     }
   }
 
+  if (this->SuppliedTangents != RECOMPUTE)
+  {
+    return this->ExecuteSupplied(
+      input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd);
+  }
+  return this->ComputeBlock(
+    input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd);
+}
+
+int vtkPolyDataTangentFrames::ComputeBlock(vtkPolyData* input,
+  vtkPolyData* output,
+  vtkDataArray* uvs,
+  vtkDataArray* normals,
+  vtkDataArray* cellNormals,
+  bool polysAreTriangles,
+  double progressBegin,
+  double progressEnd)
+{
   Internals run{
-    this, input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd
+    this, input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
   };
-  const bool doublePrecision = this->OutputPrecision == DOUBLE_PRECISION ||
+  return this->DoubleOutput(input) ? run.Run<double>() : run.Run<float>();
+}
+
+bool vtkPolyDataTangentFrames::DoubleOutput(vtkPolyData* input) const
+{
+  return this->OutputPrecision == DOUBLE_PRECISION ||
     (this->OutputPrecision == DEFAULT_PRECISION && input->GetPoints()->GetDataType() == VTK_DOUBLE);
-  return doublePrecision ? run.Run<double>() : run.Run<float>();
 }
 
 void vtkPolyDataTangentFrames::PrintSelf(ostream& os, vtkIndent indent)
@@ -1468,4 +1495,15 @@ void vtkPolyDataTangentFrames::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfHandednessConflicts: " << this->NumberOfHandednessConflicts << "\n";
   os << indent << "NumberOfSplitPoints: " << this->NumberOfSplitPoints << "\n";
   os << indent << "NumberOfInvalidNormals: " << this->NumberOfInvalidNormals << "\n";
+  os << indent << "SuppliedTangents: " << GetSuppliedTangentsName(this->SuppliedTangents) << "\n";
+  os << indent << "SuppliedTangentsArrayName: "
+     << (this->SuppliedTangentsArrayName.empty() ? "(active tangents)"
+                                                 : this->SuppliedTangentsArrayName)
+     << "\n";
+  os << indent << "NumberOfReplacedTangents: " << this->NumberOfReplacedTangents << "\n";
+  os << indent << "NumberOfNonFiniteTangents: " << this->NumberOfNonFiniteTangents << "\n";
+  os << indent << "NumberOfNonUnitTangents: " << this->NumberOfNonUnitTangents << "\n";
+  os << indent << "NumberOfNonPerpendicularTangents: " << this->NumberOfNonPerpendicularTangents
+     << "\n";
+  os << indent << "NumberOfWrongSignTangents: " << this->NumberOfWrongSignTangents << "\n";
 }

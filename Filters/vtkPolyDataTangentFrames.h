@@ -41,6 +41,22 @@
  * splitting) with a warning; cell normals alone are averaged to points with a warning; texture
  * coordinates with 1 or more than 2 components use (u, 0) or the first two with a warning.
  *
+ * Supplied tangents (SuppliedTangents, default RECOMPUTE: they are ignored): KEEP and
+ * KEEP_VALID read the input's tangents (a 4-component array whose w is the sign, or 3
+ * components plus the point array `TangentSigns`; see SetSuppliedTangentsArrayName), which need
+ * point normals to be meaningful. KEEP writes them to the outputs as they are, computing no
+ * frame (only points with non-finite values, which would put NaN in the output, get computed
+ * frames). KEEP_VALID checks every point's frame (vtkTangentFrameChecks.h: finite, unit,
+ * perpendicular to the normal, sign +1 or -1 and agreeing with the UV winding of all the point's
+ * triangles, by FrameCheckTolerances) and gives the points that fail the frame of the selected
+ * Method; the others keep theirs. Points whose triangles have both windings (a mirror seam whose
+ * point is shared) fail, as one sign cannot suit both sides: with Splitting they are split like
+ * any seam point, and the kept points never are (a kept point that the method would have split
+ * gives its copies its supplied frame too). Kept signs are written as +1 or -1 in the output's
+ * convention: for the weighted methods with GLTFSignConvention on (whose signs follow the v-down
+ * coordinates as stored) that is the opposite of glTF's w. Without usable supplied arrays or
+ * without point normals the filter warns and computes every frame.
+ *
  * Composite input (a multiblock from a reader, for example) gives output of the same structure:
  * every polydata block gets its frames as if it were filtered alone, other blocks pass through
  * with a warning, and the counts below are the sums over the blocks.
@@ -57,6 +73,8 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For TCoordsArrayName
+
+class vtkDataArray;
 
 class VTKNORMALMAPPING_EXPORT vtkPolyDataTangentFrames : public vtkPolyDataAlgorithm
 {
@@ -117,6 +135,39 @@ public:
   vtkBooleanMacro(GLTFSignConvention, bool);
   ///@}
 
+  /// Values of SuppliedTangents.
+  enum SuppliedTangentsModes
+  {
+    /// Compute every frame; supplied tangents are ignored (pass through as point data).
+    RECOMPUTE = 0,
+    /// Use the supplied frames as they are (only non-finite ones are computed).
+    KEEP = 1,
+    /// Use the supplied frames that pass the checks; compute the others.
+    KEEP_VALID = 2,
+  };
+
+  ///@{
+  /// What to do with tangents the input already has (default RECOMPUTE); see the class comment.
+  vtkSetClampMacro(SuppliedTangents, int, RECOMPUTE, KEEP_VALID);
+  vtkGetMacro(SuppliedTangents, int);
+  void SetSuppliedTangentsToRecompute() { this->SetSuppliedTangents(RECOMPUTE); }
+  void SetSuppliedTangentsToKeep() { this->SetSuppliedTangents(KEEP); }
+  void SetSuppliedTangentsToKeepValid() { this->SetSuppliedTangents(KEEP_VALID); }
+  static const char* GetSuppliedTangentsName(int mode);
+  ///@}
+
+  ///@{
+  /**
+   * The point array of supplied tangents (3 or 4 components). Empty (the default): the active
+   * tangents, else the point array `Tangents`.
+   */
+  void SetSuppliedTangentsArrayName(const std::string& name);
+  const std::string& GetSuppliedTangentsArrayName() const
+  {
+    return this->SuppliedTangentsArrayName;
+  }
+  ///@}
+
   ///@{
   /// Also output point `Bitangents` = sign * cross(N, T) (default off).
   vtkSetMacro(ComputeBitangents, bool);
@@ -160,6 +211,17 @@ public:
   vtkGetMacro(NumberOfSplitPoints, vtkIdType);
   /// Points whose input normal was zero or non-finite (the geometric normal was used).
   vtkGetMacro(NumberOfInvalidNormals, vtkIdType);
+  /// With KEEP or KEEP_VALID: supplied frames replaced by computed ones (input points; their
+  /// split copies are not counted again).
+  vtkGetMacro(NumberOfReplacedTangents, vtkIdType);
+  /// With KEEP or KEEP_VALID, supplied frames found with each defect (a point may have several):
+  /// a NaN or infinite value; a tangent length off 1; a tangent not perpendicular to the normal;
+  /// a sign that is not +1 or -1 or, with KEEP_VALID, disagrees with the UV winding of the
+  /// point's triangles (or of some of them).
+  vtkGetMacro(NumberOfNonFiniteTangents, vtkIdType);
+  vtkGetMacro(NumberOfNonUnitTangents, vtkIdType);
+  vtkGetMacro(NumberOfNonPerpendicularTangents, vtkIdType);
+  vtkGetMacro(NumberOfWrongSignTangents, vtkIdType);
   ///@}
 
   /// Names of the arrays the filter writes.
@@ -187,12 +249,19 @@ protected:
   bool ComputeBitangents = false;
   bool ComputeCellTangents = false;
   int OutputPrecision = DEFAULT_PRECISION;
+  int SuppliedTangents = RECOMPUTE;
+  std::string SuppliedTangentsArrayName;
 
   vtkIdType NumberOfDegenerateTriangles = 0;
   vtkIdType NumberOfFallbackPoints = 0;
   vtkIdType NumberOfHandednessConflicts = 0;
   vtkIdType NumberOfSplitPoints = 0;
   vtkIdType NumberOfInvalidNormals = 0;
+  vtkIdType NumberOfReplacedTangents = 0;
+  vtkIdType NumberOfNonFiniteTangents = 0;
+  vtkIdType NumberOfNonUnitTangents = 0;
+  vtkIdType NumberOfNonPerpendicularTangents = 0;
+  vtkIdType NumberOfWrongSignTangents = 0;
 
 private:
   vtkPolyDataTangentFrames(const vtkPolyDataTangentFrames&) = delete;
@@ -204,6 +273,30 @@ private:
     vtkPolyData* output,
     double progressBegin,
     double progressEnd);
+
+  /// The frames of one polydata whose inputs ExecuteBlock has checked.
+  int ComputeBlock(vtkPolyData* input,
+    vtkPolyData* output,
+    vtkDataArray* uvs,
+    vtkDataArray* normals,
+    vtkDataArray* cellNormals,
+    bool polysAreTriangles,
+    double progressBegin,
+    double progressEnd);
+
+  /// KEEP and KEEP_VALID (vtkPolyDataTangentFramesSupplied.cxx): the supplied frames, and
+  /// ComputeBlock's for the points that need it.
+  int ExecuteSupplied(vtkPolyData* input,
+    vtkPolyData* output,
+    vtkDataArray* uvs,
+    vtkDataArray* normals,
+    vtkDataArray* cellNormals,
+    bool polysAreTriangles,
+    double progressBegin,
+    double progressEnd);
+
+  /// Whether the output arrays are double (OutputPrecision and the input points decide).
+  bool DoubleOutput(vtkPolyData* input) const;
 
   struct Internals;
   friend struct Internals;

@@ -40,6 +40,7 @@ void Counts::Add(const Counts& other)
   this->DegenerateTriangles += other.DegenerateTriangles;
   this->FallbackPoints += other.FallbackPoints;
   this->InvalidNormals += other.InvalidNormals;
+  this->ReplacedTangents += other.ReplacedTangents;
 }
 
 vtkDataArray* FindTCoords(vtkPolyData* mesh, const std::string& name)
@@ -90,6 +91,7 @@ vtkSmartPointer<vtkPolyData> Compute(vtkPolyData* input,
   filter->SetSplitting(options.Splitting);
   filter->SetTCoordsArrayName(options.TCoordsName);
   filter->SetGLTFSignConvention(vDown);
+  filter->SetSuppliedTangents(options.SuppliedTangents);
 
   vtkNew<vtkCallbackCommand> observer;
   observer->SetClientData(const_cast<std::function<void(double)>*>(&progress));
@@ -144,6 +146,7 @@ vtkSmartPointer<vtkPolyData> Compute(vtkPolyData* input,
   counts.DegenerateTriangles = filter->GetNumberOfDegenerateTriangles();
   counts.FallbackPoints = filter->GetNumberOfFallbackPoints();
   counts.InvalidNormals = filter->GetNumberOfInvalidNormals();
+  counts.ReplacedTangents = filter->GetNumberOfReplacedTangents();
   return output;
 }
 }

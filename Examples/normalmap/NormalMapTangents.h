@@ -34,6 +34,8 @@ struct Options
   std::string TCoordsName;
   /// The texture coordinates have v pointing down (glTF); also set by TCoordsVDown field data.
   bool VDown = false;
+  /// vtkPolyDataTangentFrames::SuppliedTangents: RECOMPUTE, KEEP or KEEP_VALID.
+  int SuppliedTangents = vtkPolyDataTangentFrames::RECOMPUTE;
 };
 
 struct Counts
@@ -45,6 +47,7 @@ struct Counts
   vtkIdType DegenerateTriangles = 0;
   vtkIdType FallbackPoints = 0;
   vtkIdType InvalidNormals = 0;
+  vtkIdType ReplacedTangents = 0;
   void Add(const Counts& other);
 };
 

@@ -23,8 +23,9 @@ struct Command
 enum ExitCode
 {
   Success = 0,
-  Failure = 1, // the input could not be read or processed, or the output written
-  Usage = 2,   // the command line is wrong
+  Failure = 1,    // the input could not be read or processed, or the output written
+  Usage = 2,      // the command line is wrong
+  Unreadable = 2, // check: the input cannot be read (Failure means its tangents are wrong)
 };
 
 /// Prints "normalmap <command>: error: <message>" as one line on stderr and returns `code`.
@@ -44,6 +45,7 @@ std::string CheckInputAndOutput(const std::vector<std::string>& positional,
   std::string& input);
 
 int TangentsCommand(int argc, char* argv[]);
+int CheckCommand(int argc, char* argv[]);
 int RenderCommand(int argc, char* argv[]);
 int DemoCommand(int argc, char* argv[]);
 }

@@ -42,6 +42,8 @@ options:
                      glTF, TEXCOORD_<n> of the material's normal texture, else TEXCOORD_0)
   --gltf-sign        the UVs have v pointing down, as glTF's do (automatic for glTF input):
                      signs then follow glTF's TANGENT.w
+  --keep-valid       keep the tangents the input has where they pass the checks of
+                     'normalmap check' and compute only the others (default: compute all)
   -h, --help         this text
 
 glTF input: every triangle primitive with the texture coordinates is computed on its own and
@@ -121,6 +123,10 @@ std::string Parse(int argc, char* argv[], Arguments& args)
     else if (arg == "--gltf-sign")
     {
       args.Tangents.VDown = true;
+    }
+    else if (arg == "--keep-valid")
+    {
+      args.Tangents.SuppliedTangents = vtkPolyDataTangentFrames::KEEP_VALID;
     }
     else if (arg.size() > 1 && arg[0] == '-')
     {
@@ -387,8 +393,13 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
             << "  points split          " << total.SplitPoints
             << (args.Tangents.Splitting ? "" : " (splitting off)") << "\n"
             << "  degenerate triangles  " << total.DegenerateTriangles << "\n"
-            << "  fallback points       " << total.FallbackPoints << "\n"
-            << "  time                  " << Milliseconds(start) << " ms (read " << readMs
+            << "  fallback points       " << total.FallbackPoints << "\n";
+  if (args.Tangents.SuppliedTangents == vtkPolyDataTangentFrames::KEEP_VALID)
+  {
+    std::cout << "  tangents replaced     " << total.ReplacedTangents << " of " << total.InputPoints
+              << " (the others kept)\n";
+  }
+  std::cout << "  time                  " << Milliseconds(start) << " ms (read " << readMs
             << ", tangents " << computeMs << ", write " << writeMs << ")\n";
   return Success;
 }

@@ -112,6 +112,17 @@ frames.SetMethodToMikkTSpace()
 check(frames.GetMethod() == vtkPolyDataTangentFrames.MIKKTSPACE, "SetMethodToMikkTSpace()")
 frames.SetTCoordsArrayName("UV")
 check(frames.GetTCoordsArrayName() == "UV", "TCoordsArrayName round-trips a Python str")
+check([vtkPolyDataTangentFrames.RECOMPUTE, vtkPolyDataTangentFrames.KEEP,
+       vtkPolyDataTangentFrames.KEEP_VALID] == [0, 1, 2] and
+      frames.GetSuppliedTangents() == vtkPolyDataTangentFrames.RECOMPUTE,
+      "the SuppliedTangents enum is usable from Python, default RECOMPUTE")
+frames.SetSuppliedTangentsToKeepValid()
+frames.SetSuppliedTangentsArrayName("TANGENT")
+check(frames.GetSuppliedTangents() == vtkPolyDataTangentFrames.KEEP_VALID and
+      vtkPolyDataTangentFrames.GetSuppliedTangentsName(2) == "KeepValid" and
+      frames.GetSuppliedTangentsArrayName() == "TANGENT" and
+      frames.GetNumberOfReplacedTangents() == 0,
+      "SetSuppliedTangentsToKeepValid(), its name, array name and counts are wrapped")
 check(vtkPolyDataTangentFrames.TangentsArrayName() == "Tangents" and
       vtkPolyDataTangentFrames.SignsArrayName() == "TangentSigns",
       "the output array names are reachable")

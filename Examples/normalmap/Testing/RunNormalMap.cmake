@@ -4,7 +4,9 @@
 #   ARGS       the arguments, separated by '|'; @WORK@ stands for WORK_DIR
 #   EXPECT     ok: exit code 0 and OUT written; fail: non-zero exit, exactly one line on
 #              stderr starting with "normalmap", and nothing written (neither OUT nor a
-#              temporary folder beside it)
+#              temporary folder beside it); defects: exit code 1 (`check` found broken
+#              tangents) and nothing on stderr
+#   EXIT       optional, with EXPECT fail: the exit code it must be
 #   OUT        optional: the output path (with @WORK@)
 #   STDOUT     optional: a regular expression the standard output must match
 #   STDERR     optional: a regular expression the standard error must match (e.g. one warning)
@@ -113,8 +115,15 @@ elseif(EXPECT STREQUAL "fail")
       message(FATAL_ERROR "the failed run left ${OUT} ${leftovers}\n${report}")
     endif()
   endif()
+  if(EXIT AND NOT rc EQUAL EXIT)
+    message(FATAL_ERROR "expected exit code ${EXIT}\n${report}")
+  endif()
+elseif(EXPECT STREQUAL "defects")
+  if(NOT rc EQUAL 1 OR NOT err STREQUAL "")
+    message(FATAL_ERROR "expected exit code 1 and nothing on stderr\n${report}")
+  endif()
 else()
-  message(FATAL_ERROR "EXPECT must be ok or fail")
+  message(FATAL_ERROR "EXPECT must be ok, fail or defects")
 endif()
 if(STDOUT AND NOT out MATCHES "${STDOUT}")
   message(FATAL_ERROR "stdout does not match '${STDOUT}'\n${report}")

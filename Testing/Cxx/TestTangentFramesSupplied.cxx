@@ -1,0 +1,425 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkPolyDataTangentFrames with supplied tangents (SuppliedTangents KEEP / KEEP_VALID) and the
+// checks behind it (vtkTangentFrameChecks.h), on hand-made meshes with one defect each.
+#include "NormalMappingGrid.h"
+
+#include "vtkPolyDataTangentFrames.h"
+#include "vtkTangentFrameChecks.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+/**
+ * A flat grid in the xy plane, normal +z. With `mirror`, u = 2 min(s, 1 - s): the half s > 1/2
+ * is a mirrored UV island (tangent -x, sign -1) and the column s = 1/2 a mirror seam whose
+ * points are shared by both halves; without it u = s (tangent +x, sign +1 everywhere).
+ */
+vtkSmartPointer<vtkPolyData> Plane(bool mirror, int n = 8)
+{
+  return NormalMappingTesting::MakeGrid(
+    n,
+    n,
+    [](double s, double t) {
+      return std::array<double, 3>{ s, t, 0.0 };
+    },
+    [](double, double) {
+      return std::array<double, 3>{ 0.0, 0.0, 1.0 };
+    },
+    [mirror](double s, double t) {
+      return std::array<double, 2>{ mirror ? 2.0 * std::min(s, 1.0 - s) : s, t };
+    });
+}
+
+/// The x coordinate of point p (the grid's s).
+double S(vtkPolyData* mesh, vtkIdType p)
+{
+  return mesh->GetPoint(p)[0];
+}
+
+/**
+ * Supplied frames, as glTF's TANGENT (4 components, w the sign) named "TANGENT": the true
+ * frame of Plane(mirror) (tangent +-x, sign +-1) turned by `turn` radians about the normal. A
+ * turned tangent is still unit, perpendicular and of the right sign (a valid frame the filter would
+ * not compute).
+ */
+vtkSmartPointer<vtkFloatArray> SuppliedVec4(vtkPolyData* mesh, double turn, bool mirror)
+{
+  auto t = vtkSmartPointer<vtkFloatArray>::New();
+  t->SetName("TANGENT");
+  t->SetNumberOfComponents(4);
+  t->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const double sign = mirror && S(mesh, p) > 0.5 + 1e-9 ? -1.0 : 1.0;
+    const double angle = turn + (sign < 0.0 ? Pi : 0.0);
+    t->SetTuple4(p, std::cos(angle), std::sin(angle), 0.0, sign);
+  }
+  mesh->GetPointData()->AddArray(t);
+  return t;
+}
+
+struct SuppliedRun
+{
+  vtkNew<vtkPolyDataTangentFrames> Filter;
+  vtkNew<vtkTest::ErrorObserver> Messages;
+  vtkPolyData* Output = nullptr;
+
+  SuppliedRun(vtkPolyData* input, int supplied, const char* name = "TANGENT")
+  {
+    this->Filter->SetInputData(input);
+    this->Filter->SetSuppliedTangents(supplied);
+    this->Filter->SetSuppliedTangentsArrayName(name);
+    this->Filter->AddObserver(vtkCommand::WarningEvent, this->Messages);
+    this->Filter->AddObserver(vtkCommand::ErrorEvent, this->Messages);
+  }
+  vtkPolyData* Update()
+  {
+    this->Filter->Update();
+    this->Output = this->Filter->GetOutput();
+    return this->Output;
+  }
+  std::array<double, 4> Frame(vtkIdType p) const
+  {
+    double t[3];
+    this->Output->GetPointData()->GetArray("Tangents")->GetTuple(p, t);
+    return {
+      t[0], t[1], t[2], this->Output->GetPointData()->GetArray("TangentSigns")->GetComponent(p, 0)
+    };
+  }
+};
+
+/// Whether output point p of `run` has the frame `expected` (the float storage rounds by 2^-24;
+/// 1e-6 is well above that and far below any defect the tests plant).
+::testing::AssertionResult HasFrame(const SuppliedRun& run,
+  vtkIdType p,
+  const std::array<double, 4>& expected)
+{
+  const std::array<double, 4> f = run.Frame(p);
+  for (int c = 0; c < 4; ++c)
+  {
+    if (!(std::abs(f[c] - expected[c]) <= 1e-6))
+    {
+      return ::testing::AssertionFailure()
+        << "point " << p << ": (" << f[0] << ", " << f[1] << ", " << f[2] << ", " << f[3]
+        << ") instead of (" << expected[0] << ", " << expected[1] << ", " << expected[2] << ", "
+        << expected[3] << ")";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+std::array<double, 4> Supplied(vtkDataArray* t, vtkIdType p)
+{
+  return {
+    t->GetComponent(p, 0), t->GetComponent(p, 1), t->GetComponent(p, 2), t->GetComponent(p, 3)
+  };
+}
+
+constexpr double Turn = 20.0 * Pi / 180.0;
+}
+
+TEST(TangentFramesSupplied, DefaultRecomputesAndKeepValidKeepsGoodFrames)
+{
+  auto mesh = Plane(false);
+  auto supplied = SuppliedVec4(mesh, Turn, false);
+  SuppliedRun recompute(mesh, vtkPolyDataTangentFrames::RECOMPUTE);
+  EXPECT_EQ(
+    vtkPolyDataTangentFrames::RECOMPUTE, vtkNew<vtkPolyDataTangentFrames>()->GetSuppliedTangents());
+  recompute.Update();
+  SuppliedRun keepValid(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+  keepValid.Update();
+  EXPECT_EQ(0, keepValid.Filter->GetNumberOfReplacedTangents());
+  EXPECT_FALSE(keepValid.Messages->GetWarning()) << keepValid.Messages->GetWarningMessage();
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    EXPECT_TRUE(HasFrame(recompute, p, { 1.0, 0.0, 0.0, 1.0 }));
+    EXPECT_TRUE(HasFrame(keepValid, p, Supplied(supplied, p)));
+  }
+}
+
+TEST(TangentFramesSupplied, EachDefectIsCountedAndReplaced)
+{
+  // One point per defect, inside the plane (all its triangles have the +1 winding).
+  struct Case
+  {
+    const char* Name;
+    std::array<double, 4> Frame;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double c = std::cos(Pi / 4);
+  const Case cases[] = {
+    { "flipped w", { 1.0, 0.0, 0.0, -1.0 } },
+    { "not perpendicular", { c, 0.0, c, 1.0 } },
+    { "not unit", { 1.5, 0.0, 0.0, 1.0 } },
+    { "NaN", { nan, 0.0, 0.0, 1.0 } },
+    { "w not +-1", { 1.0, 0.0, 0.0, 0.0 } },
+  };
+  for (int k = 0; k < 5; ++k)
+  {
+    SCOPED_TRACE(cases[k].Name);
+    auto mesh = Plane(false);
+    auto supplied = SuppliedVec4(mesh, 0.0, false);
+    const vtkIdType bad = 4 * 9 + 4; // the grid's centre point (9 points per column)
+    supplied->SetTuple(bad, cases[k].Frame.data());
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+    run.Update();
+    vtkPolyDataTangentFrames* f = run.Filter;
+    EXPECT_EQ(1, f->GetNumberOfReplacedTangents());
+    EXPECT_EQ(k == 0 || k == 4 ? 1 : 0, f->GetNumberOfWrongSignTangents());
+    EXPECT_EQ(k == 1 ? 1 : 0, f->GetNumberOfNonPerpendicularTangents());
+    EXPECT_EQ(k == 2 ? 1 : 0, f->GetNumberOfNonUnitTangents());
+    EXPECT_EQ(k == 3 ? 1 : 0, f->GetNumberOfNonFiniteTangents());
+    // The replaced point has the computed frame, the others their own.
+    EXPECT_TRUE(HasFrame(run, bad, { 1.0, 0.0, 0.0, 1.0 }));
+    EXPECT_TRUE(HasFrame(run, bad + 1, Supplied(supplied, bad + 1)));
+  }
+}
+
+TEST(TangentFramesSupplied, SignsOfVDownCoordinatesWithoutTheFlipAreAllReplaced)
+{
+  // Signs computed on v-down coordinates without negating them: every w is the opposite of
+  // what the winding asks (the MosquitoInAmber defect).
+  auto mesh = Plane(true);
+  auto supplied = SuppliedVec4(mesh, 0.0, true);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    supplied->SetComponent(p, 3, -supplied->GetComponent(p, 3));
+  }
+  std::string found;
+  const auto arrays = vtkNormalMapping::FindSuppliedFrames(mesh, "TANGENT", found);
+  ASSERT_TRUE(arrays.IsUsable()) << found;
+  const auto check = vtkNormalMapping::CheckSuppliedFrames(
+    mesh, mesh->GetPointData()->GetNormals(), mesh->GetPointData()->GetTCoords(), arrays, false);
+  const vtkIdType seam = 9; // the column s = 1/2 has both windings
+  EXPECT_EQ(mesh->GetNumberOfPoints() - seam, check.Counts.SignAgainstWinding);
+  EXPECT_EQ(seam, check.Counts.MixedWinding);
+  EXPECT_EQ(0, check.Counts.SignAgreesWithWinding);
+  // The same signs are right for glTF's v-down convention: only the seam is wrong then.
+  const auto vDown = vtkNormalMapping::CheckSuppliedFrames(
+    mesh, mesh->GetPointData()->GetNormals(), mesh->GetPointData()->GetTCoords(), arrays, true);
+  EXPECT_EQ(0, vDown.Counts.SignAgainstWinding);
+  EXPECT_EQ(seam, vDown.Counts.Failed);
+}
+
+TEST(TangentFramesSupplied, SharedMirrorSeamPointsAreReplacedAndSplit)
+{
+  auto mesh = Plane(true);
+  auto supplied = SuppliedVec4(mesh, Turn, true);
+  const vtkIdType seam = 9;
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+    for (bool splitting : { true, false })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (splitting ? ", splitting" : ", no splitting"));
+      SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+      run.Filter->SetMethod(method);
+      run.Filter->SetSplitting(splitting);
+      run.Update();
+      EXPECT_EQ(seam, run.Filter->GetNumberOfReplacedTangents());
+      EXPECT_EQ(seam, run.Filter->GetNumberOfWrongSignTangents());
+      EXPECT_EQ(splitting ? seam : 0, run.Filter->GetNumberOfSplitPoints());
+      ASSERT_EQ(
+        mesh->GetNumberOfPoints() + (splitting ? seam : 0), run.Output->GetNumberOfPoints());
+      for (vtkIdType p = 0; p < run.Output->GetNumberOfPoints(); ++p)
+      {
+        const bool onSeam = p >= mesh->GetNumberOfPoints() || std::abs(S(mesh, p) - 0.5) < 1e-9;
+        if (!onSeam)
+        {
+          EXPECT_TRUE(HasFrame(run, p, Supplied(supplied, p)));
+        }
+        else if (splitting && method != vtkPolyDataTangentFrames::MIKKTSPACE)
+        {
+          // The seam point takes the +1 side, its copy (appended) the -1 side.
+          const double sign = p >= mesh->GetNumberOfPoints() ? -1.0 : 1.0;
+          EXPECT_TRUE(HasFrame(run, p, { sign, 0.0, 0.0, sign }));
+        }
+      }
+    }
+}
+
+TEST(TangentFramesSupplied, KeepUsesFramesAsTheyAreAndReplacesOnlyNonFinite)
+{
+  auto mesh = Plane(false);
+  auto supplied = SuppliedVec4(mesh, 0.0, false);
+  const double c = std::cos(Pi / 4);
+  supplied->SetTuple4(10, c, 0.0, c, 1.0); // not perpendicular: kept as it is
+  supplied->SetTuple4(11, std::numeric_limits<double>::infinity(), 0.0, 0.0, 1.0);
+  SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP);
+  run.Filter->ComputeBitangentsOn();
+  run.Update();
+  EXPECT_EQ(1, run.Filter->GetNumberOfReplacedTangents());
+  EXPECT_EQ(1, run.Filter->GetNumberOfNonPerpendicularTangents());
+  EXPECT_EQ(1, run.Filter->GetNumberOfNonFiniteTangents());
+  EXPECT_NE(std::string::npos, run.Messages->GetWarningMessage().find("NaN or infinite"));
+  EXPECT_TRUE(HasFrame(run, 10, { c, 0.0, c, 1.0 }));
+  EXPECT_TRUE(HasFrame(run, 11, { 1.0, 0.0, 0.0, 1.0 }));
+  // Bitangent = sign * cross(N, T) of the kept frame: (0, c, 0) for T = (c, 0, c), N = z.
+  double b[3];
+  run.Output->GetPointData()->GetArray("Bitangents")->GetTuple(10, b);
+  EXPECT_NEAR(c, b[1], 1e-6);
+  EXPECT_NEAR(0.0, b[0], 1e-6);
+  EXPECT_EQ(vtkPolyDataTangentFrames::TangentsArrayName(),
+    std::string(run.Output->GetPointData()->GetTangents()->GetName()));
+}
+
+TEST(TangentFramesSupplied, ThreeComponentsWithSignArray)
+{
+  auto mesh = Plane(true);
+  auto vec4 = SuppliedVec4(mesh, Turn, true);
+  vtkNew<vtkDoubleArray> tangents, signs;
+  tangents->SetName("Tangents");
+  tangents->SetNumberOfComponents(3);
+  signs->SetName("TangentSigns");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    tangents->InsertNextTuple3(vec4->GetComponent(p, 0), vec4->GetComponent(p, 1), 0.0);
+    signs->InsertNextValue(vec4->GetComponent(p, 3));
+  }
+  mesh->GetPointData()->RemoveArray("TANGENT");
+  mesh->GetPointData()->SetTangents(tangents);
+  mesh->GetPointData()->AddArray(signs);
+  SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, "");
+  run.Filter->SplittingOff();
+  run.Update();
+  EXPECT_EQ(9, run.Filter->GetNumberOfReplacedTangents()); // the shared seam column
+  EXPECT_TRUE(HasFrame(run, 0, Supplied(vec4, 0)));
+  EXPECT_TRUE(
+    HasFrame(run, mesh->GetNumberOfPoints() - 1, Supplied(vec4, mesh->GetNumberOfPoints() - 1)));
+}
+
+TEST(TangentFramesSupplied, MissingOrUnusableSuppliedArraysWarnAndCompute)
+{
+  struct Case
+  {
+    const char* Name;
+    const char* ArrayName;
+    bool DropNormals;
+    const char* Warning;
+  };
+  const Case cases[] = {
+    { "no such array", "Nope", false, "there is no point array 'Nope'" },
+    { "3 components, no signs", "Normals", false, "no point array 'TangentSigns'" },
+    { "no normals", "TANGENT", true, "no usable point normals" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.Name);
+    auto mesh = Plane(false);
+    SuppliedVec4(mesh, Turn, false);
+    if (c.DropNormals)
+    {
+      mesh->GetPointData()->SetNormals(nullptr);
+    }
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, c.ArrayName);
+    run.Update();
+    EXPECT_NE(std::string::npos, run.Messages->GetWarningMessage().find(c.Warning))
+      << run.Messages->GetWarningMessage();
+    EXPECT_TRUE(HasFrame(run, 0, { 1.0, 0.0, 0.0, 1.0 })); // computed, not the supplied one
+  }
+}
+
+TEST(TangentFramesSupplied, KeptSignsFollowTheOutputConvention)
+{
+  // glTF-convention input (v down) with correct glTF signs: MikkTSpace's output convention is
+  // glTF's, so the signs are kept; the weighted methods' signs follow the stored v-down
+  // coordinates, the opposite, so kept signs are written negated to match their neighbours.
+  auto mesh = Plane(false);
+  auto supplied = SuppliedVec4(mesh, 0.0, false);
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    supplied->SetComponent(p, 3, -1.0); // glTF's w for v-down coordinates of this plane
+  }
+  for (int method :
+    { vtkPolyDataTangentFrames::MIKKTSPACE, vtkPolyDataTangentFrames::ANGLE_WEIGHTED })
+  {
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+    run.Filter->SetMethod(method);
+    run.Filter->GLTFSignConventionOn();
+    run.Update();
+    EXPECT_EQ(0, run.Filter->GetNumberOfReplacedTangents());
+    SuppliedRun recompute(mesh, vtkPolyDataTangentFrames::RECOMPUTE);
+    recompute.Filter->SetMethod(method);
+    recompute.Filter->GLTFSignConventionOn();
+    recompute.Update();
+    EXPECT_EQ(recompute.Frame(0)[3], run.Frame(0)[3])
+      << vtkPolyDataTangentFrames::GetMethodName(method);
+  }
+}
+
+TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
+{
+  // A triangle with a point id out of range: ComputeBlock's error and pass-through. The input's
+  // own Tangents / TangentSigns (3 + 1 components, one sign wrong so that frames are computed)
+  // come through unchanged.
+  auto mesh = Plane(false);
+  auto vec4 = SuppliedVec4(mesh, 0.0, false);
+  vtkNew<vtkFloatArray> tangents, signs;
+  tangents->SetName("Tangents");
+  tangents->SetNumberOfComponents(3);
+  signs->SetName("TangentSigns");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    tangents->InsertNextTuple3(1.0, 0.0, 0.0);
+    signs->InsertNextValue(p == 0 ? -1.0 : 1.0);
+  }
+  mesh->GetPointData()->SetTangents(tangents);
+  mesh->GetPointData()->AddArray(signs);
+  const vtkIdType bad[3] = { 0, 1, 1000 };
+  mesh->GetPolys()->InsertNextCell(3, bad);
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, "");
+    run.Filter->SetMethod(method);
+    run.Filter->GLTFSignConventionOn(); // kept signs would be negated for the weighted method
+    run.Update();
+    EXPECT_TRUE(run.Messages->GetError()) << vtkPolyDataTangentFrames::GetMethodName(method);
+    EXPECT_EQ(tangents.Get(), run.Output->GetPointData()->GetTangents());
+    EXPECT_EQ(-1.0, signs->GetValue(0));
+    EXPECT_EQ(1.0, signs->GetValue(1));
+    EXPECT_EQ(
+      nullptr, run.Output->GetPointData()->GetArray("vtkPolyDataTangentFrames_SourcePointIds"));
+  }
+}
+
+TEST(TangentFramesSupplied, CompositeInputSumsTheCountsOverTheBlocks)
+{
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto mesh = Plane(false);
+    auto supplied = SuppliedVec4(mesh, Turn, false);
+    supplied->SetComponent(b, 3, -1.0); // one flipped w per block
+    blocks->SetBlock(b, mesh);
+  }
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(blocks);
+  filter->SetSuppliedTangentsToKeepValid();
+  filter->SetSuppliedTangentsArrayName("TANGENT");
+  filter->Update();
+  EXPECT_EQ(2, filter->GetNumberOfReplacedTangents());
+  EXPECT_EQ(2, filter->GetNumberOfWrongSignTangents());
+  auto* out = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(nullptr, out);
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto* block = vtkPolyData::SafeDownCast(out->GetBlock(b));
+    ASSERT_NE(nullptr, block);
+    EXPECT_EQ(1.0, block->GetPointData()->GetArray("TangentSigns")->GetComponent(b, 0));
+  }
+}
