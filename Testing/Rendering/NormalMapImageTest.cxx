@@ -270,7 +270,7 @@ void AddPanel(vtkRenderWindow* window, int columns, int rows, int column, int ro
     static_cast<double>(column + 1) / columns,
     static_cast<double>(rows - row) / rows);
   renderer->SetBackground(0.1, 0.1, 0.12);
-  renderer->SetTwoSidedLighting(p.TwoSidedLighting);
+  renderer->SetTwoSidedLighting(true);
   AddSceneLight(renderer, glm::dvec3(-1.0, 1.5, 2.0));
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   if (p.StockMapper)

@@ -48,8 +48,6 @@
 #include <vector>
 
 class vtkImageData;
-class vtkPolyData;
-class vtkTexture;
 
 namespace nmtest
 {
@@ -76,14 +74,14 @@ struct Panel
   double Scale[3] = { 1.0, 1.0, 1.0 };
   double RotateX = 0.0, RotateY = 0.0; // degrees, applied after the scale
   int Interpolation = 2;               // VTK_FLAT, VTK_GOURAUD, VTK_PHONG or VTK_PBR
-  bool TwoSidedLighting = true;
-  bool StockMapper = false; // VTK's vtkOpenGLPolyDataMapper instead of ours
+  bool StockMapper = false;            // VTK's vtkOpenGLPolyDataMapper instead of ours
   double Zoom = 1.4;
 };
 
 /**
  * Adds a renderer at (column, row) of a grid of columns x rows views (row 0 on top): dark
- * background, a scene light from the upper left, the panel's actor, the camera fit to it.
+ * background, two-sided lighting, a scene light from the upper left, the panel's actor, the
+ * camera fit to it.
  */
 void AddPanel(vtkRenderWindow* window, int columns, int rows, int column, int row, const Panel& p);
 

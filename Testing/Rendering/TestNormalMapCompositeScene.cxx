@@ -23,7 +23,7 @@
 
 namespace
 {
-/// Renders the scene and checks the frame each block was drawn with, as the comment above says.
+/// Renders the scene and checks the frame each block is drawn with, as the comment above says.
 void CheckAppliedFrames(vtkRenderWindow* window,
   vtkNormalMapCompositePolyDataMapper* mapper,
   nmtest::Checks& check)

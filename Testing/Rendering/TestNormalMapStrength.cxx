@@ -1,7 +1,6 @@
 // Image test: a rivets-mapped quad at strength (vtkProperty::NormalScale) 0, 0.5 and 1, left to
 // right: flat, shallow domes, full domes. It fails when any one of them is drawn at another of
-// these strengths (strength 1 drawn as 0 is the regression VTK's default comparison let
-// through with an error of 0).
+// these strengths (VTK's default comparison passes strength 1 drawn as 0 with an error of 0).
 #include "NormalMapImageTest.h"
 
 int TestNormalMapStrength(int argc, char* argv[])
