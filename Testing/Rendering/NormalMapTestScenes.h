@@ -38,14 +38,18 @@ enum class Pattern
 /// How the generated texture stores the normal.
 enum class Storage
 {
-  OpenGL,     // RGB, green = +v
-  DirectX,    // RGB, green = -v
-  TwoChannel, // RG (2 components), green = +v
-  OneChannel  // the height only (not a normal map: for bad-input tests)
+  OpenGL,            // RGB, green = +v
+  DirectX,           // RGB, green = -v
+  TwoChannel,        // RG (2 components), green = +v
+  TwoChannelDirectX, // RG (2 components), green = -v
+  OneChannel         // the height only (not a normal map: for bad-input tests)
 };
 
 /// Unit tangent-space normal of a pattern at (u, v) in [0, 1]^2 (x along +u, y along +v).
 glm::dvec3 PatternNormal(Pattern pattern, double u, double v);
+
+/// A unit vector component in [-1, 1] as a texel value (0..255).
+unsigned char Encode(double x);
 
 /// A size x size texture image of the pattern (texel centres at (i + 0.5) / size).
 vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Storage storage);
@@ -91,6 +95,9 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height);
 /// Prints once which headless path rendering took (OSMesa or X/Xvfb, and the GL renderer).
 void ReportRenderPath(vtkRenderWindow* window);
 
+/// The window's RGB image as last rendered (back buffer), bottom row first.
+vtkSmartPointer<vtkImageData> GrabImage(vtkRenderWindow* window);
+
 /// The window's RGB pixels, bottom row first.
 std::vector<unsigned char> ReadPixels(vtkRenderWindow* window);
 
@@ -126,12 +133,6 @@ Difference MirrorSymmetry(const std::vector<unsigned char>& pixels,
   int width,
   int height,
   int bound);
-
-/**
- * vtkRegressionTestImage against Testing/Data/Baseline/<test>.png with VTK's default
- * threshold (see the definition for what it allows); EXIT_SUCCESS when it passes.
- */
-int CompareWithBaseline(vtkRenderWindow* window, int argc, char* argv[]);
 
 /// One actor of a flat scene.
 struct FlatActor

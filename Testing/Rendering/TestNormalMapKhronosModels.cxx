@@ -4,28 +4,14 @@
 // the right one a flat quad with the normal map: with right tangents and right shading both
 // look alike. Tangents come from vtkPolyDataTangentFrames (MikkTSpace), whose signs the mirrored
 // model's right half needs.
-#include "NormalMapTestScenes.h"
+#include "NormalMapImageTest.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
-#include "vtkCompositeDataIterator.h"
-#include "vtkFloatArray.h"
-#include "vtkGLTFReader.h"
-#include "vtkLight.h"
-#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkNormalMapPolyDataMapper.h"
-#include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataTangentFrames.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
 #include "vtkTestUtilities.h"
-#include "vtkTexture.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -34,44 +20,6 @@
 
 namespace
 {
-/// The model's first mesh as polydata with VTK-convention texture coordinates (v up) and
-/// tangent frames, or nullptr when the file cannot be read.
-vtkSmartPointer<vtkPolyData> LoadModel(const std::string& file)
-{
-  vtkNew<vtkGLTFReader> reader;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkSmartPointer<vtkCompositeDataIterator> it =
-    vtk::TakeSmartPointer(reader->GetOutput()->NewIterator());
-  it->InitTraversal();
-  auto* mesh =
-    it->IsDoneWithTraversal() ? nullptr : vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
-  if (!mesh)
-  {
-    return nullptr;
-  }
-  auto model = vtkSmartPointer<vtkPolyData>::New();
-  model->ShallowCopy(mesh);
-  vtkPointData* pd = model->GetPointData();
-  pd->SetNormals(pd->GetArray("NORMAL"));
-  // glTF's v points down the image, VTK's up (vtkPNGReader puts the first row on top).
-  vtkDataArray* gltfUV = pd->GetArray("TEXCOORD_0");
-  vtkNew<vtkFloatArray> uv;
-  uv->SetName("TCoords");
-  uv->SetNumberOfComponents(2);
-  uv->SetNumberOfTuples(gltfUV->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < gltfUV->GetNumberOfTuples(); ++i)
-  {
-    uv->SetTuple2(i, gltfUV->GetComponent(i, 0), 1.0 - gltfUV->GetComponent(i, 1));
-  }
-  pd->SetTCoords(uv);
-  vtkNew<vtkPolyDataTangentFrames> frames;
-  frames->SetMethod(vtkPolyDataTangentFrames::MIKKTSPACE);
-  frames->SetInputData(model);
-  frames->Update();
-  return frames->GetOutput();
-}
-
 std::vector<unsigned char> Render(vtkPolyData* model,
   vtkTexture* normalMap,
   int size,
@@ -79,39 +27,13 @@ std::vector<unsigned char> Render(vtkPolyData* model,
   int encoding = vtkNormalMapPolyDataMapper::TANGENT_SPACE_OPENGL)
 {
   auto window = nmtest::MakeWindow(size, size);
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPosition(-1.0, 1.0, 1.5);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
-  vtkNew<vtkNormalMapPolyDataMapper> mapper;
-  mapper->SetInputData(model);
-  mapper->SetMapEncoding(encoding);
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  actor->GetProperty()->SetNormalTexture(normalMap);
-  actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
-  actor->GetProperty()->SetSpecular(0.0);
-  renderer->AddActor(actor);
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->ParallelProjectionOn();
-  // Fit the model's bounds (square window) with a 3% border.
-  double b[6];
-  model->GetBounds(b);
-  const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
-  camera->SetPosition(cx, cy, 5.0);
-  camera->SetFocalPoint(cx, cy, 0.0);
-  camera->SetParallelScale(0.515 * std::max(b[1] - b[0], b[3] - b[2]));
-  renderer->ResetCameraClippingRange();
-  window->AddRenderer(renderer);
+  const double whole[4] = { 0.0, 0.0, 1.0, 1.0 };
+  nmtest::AddKhronosView(window, whole, model, normalMap, encoding);
   window->Render();
   if (picture)
   {
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(window);
     vtkNew<vtkPNGWriter> writer;
-    writer->SetInputConnection(grab->GetOutputPort());
+    writer->SetInputData(nmtest::GrabImage(window));
     writer->SetFileName(picture);
     writer->Write();
   }
@@ -232,12 +154,9 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
                 << std::endl;
       return 125;
     }
-    auto model = LoadModel(dir + name + ".gltf");
+    auto model = nmtest::LoadKhronosModel(dir + name + ".gltf");
     check(model != nullptr, std::string(name) + ": read");
-    vtkNew<vtkPNGReader> png;
-    png->SetFileName((dir + name + "_Normal.png").c_str());
-    auto texture = nmtest::MakeNormalTexture(nullptr);
-    texture->SetInputConnection(png->GetOutputPort());
+    auto texture = nmtest::LoadKhronosNormalMap(dir + name + "_Normal.png");
     const std::string picture = folder + "/" + name + ".png";
     const int size = 512;
     // A cell is 53-70 pixels wide; the real hemisphere and the mapped one differ at its rim

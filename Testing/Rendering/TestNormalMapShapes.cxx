@@ -1,18 +1,11 @@
 // Plane (bricks), sphere (rivets) and torus (sine bump), each with tangents from
-// vtkPolyDataTangentFrames, in Phong (top row) and PBR (bottom row).
-#include "NormalMapTestScenes.h"
+// vtkPolyDataTangentFrames, in Phong (top row) and PBR (bottom row). It fails when every map's
+// green is read in the other convention, or the maps are dropped.
+#include "NormalMapImageTest.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
-#include "vtkNew.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkNormalMappingMeshes.h"
-#include "vtkPolyData.h"
 #include "vtkProperty.h"
-#include "vtkRegressionTestImage.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
-#include "vtkTexture.h"
 
 int TestNormalMapShapes(int argc, char* argv[])
 {
@@ -25,53 +18,35 @@ int TestNormalMapShapes(int argc, char* argv[])
   const nmtest::Pattern patterns[3] = {
     nmtest::Pattern::Bricks, nmtest::Pattern::Rivets, nmtest::Pattern::SineBump
   };
-
-  auto window = nmtest::MakeWindow(600, 400);
-  for (int row = 0; row < 2; ++row)
+  vtkSmartPointer<vtkTexture> textures[3];
+  for (int i = 0; i < 3; ++i)
   {
-    for (int column = 0; column < 3; ++column)
-    {
-      vtkNew<vtkRenderer> renderer;
-      renderer->SetViewport(column / 3.0, (1 - row) / 2.0, (column + 1) / 3.0, (2 - row) / 2.0);
-      renderer->SetBackground(0.1, 0.1, 0.12);
-      nmtest::AddSceneLight(renderer, glm::dvec3(-1.0, 1.5, 2.0));
-
-      vtkNew<vtkNormalMapPolyDataMapper> mapper;
-      mapper->SetInputData(meshes[column]);
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      auto texture = nmtest::MakeNormalTexture(
-        nmtest::MakeNormalMapImage(patterns[column], 256, nmtest::Storage::OpenGL));
-      actor->GetProperty()->SetNormalTexture(texture);
-      actor->GetProperty()->SetColor(0.8, 0.55, 0.4);
-      if (row == 0)
-      {
-        actor->GetProperty()->SetInterpolationToPhong();
-        actor->GetProperty()->SetSpecular(0.4);
-        actor->GetProperty()->SetSpecularPower(30.0);
-      }
-      else
-      {
-        actor->GetProperty()->SetInterpolationToPBR();
-        actor->GetProperty()->SetRoughness(0.4);
-        actor->GetProperty()->SetMetallic(0.1);
-      }
-      if (column == 1)
-      {
-        actor->RotateX(-60.0);
-      }
-      if (column == 2)
-      {
-        actor->RotateX(-50.0);
-      }
-      renderer->AddActor(actor);
-      renderer->ResetCamera();
-      renderer->GetActiveCamera()->Zoom(1.3);
-      window->AddRenderer(renderer);
-    }
+    textures[i] = nmtest::MakeNormalTexture(
+      nmtest::MakeNormalMapImage(patterns[i], 256, nmtest::Storage::OpenGL));
   }
-  window->Render();
-  nmtest::ReportRenderPath(window);
+  const double rotateX[3] = { 0.0, -60.0, -50.0 };
 
-  return nmtest::CompareWithBaseline(window, argc, argv);
+  return nmtest::RunImageTest(argc,
+    argv,
+    { "the other green convention", "the maps dropped" },
+    [&](int alteration)
+    {
+      auto window = nmtest::MakeWindow(600, 400);
+      for (int row = 0; row < 2; ++row)
+      {
+        for (int column = 0; column < 3; ++column)
+        {
+          nmtest::Panel p;
+          p.Mesh = meshes[column];
+          p.Texture = alteration == 1 ? nullptr : textures[column].Get();
+          p.Encoding = alteration == 0 ? vtkNormalMapPolyDataMapper::TANGENT_SPACE_DIRECTX
+                                       : vtkNormalMapPolyDataMapper::TANGENT_SPACE_OPENGL;
+          p.Interpolation = row == 0 ? VTK_PHONG : VTK_PBR;
+          p.RotateX = rotateX[column];
+          p.Zoom = 1.3;
+          nmtest::AddPanel(window, 3, 2, column, row, p);
+        }
+      }
+      return window;
+    });
 }

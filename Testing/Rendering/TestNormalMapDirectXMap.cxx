@@ -1,0 +1,16 @@
+// Image test: a DirectX (-Y green) RGB map of rivets on a quad and a sphere, each dome lit from the
+// upper left like the light. It fails when the map's green is read in the other convention or the
+// map is dropped (NormalMapImageTest.h).
+#include "NormalMapImageTest.h"
+
+#include "vtkNormalMapPolyDataMapper.h"
+
+int TestNormalMapDirectXMap(int argc, char* argv[])
+{
+  using Mapper = vtkNormalMapPolyDataMapper;
+  return nmtest::RunEncodingTest(argc,
+    argv,
+    nmtest::Storage::DirectX,
+    Mapper::TANGENT_SPACE_DIRECTX,
+    Mapper::TANGENT_SPACE_OPENGL);
+}

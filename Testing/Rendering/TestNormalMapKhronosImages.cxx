@@ -1,0 +1,58 @@
+// Image test: the Khronos NormalTangentTest (left) and NormalTangentMirrorTest (right) models
+// (glTF sample models by Ed Mackey, (c) 2017-2018 Analytical Graphics, Inc., CC-BY 4.0; read
+// from ../shared/data/gltf) with MikkTSpace tangents and signs: in each row of their grids the
+// normal-mapped cells look like the real-geometry cell on their left. It fails when the map's
+// green is read in the other convention or the tangent signs are dropped (the mirror model's
+// mirrored cells lit from below). Skipped (125) when the shared data is absent.
+#include "NormalMapImageTest.h"
+
+#include "vtkNormalMapPolyDataMapper.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+int TestNormalMapKhronosImages(int argc, char* argv[])
+{
+  using Mapper = vtkNormalMapPolyDataMapper;
+  const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
+  const std::string root = std::string(shared ? shared : "") + "/gltf/";
+  vtkSmartPointer<vtkPolyData> models[2], unsignedModels[2];
+  vtkSmartPointer<vtkTexture> maps[2];
+  int m = 0;
+  for (const std::string name : { "NormalTangentTest", "NormalTangentMirrorTest" })
+  {
+    const std::string file = root + name + "/" + name + ".gltf";
+    if (!std::ifstream(file))
+    {
+      std::cout << "SKIPPED: " << file << " not found (shared data absent)" << std::endl;
+      return 125;
+    }
+    models[m] = nmtest::LoadKhronosModel(file);
+    if (!models[m])
+    {
+      std::cout << "Could not read " << file << std::endl;
+      return EXIT_FAILURE;
+    }
+    unsignedModels[m] = nmtest::WithTangentLayout(models[m], nmtest::TangentLayout::Unsigned);
+    maps[m] = nmtest::LoadKhronosNormalMap(root + name + "/" + name + "_Normal.png");
+    ++m;
+  }
+  return nmtest::RunImageTest(argc,
+    argv,
+    { "the other green convention", "the tangent signs dropped" },
+    [&](int alteration)
+    {
+      auto window = nmtest::MakeWindow(800, 400);
+      for (int i = 0; i < 2; ++i)
+      {
+        const double viewport[4] = { 0.5 * i, 0.0, 0.5 * (i + 1), 1.0 };
+        nmtest::AddKhronosView(window,
+          viewport,
+          alteration == 1 ? unsignedModels[i] : models[i],
+          maps[i],
+          alteration == 0 ? Mapper::TANGENT_SPACE_DIRECTX : Mapper::TANGENT_SPACE_OPENGL);
+      }
+      return window;
+    });
+}
