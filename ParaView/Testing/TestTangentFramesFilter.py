@@ -117,6 +117,43 @@ frames.glTFSignConvention = 1
 mesh, _ = run()
 check(signs_by_side(mesh) == ({-1.0}, {1.0}), "glTF sign convention: MikkTSpace's signs negated")
 
+# Supplied tangents: a second filter fed the first one's frames keeps them all with Keep Valid
+# (they pass every check: nothing replaced, the same tangents and signs), and replaces the ones
+# planted wrong.
+frames.Method = "Angle Weighted"
+frames.glTFSignConvention = 0
+frames.OutputPrecision = "Same as input points"
+computed, _ = run()
+again = TangentFrames(Input=frames, SuppliedTangents="Keep Valid")
+again.UpdatePipeline()
+again.UpdatePropertyInformation()
+kept = servermanager.Fetch(again)
+check(again.GetPropertyValue("NumberOfReplacedTangents") == 0,
+      "Keep Valid on valid frames replaces none (%s)"
+      % again.GetPropertyValue("NumberOfReplacedTangents"))
+same = all(
+    kept.GetPointData().GetArray("Tangents").GetTuple3(i)
+    == computed.GetPointData().GetArray("Tangents").GetTuple3(i)
+    and kept.GetPointData().GetArray("TangentSigns").GetValue(i)
+    == computed.GetPointData().GetArray("TangentSigns").GetValue(i)
+    for i in range(computed.GetNumberOfPoints()))
+check(kept.GetNumberOfPoints() == computed.GetNumberOfPoints() and same,
+      "Keep Valid keeps valid frames bit for bit")
+flipped = Calculator(Input=frames, AttributeType="Point Data", ResultArrayName="TangentSigns",
+                     Function="-TangentSigns")
+again.Input = flipped
+again.UpdatePipeline()
+again.UpdatePropertyInformation()
+check(again.GetPropertyValue("NumberOfReplacedTangents") == computed.GetNumberOfPoints(),
+      "Keep Valid replaces every frame whose sign was flipped (%s of %d)"
+      % (again.GetPropertyValue("NumberOfReplacedTangents"), computed.GetNumberOfPoints()))
+check(signs_by_side(servermanager.Fetch(again)) == ({1.0}, {-1.0}),
+      "the replaced frames have the computed signs")
+again.SuppliedTangents = "Keep"
+again.UpdatePipeline()
+check(signs_by_side(servermanager.Fetch(again)) == ({-1.0}, {1.0}),
+      "Keep writes the supplied (flipped) signs as they are")
+
 # Bad input: no texture coordinates. The filter reports an error and passes the input through.
 plain = Sphere()
 plain.UpdatePipeline()
