@@ -365,9 +365,25 @@ double SignedCornerWeight(TangentMethod method,
 }
 
 /**
+ * ComputeTriangleBlock, compiled also for the wider vector units of x86-64 CPUs and picked at
+ * load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loop is worth
+ * it. Every clone performs the same IEEE operations (no contraction into fused multiply-adds:
+ * see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ */
+VTK_NORMALMAPPING_TARGET_CLONES
+void ComputeFrameBlock(vtkNormalMapping::TriangleBlock& block,
+  int count,
+  const DegeneracyTolerance& tol,
+  bool withAngles)
+{
+  vtkNormalMapping::ComputeTriangleBlock(block, count, tol, withAngles);
+}
+
+/**
  * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
  * angles when asked for), for any point and texture coordinate arrays: in parallel, or in
- * triangle order on the calling thread when `inOrder`.
+ * triangle order on the calling thread when `inOrder`. The frames are computed a block of
+ * triangles at a time (ComputeFrameBlock).
  */
 struct VisitTriangleFrames
 {
@@ -380,27 +396,38 @@ struct VisitTriangleFrames
     bool inOrder,
     const Visit& visit) const
   {
+    using vtkNormalMapping::TriangleBlock;
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
     const auto visitRange = [&](vtkIdType begin, vtkIdType end)
     {
-      for (vtkIdType t = begin; t < end; ++t)
+      TriangleBlock block; // not initialized: each triangle's entries are written before use
+      TriangleBlock* b = &block;
+      for (vtkIdType first = begin; first < end; first += TriangleBlock::Size)
       {
-        dvec3 p[3];
-        dvec2 uv[3];
-        for (int k = 0; k < 3; ++k)
+        const int count = static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, end - first));
+        for (int i = 0; i < count; ++i)
         {
-          const vtkIdType id = tris.Ids[3 * t + k];
-          const auto point = points[id];
-          const auto texture = uvs[id];
-          p[k] = dvec3(point[0], point[1], point[2]);
-          uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+          for (int k = 0; k < 3; ++k)
+          {
+            const vtkIdType id = tris.Ids[3 * (first + i) + k];
+            const auto point = points[id];
+            const auto texture = uvs[id];
+            for (int c = 0; c < 3; ++c)
+            {
+              b->P[k][c][i] = static_cast<double>(point[c]);
+            }
+            b->UV[k][0][i] = static_cast<double>(texture[0]);
+            b->UV[k][1][i] = hasV ? static_cast<double>(texture[1]) : 0.0;
+          }
         }
-        double corner[3] = { 0.0, 0.0, 0.0 };
-        const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
-          p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-        visit(t, f, corner);
+        ComputeFrameBlock(*b, count, tol, angles);
+        for (int i = 0; i < count; ++i)
+        {
+          const double corner[3] = { b->Angle[0][i], b->Angle[1][i], b->Angle[2][i] };
+          visit(first + i, b->Frame(i), corner);
+        }
       }
     };
     if (inOrder)
