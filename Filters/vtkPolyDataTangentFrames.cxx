@@ -30,6 +30,7 @@
 #include <numeric>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -353,20 +354,10 @@ struct TriangleFrames
   bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
 };
 
-/// A corner's weight signed with the handedness the triangle gives it (TriangleFrames).
-double SignedCornerWeight(TangentMethod method,
-  const TriangleFrame& f,
-  const double* angles,
-  int corner,
-  const dvec3& pointNormal)
-{
-  return vtkNormalMapping::CornerSign(f, pointNormal) *
-    vtkNormalMapping::CornerWeight(method, f, angles, corner);
-}
-
 /**
- * ComputeTriangleBlock, compiled also for the wider vector units of x86-64 CPUs and picked at
- * load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loop is worth
+ * The frames pass over one block of triangles: ComputeTriangleBlock, then, with `signs`,
+ * SignCornerWeights. Compiled also for the wider vector units of x86-64 CPUs and picked at load
+ * time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loops are worth
  * it. Every clone performs the same IEEE operations (no contraction into fused multiply-adds:
  * see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
@@ -374,16 +365,23 @@ VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeFrameBlock(vtkNormalMapping::TriangleBlock& block,
   int count,
   const DegeneracyTolerance& tol,
-  bool withAngles)
+  TangentMethod method,
+  bool signs)
 {
-  vtkNormalMapping::ComputeTriangleBlock(block, count, tol, withAngles);
+  vtkNormalMapping::ComputeTriangleBlock(
+    block, count, tol, signs && method == TangentMethod::AngleWeighted);
+  if (signs)
+  {
+    vtkNormalMapping::SignCornerWeights(block, count, method);
+  }
 }
 
 /**
- * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
- * angles when asked for), for any point and texture coordinate arrays: in parallel, or in
- * triangle order on the calling thread when `inOrder`. The frames are computed a block of
- * triangles at a time (ComputeFrameBlock).
+ * Calls visit(t, frame, signedWeights) for every triangle t with its ComputeTriangleFrame and,
+ * when `normals` (unit shading normals per point) are given, its corners' weights for `method`
+ * signed with their handedness (SignCornerWeights; else zeros), for any point and texture
+ * coordinate arrays: in parallel, or in triangle order on the calling thread when `inOrder`.
+ * The triangles are computed a block at a time (ComputeFrameBlock).
  */
 struct VisitTriangleFrames
 {
@@ -392,7 +390,8 @@ struct VisitTriangleFrames
     UVArray* uvArray,
     const Triangles& tris,
     const DegeneracyTolerance& tol,
-    bool angles,
+    TangentMethod method,
+    const dvec3* normals,
     bool inOrder,
     const Visit& visit) const
   {
@@ -402,8 +401,7 @@ struct VisitTriangleFrames
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
     const auto visitRange = [&](vtkIdType begin, vtkIdType end)
     {
-      TriangleBlock block; // not initialized: each triangle's entries are written before use
-      TriangleBlock* b = &block;
+      TriangleBlock b; // not initialized: each triangle's entries are written before use
       for (vtkIdType first = begin; first < end; first += TriangleBlock::Size)
       {
         const int count = static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, end - first));
@@ -416,17 +414,22 @@ struct VisitTriangleFrames
             const auto texture = uvs[id];
             for (int c = 0; c < 3; ++c)
             {
-              b->P[k][c][i] = static_cast<double>(point[c]);
+              b.P[k][c][i] = static_cast<double>(point[c]);
+              b.N[k][c][i] = normals ? normals[id][c] : 0.0;
             }
-            b->UV[k][0][i] = static_cast<double>(texture[0]);
-            b->UV[k][1][i] = hasV ? static_cast<double>(texture[1]) : 0.0;
+            b.UV[k][0][i] = static_cast<double>(texture[0]);
+            b.UV[k][1][i] = hasV ? static_cast<double>(texture[1]) : 0.0;
           }
         }
-        ComputeFrameBlock(*b, count, tol, angles);
+        ComputeFrameBlock(b, count, tol, method, normals != nullptr);
         for (int i = 0; i < count; ++i)
         {
-          const double corner[3] = { b->Angle[0][i], b->Angle[1][i], b->Angle[2][i] };
-          visit(first + i, b->Frame(i), corner);
+          double weights[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            weights[k] = normals ? b.SignedWeight[k][i] : 0.0;
+          }
+          visit(first + i, b.Frame(i), weights);
         }
       }
     };
@@ -537,6 +540,73 @@ struct PointSums
     const double w = std::abs(signedWeight);
     this->Tangent[side] += w * tangent;
     this->Weight[side] += w;
+  }
+};
+
+/**
+ * The sums of the one-thread scatter, in half the memory of a PointSums per point: per point the
+ * sum of the handedness its first corner gave it (Weight signed with that handedness; 0 before
+ * any corner), and the other handedness, which only points on mirror seams have, aside. Each
+ * side adds its corners in triangle order, as PointSums::Add does, so the same bits.
+ */
+struct ScatteredSums
+{
+  struct Side
+  {
+    dvec3 Tangent{ 0.0 };
+    double Weight = 0.0;
+    void Add(double signedWeight, const dvec3& tangent)
+    {
+      this->Tangent += std::abs(signedWeight) * tangent;
+      this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| has PointSums' bits
+    }
+  };
+  std::vector<Side> First;
+  std::vector<bool> HasOther;
+  std::unordered_map<vtkIdType, Side> Other;
+
+  explicit ScatteredSums(vtkIdType numPoints)
+    : First(static_cast<size_t>(numPoints))
+    , HasOther(static_cast<size_t>(numPoints), false)
+  {
+  }
+
+  /// PointSums::Add for point p.
+  void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
+  {
+    Side& first = this->First[p];
+    if (signedWeight == 0.0)
+    {
+      return;
+    }
+    if (first.Weight == 0.0 || (first.Weight > 0.0) == (signedWeight > 0.0))
+    {
+      first.Add(signedWeight, tangent);
+      return;
+    }
+    this->HasOther[p] = true;
+    this->Other[p].Add(signedWeight, tangent);
+  }
+
+  /// Point p's sums; safe to call from several threads.
+  PointSums Of(vtkIdType p) const
+  {
+    PointSums s;
+    const auto put = [&](const Side& side)
+    {
+      const int index = side.Weight > 0.0 ? 0 : 1;
+      s.Tangent[index] = side.Tangent;
+      s.Weight[index] = std::abs(side.Weight);
+    };
+    if (this->First[p].Weight != 0.0)
+    {
+      put(this->First[p]);
+    }
+    if (this->HasOther[p])
+    {
+      put(this->Other.at(p));
+    }
+    return s;
   }
 };
 
@@ -907,9 +977,12 @@ struct vtkPolyDataTangentFrames::Internals
     return *this->PointLinks;
   }
 
-  /// visit(t, frame, angles) for every triangle (VisitTriangleFrames).
+  /// visit(t, frame, signedWeights) for every triangle (VisitTriangleFrames).
   template<typename Visit>
-  void VisitFrames(bool angles, const Visit& visit, bool inOrder = false)
+  void VisitFrames(TangentMethod method,
+    const dvec3* normals,
+    const Visit& visit,
+    bool inOrder = false)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -918,7 +991,8 @@ struct vtkPolyDataTangentFrames::Internals
       VisitTriangleFrames(),
       this->Tris,
       tol,
-      angles,
+      method,
+      normals,
       inOrder,
       visit);
   }
@@ -931,7 +1005,8 @@ struct vtkPolyDataTangentFrames::Internals
   {
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
-    this->VisitFrames(false,
+    this->VisitFrames(TangentMethod::AreaWeighted,
+      nullptr,
       [&](vtkIdType t, const TriangleFrame& f, const double*)
       {
         weighted[t] = f.Area * SafeNormalize(f.Normal);
@@ -967,16 +1042,15 @@ struct vtkPolyDataTangentFrames::Internals
   {
     this->Frames.reset(new TriangleFrames(this->Tris.Count, cellTangents));
     TriangleFrames& out = *this->Frames;
-    const vtkIdType* ids = this->Tris.Ids;
-    this->VisitFrames(method == TangentMethod::AngleWeighted,
-      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+    this->VisitFrames(method,
+      normals,
+      [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
       {
         for (int k = 0; k < 3; ++k)
         {
           out.Tangent[3 * t + k] = f.Tangent[k];
-          out.SignedWeight[3 * t + k] =
-            SignedCornerWeight(method, f, angles, k, normals[ids[3 * t + k]]);
-          this->CornerSides[3 * t + k] = SideOf(out.SignedWeight[3 * t + k]);
+          out.SignedWeight[3 * t + k] = signedWeights[k];
+          this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
         }
         if (out.Area)
         {
@@ -994,23 +1068,22 @@ struct vtkPolyDataTangentFrames::Internals
    * order in which SumPoint adds them through the links, so the same bits, without the links or
    * stored frames. Counts the triangles without a frame in `degenerate`.
    */
-  std::vector<PointSums> ScatterSums(TangentMethod method,
+  ScatteredSums ScatterSums(TangentMethod method,
     const dvec3* normals,
     vtkIdType& degenerate)
   {
-    std::vector<PointSums> sums(static_cast<size_t>(this->NumberOfPoints));
+    ScatteredSums sums(this->NumberOfPoints);
     const vtkIdType* ids = this->Tris.Ids;
     this->VisitFrames(
-      method == TangentMethod::AngleWeighted,
-      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+      method,
+      normals,
+      [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
       {
         degenerate += f.Orientation == 0 ? 1 : 0;
         for (int k = 0; k < 3; ++k)
         {
-          const vtkIdType id = ids[3 * t + k];
-          const double signedWeight = SignedCornerWeight(method, f, angles, k, normals[id]);
-          sums[id].Add(signedWeight, f.Tangent);
-          this->CornerSides[3 * t + k] = SideOf(signedWeight);
+          sums.Add(ids[3 * t + k], signedWeights[k], f.Tangent);
+          this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
         }
       },
       true);
@@ -1148,11 +1221,12 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   // One thread scatters the triangles to their points; several gather them through the links.
   const bool scatter =
     vtkSMPTools::GetEstimatedNumberOfThreads() == 1 && !self->ComputeCellTangents;
-  std::vector<PointSums> scattered;
+  std::unique_ptr<ScatteredSums> scattered;
   this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
   if (scatter)
   {
-    scattered = this->ScatterSums(method, normals, self->NumberOfDegenerateTriangles);
+    scattered.reset(new ScatteredSums(
+      this->ScatterSums(method, normals, self->NumberOfDegenerateTriangles)));
   }
   else
   {
@@ -1164,7 +1238,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     }
   }
   const auto sumsOf = [&](vtkIdType p)
-  { return scatter ? scattered[p] : SumPoint(*this->PointLinks, *this->Frames, p); };
+  { return scatter ? scattered->Of(p) : SumPoint(*this->PointLinks, *this->Frames, p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
   const std::vector<vtkIdType> conflicts =

@@ -361,6 +361,10 @@ struct TriangleBlock
   double Angle[3][Size]; ///< corner angles, when asked for
   double Orientation[Size]; ///< +1, -1 or 0 (TriangleFrame::Orientation)
   double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
+  /// For SignCornerWeights: the unit shading normal of corner k's point, component c, at
+  /// N[k][c][i] (in), and the corner's weight signed with its handedness (out).
+  double N[3][3][Size];
+  double SignedWeight[3][Size];
 
   /// Stores triangle i's frame and corner angles.
   void Set(int i, const TriangleFrame& f, const double angles[3])
@@ -508,6 +512,47 @@ inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const g
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
   return CornerSign(frame.Orientation, frame.Normal, n);
+}
+
+namespace detail
+{
+/// SignCornerWeights for one method, a template argument so that the loop has no branch.
+template<TangentMethod Method>
+void SignCornerWeightsFor(TriangleBlock& b, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const TriangleFrame f = b.Frame(i);
+    const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
+    for (int k = 0; k < 3; ++k)
+    {
+      const glm::dvec3 n(b.N[k][0][i], b.N[k][1][i], b.N[k][2][i]);
+      b.SignedWeight[k][i] = CornerSign(f, n) * CornerWeight(Method, f, angles, k);
+    }
+  }
+}
+} // namespace detail
+
+/**
+ * Per corner of the first `count` triangles of a block whose frames ComputeTriangleBlock gave
+ * (with the angles for AngleWeighted), and whose corners' unit shading normals are in N: its
+ * weight signed with the handedness the triangle gives it (CornerSign); zero without a frame.
+ */
+inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+{
+  switch (method)
+  {
+    case TangentMethod::AngleWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AngleWeighted>(b, count);
+      break;
+    case TangentMethod::AreaWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AreaWeighted>(b, count);
+      break;
+    case TangentMethod::Unweighted:
+    default:
+      detail::SignCornerWeightsFor<TangentMethod::Unweighted>(b, count);
+      break;
+  }
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.
