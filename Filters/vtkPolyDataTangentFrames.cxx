@@ -36,19 +36,20 @@
 
 /*
  * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
- * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where a
- *    pass needs them, every point gets the list of its triangle corners in that order (the links).
+ * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
+ *    normals are computed, every point gets the list of its triangle corners in that order (the
+ *    links).
  * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
  *    input has none) the area-weighted sum of its triangles' normals, through the links.
- * 3. Every triangle gets its frame (ComputeTriangleFrame) and, per corner, its weight signed
- *    with the handedness it gives that corner's point (the triangle's orientation, flipped where
- *    its winding disagrees with the point's normal).
+ * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
+ *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
+ *    orientation, flipped where its winding disagrees with the point's normal).
  * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
- *    on one thread the frames pass adds each triangle to its three points as it goes; on several
- *    the frames are stored and every point gathers them through its links. Either way each point
- *    adds the same terms in the same order, so the output is bit-identical for any number of
- *    threads. A point then takes the frame of its one handedness, or on a mirror seam the +1
- *    frame (the -1 frame goes to the point's copy) or the heavier side.
+ *    the frames of a chunk of triangles are computed in parallel, then added to their points on
+ *    one thread, chunk after chunk. Each point adds the same terms in the same order, so the
+ *    output is bit-identical for any number of threads. A point then takes the frame of its one
+ *    handedness, or on a mirror seam the +1 frame (the -1 frame goes to the point's copy) or the
+ *    heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -286,7 +287,7 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
 
 /**
  * Per point, its triangle corners (3 * triangle + corner) in triangle order: the order in which
- * every per-point sum adds its terms, whatever the number of threads.
+ * the computed normals add their terms, whatever the number of threads.
  */
 struct Links
 {
@@ -323,7 +324,7 @@ struct Links
   }
 };
 
-/// What every triangle gives its corners, one array per quantity.
+/// What the triangles of a chunk give their corners, one array per quantity.
 struct TriangleFrames
 {
   Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
@@ -377,11 +378,11 @@ void ComputeFrameBlock(vtkNormalMapping::TriangleBlock& block,
 }
 
 /**
- * Calls visit(t, frame, signedWeights) for every triangle t with its ComputeTriangleFrame and,
- * when `normals` (unit shading normals per point) are given, its corners' weights for `method`
- * signed with their handedness (SignCornerWeights; else zeros), for any point and texture
- * coordinate arrays: in parallel, or in triangle order on the calling thread when `inOrder`.
- * The triangles are computed a block at a time (ComputeFrameBlock).
+ * Calls visit(t, frame, signedWeights), in parallel, for every triangle t of [begin, end) with its
+ * ComputeTriangleFrame and, when `normals` (unit shading normals per point) are given, its
+ * corners' weights for `method` signed with their handedness (SignCornerWeights; else zeros), for
+ * any point and texture coordinate arrays. The triangles are computed a block at a time
+ * (ComputeFrameBlock).
  */
 struct VisitTriangleFrames
 {
@@ -389,10 +390,11 @@ struct VisitTriangleFrames
   void operator()(PointArray* pointArray,
     UVArray* uvArray,
     const Triangles& tris,
+    vtkIdType begin,
+    vtkIdType end,
     const DegeneracyTolerance& tol,
     TangentMethod method,
     const dvec3* normals,
-    bool inOrder,
     const Visit& visit) const
   {
     using vtkNormalMapping::TriangleBlock;
@@ -433,14 +435,7 @@ struct VisitTriangleFrames
         }
       }
     };
-    if (inOrder)
-    {
-      visitRange(0, tris.Count);
-    }
-    else
-    {
-      vtkSMPTools::For(0, tris.Count, visitRange);
-    }
+    vtkSMPTools::For(begin, end, visitRange);
   }
 };
 
@@ -525,29 +520,17 @@ struct PointSums
   dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
   double Weight[2] = { 0.0, 0.0 };
 
-  /// Whether a corner has this handedness: the weights added are positive (corner angles, areas
-  /// clamped to DBL_MAX, or 1), so a side's sum is positive once it has one.
+  /// Whether a corner has this handedness: the weights added are non-zero with the sign of the
+  /// handedness (corner angles, areas clamped to DBL_MAX, or 1), so |a side's sum| is positive
+  /// once it has one.
   bool Has(int side) const { return this->Weight[side] > 0.0; }
-
-  /// Adds one corner: its triangle's tangent with the corner's signed weight (TriangleFrames).
-  void Add(double signedWeight, const dvec3& tangent)
-  {
-    if (signedWeight == 0.0)
-    {
-      return;
-    }
-    const int side = signedWeight > 0.0 ? 0 : 1;
-    const double w = std::abs(signedWeight);
-    this->Tangent[side] += w * tangent;
-    this->Weight[side] += w;
-  }
 };
 
 /**
- * The sums of the one-thread scatter, in half the memory of a PointSums per point: per point the
- * sum of the handedness its first corner gave it (Weight signed with that handedness; 0 before
- * any corner), and the other handedness, which only points on mirror seams have, aside. Each
- * side adds its corners in triangle order, as PointSums::Add does, so the same bits.
+ * Every point's sums, in half the memory of a PointSums per point: per point the sum of the
+ * handedness its first corner gave it (Weight signed with that handedness; 0 before any corner),
+ * and the other handedness, which only points on mirror seams have, aside. Each side adds its
+ * corners in the order they come (SumFrames: triangle order).
  */
 struct ScatteredSums
 {
@@ -558,7 +541,7 @@ struct ScatteredSums
     void Add(double signedWeight, const dvec3& tangent)
     {
       this->Tangent += std::abs(signedWeight) * tangent;
-      this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| has PointSums' bits
+      this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
     }
   };
   std::vector<Side> First;
@@ -571,7 +554,7 @@ struct ScatteredSums
   {
   }
 
-  /// PointSums::Add for point p.
+  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
   {
     Side& first = this->First[p];
@@ -610,16 +593,8 @@ struct ScatteredSums
   }
 };
 
-/// The sums of point p over its triangles, in triangle order.
-PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p)
-{
-  PointSums s;
-  links.ForEach(
-    p, [&](vtkIdType t, int k) { s.Add(frames.SignedWeight[3 * t + k], frames.TangentOf(t)); });
-  return s;
-}
 
-/// What the gather found at a point.
+/// What the sums of a point show.
 enum class PointKind : unsigned char
 {
   Framed,   ///< its corners have one handedness
@@ -977,12 +952,13 @@ struct vtkPolyDataTangentFrames::Internals
     return *this->PointLinks;
   }
 
-  /// visit(t, frame, signedWeights) for every triangle (VisitTriangleFrames).
+  /// visit(t, frame, signedWeights) for every triangle of [begin, end) (VisitTriangleFrames).
   template<typename Visit>
   void VisitFrames(TangentMethod method,
     const dvec3* normals,
     const Visit& visit,
-    bool inOrder = false)
+    vtkIdType begin,
+    vtkIdType end)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -990,10 +966,11 @@ struct vtkPolyDataTangentFrames::Internals
       this->UVs,
       VisitTriangleFrames(),
       this->Tris,
+      begin,
+      end,
       tol,
       method,
       normals,
-      inOrder,
       visit);
   }
 
@@ -1014,7 +991,9 @@ struct vtkPolyDataTangentFrames::Internals
         {
           area[t] = f.Area;
         }
-      });
+      },
+      0,
+      this->Tris.Count);
     if (cellNormals)
     {
       vtkSMPTools::For(0,
@@ -1037,56 +1016,73 @@ struct vtkPolyDataTangentFrames::Internals
     return AreaWeightedNormals(this->PointLinksOf(), weighted, empty);
   }
 
-  /// The frames pass: tangents and signed corner weights with the points' shading normals.
-  void ComputeFrames(TangentMethod method, const dvec3* normals, bool cellTangents)
+  /**
+   * The frames of the triangles [begin, end), stored (triangle t at t - begin): tangents and
+   * corner weights signed with the handedness they give the points' shading normals, and the
+   * corners' handedness (CornerSides).
+   */
+  void ComputeFrames(TangentMethod method, const dvec3* normals, vtkIdType begin, vtkIdType end)
   {
-    this->Frames.reset(new TriangleFrames(this->Tris.Count, cellTangents));
     TriangleFrames& out = *this->Frames;
-    this->VisitFrames(method,
+    this->VisitFrames(
+      method,
       normals,
       [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
       {
+        const vtkIdType i = t - begin;
         for (int k = 0; k < 3; ++k)
         {
-          out.Tangent[3 * t + k] = f.Tangent[k];
-          out.SignedWeight[3 * t + k] = signedWeights[k];
+          out.Tangent[3 * i + k] = f.Tangent[k];
+          out.SignedWeight[3 * i + k] = signedWeights[k];
           this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
         }
         if (out.Area)
         {
           for (int k = 0; k < 3; ++k)
           {
-            out.Normal[3 * t + k] = f.Normal[k];
+            out.Normal[3 * i + k] = f.Normal[k];
           }
-          out.Area[t] = f.Area;
+          out.Area[i] = f.Area;
         }
-      });
+      },
+      begin,
+      end);
   }
 
   /**
-   * Every point's sums, each triangle added to its corners in triangle order on this thread: the
-   * order in which SumPoint adds them through the links, so the same bits, without the links or
-   * stored frames. Counts the triangles without a frame in `degenerate`.
+   * Every point's sums. The frames of a chunk of triangles are computed in parallel and stored
+   * (ComputeFrames), then added to the points of their corners in triangle order on this thread,
+   * chunk after chunk: each point adds the same terms in the same order for any number of
+   * threads, so the same bits. A chunk's frames stay in the cache until they are added; with
+   * cell tangents the chunk is every triangle, whose frames CellTangentArray reads. Counts the
+   * triangles without a frame in `degenerate`.
    */
-  ScatteredSums ScatterSums(TangentMethod method,
+  ScatteredSums SumFrames(TangentMethod method,
     const dvec3* normals,
+    bool cellTangents,
     vtkIdType& degenerate)
   {
-    ScatteredSums sums(this->NumberOfPoints);
+    constexpr vtkIdType ChunkSize = 16384;
+    const vtkIdType count = this->Tris.Count;
+    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
+    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
+    const TriangleFrames& frames = *this->Frames;
     const vtkIdType* ids = this->Tris.Ids;
-    this->VisitFrames(
-      method,
-      normals,
-      [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
+    ScatteredSums sums(this->NumberOfPoints);
+    for (vtkIdType begin = 0; begin < count; begin += chunk)
+    {
+      const vtkIdType end = std::min(begin + chunk, count);
+      this->ComputeFrames(method, normals, begin, end);
+      for (vtkIdType t = begin; t < end; ++t)
       {
-        degenerate += f.Orientation == 0 ? 1 : 0;
+        const vtkIdType i = t - begin;
+        degenerate += frames.HasFrame(i) ? 0 : 1;
         for (int k = 0; k < 3; ++k)
         {
-          sums.Add(ids[3 * t + k], signedWeights[k], f.Tangent);
-          this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
+          sums.Add(ids[3 * t + k], frames.SignedWeight[3 * i + k], frames.TangentOf(i));
         }
-      },
-      true);
+      }
+    }
     return sums;
   }
 
@@ -1218,27 +1214,10 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
       bitangents ? bitangents->GetPointer(0) : nullptr };
   };
 
-  // One thread scatters the triangles to their points; several gather them through the links.
-  const bool scatter =
-    vtkSMPTools::GetEstimatedNumberOfThreads() == 1 && !self->ComputeCellTangents;
-  std::unique_ptr<ScatteredSums> scattered;
   this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
-  if (scatter)
-  {
-    scattered.reset(new ScatteredSums(
-      this->ScatterSums(method, normals, self->NumberOfDegenerateTriangles)));
-  }
-  else
-  {
-    this->ComputeFrames(method, normals, self->ComputeCellTangents);
-    this->PointLinksOf();
-    for (vtkIdType t = 0; t < this->Tris.Count; ++t)
-    {
-      self->NumberOfDegenerateTriangles += this->Frames->HasFrame(t) ? 0 : 1;
-    }
-  }
-  const auto sumsOf = [&](vtkIdType p)
-  { return scatter ? scattered->Of(p) : SumPoint(*this->PointLinks, *this->Frames, p); };
+  const ScatteredSums sums = this->SumFrames(
+    method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+  const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
   const std::vector<vtkIdType> conflicts =
