@@ -668,6 +668,12 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   vtkIdType numPoints)
 {
   std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  // Which points are split, looked up per connectivity entry before any search.
+  std::vector<bool> isSplit(static_cast<size_t>(numPoints), false);
+  for (const SplitPoint& s : splits)
+  {
+    isSplit[s.Id] = true;
+  }
   vtkIdType firstCell = 0;
   vtkIdType base = 0;
   for (int kind = 0; kind < 2; ++kind)
@@ -684,6 +690,10 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           for (vtkIdType k = 0; k < n; ++k)
           {
             const vtkIdType id = conn[offsets[c] + k];
+            if (!isSplit[id])
+            {
+              continue;
+            }
             const auto it = std::lower_bound(splits.begin(),
               splits.end(),
               id,
