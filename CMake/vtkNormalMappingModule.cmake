@@ -49,13 +49,16 @@ foreach(_nm_shader IN ITEMS vtkNormalMapVS vtkNormalMapGS vtkNormalMapFS)
   list(APPEND _nm_private_headers "${_nm_shader_header}")
 endforeach()
 
-# The MikkTSpace kernel reproduces the reference's float rounding: no fused multiply-add (GCC
-# contracts by default and ignores the STDC FP_CONTRACT pragma the source carries for others).
-# It reads neither errno nor floating-point exception flags, so sqrt and divisions may be
-# vectorised (with the default -fmath-errno / -ftrapping-math GCC keeps them scalar); neither
-# option changes a result.
+# The MikkTSpace kernel reproduces the reference's float rounding, and the weighted methods give
+# the same bits on every CPU (their frame loop is compiled for several instruction sets): no
+# fused multiply-add (GCC contracts by default and ignores the STDC FP_CONTRACT pragma the
+# MikkTSpace source carries for others). Neither reads errno nor floating-point exception flags,
+# so sqrt and divisions may be vectorised (with the default -fmath-errno / -ftrapping-math GCC
+# keeps them scalar); neither option changes a result.
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-  set_property(SOURCE "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkMikkTSpaceKernel.cxx"
+  set_property(SOURCE
+    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkMikkTSpaceKernel.cxx"
+    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkPolyDataTangentFrames.cxx"
     APPEND PROPERTY COMPILE_OPTIONS -ffp-contract=off -fno-math-errno -fno-trapping-math)
 endif()
 

@@ -21,6 +21,22 @@
 #include <utility>
 #include <vector>
 
+/**
+ * Marks a function to be compiled also for AVX2 and AVX-512 and picked by the CPU at load time
+ * (GCC function multiversioning, through ifunc: x86-64 Linux), with every call in it inlined
+ * (flatten), so that each clone holds its own copy of the loops it calls. Empty for other
+ * compilers and targets, where the function is compiled once for the default target; also for
+ * Clang, which refuses flatten on a multiversioned function, and whose clones would then only
+ * call the loops compiled for the default target. For the one loop whose speed depends on the
+ * width of the vector unit; the source stays one portable function.
+ */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define VTK_NORMALMAPPING_TARGET_CLONES                                                            \
+  __attribute__((target_clones("avx512f", "avx2", "default"), flatten))
+#else
+#define VTK_NORMALMAPPING_TARGET_CLONES
+#endif
+
 namespace vtkNormalMapping
 {
 namespace detail

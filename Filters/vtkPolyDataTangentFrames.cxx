@@ -30,24 +30,26 @@
 #include <numeric>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 /*
  * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
- * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where a
- *    pass needs them, every point gets the list of its triangle corners in that order (the links).
+ * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
+ *    normals are computed, every point gets the list of its triangle corners in that order (the
+ *    links).
  * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
  *    input has none) the area-weighted sum of its triangles' normals, through the links.
- * 3. Every triangle gets its frame (ComputeTriangleFrame) and, per corner, its weight signed
- *    with the handedness it gives that corner's point (the triangle's orientation, flipped where
- *    its winding disagrees with the point's normal).
+ * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
+ *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
+ *    orientation, flipped where its winding disagrees with the point's normal).
  * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
- *    on one thread the frames pass adds each triangle to its three points as it goes; on several
- *    the frames are stored and every point gathers them through its links. Either way each point
- *    adds the same terms in the same order, so the output is bit-identical for any number of
- *    threads. A point then takes the frame of its one handedness, or on a mirror seam the +1
- *    frame (the -1 frame goes to the point's copy) or the heavier side.
+ *    the frames of a chunk of triangles are computed in parallel, then added to their points on
+ *    one thread, chunk after chunk. Each point adds the same terms in the same order, so the
+ *    output is bit-identical for any number of threads. A point then takes the frame of its one
+ *    handedness, or on a mirror seam the +1 frame (the -1 frame goes to the point's copy) or the
+ *    heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -285,7 +287,7 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
 
 /**
  * Per point, its triangle corners (3 * triangle + corner) in triangle order: the order in which
- * every per-point sum adds its terms, whatever the number of threads.
+ * the computed normals add their terms, whatever the number of threads.
  */
 struct Links
 {
@@ -322,7 +324,7 @@ struct Links
   }
 };
 
-/// What every triangle gives its corners, one array per quantity.
+/// What the triangles of a chunk give their corners, one array per quantity.
 struct TriangleFrames
 {
   Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
@@ -353,21 +355,34 @@ struct TriangleFrames
   bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
 };
 
-/// A corner's weight signed with the handedness the triangle gives it (TriangleFrames).
-double SignedCornerWeight(TangentMethod method,
-  const TriangleFrame& f,
-  const double* angles,
-  int corner,
-  const dvec3& pointNormal)
+/**
+ * The frames pass over one block of triangles: ComputeTriangleBlock, then, with `signs`,
+ * SignCornerWeights. Compiled also for the wider vector units of x86-64 CPUs and picked at load
+ * time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loops are worth
+ * it. Every clone performs the same IEEE operations (no contraction into fused multiply-adds:
+ * see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ */
+VTK_NORMALMAPPING_TARGET_CLONES
+void ComputeFrameBlock(vtkNormalMapping::TriangleBlock& block,
+  int count,
+  const DegeneracyTolerance& tol,
+  TangentMethod method,
+  bool signs)
 {
-  return vtkNormalMapping::CornerSign(f, pointNormal) *
-    vtkNormalMapping::CornerWeight(method, f, angles, corner);
+  vtkNormalMapping::ComputeTriangleBlock(
+    block, count, tol, signs && method == TangentMethod::AngleWeighted);
+  if (signs)
+  {
+    vtkNormalMapping::SignCornerWeights(block, count, method);
+  }
 }
 
 /**
- * Calls visit(t, frame, angles) for every triangle t with its ComputeTriangleFrame (and corner
- * angles when asked for), for any point and texture coordinate arrays: in parallel, or in
- * triangle order on the calling thread when `inOrder`.
+ * Calls visit(t, frame, signedWeights), in parallel, for every triangle t of [begin, end) with its
+ * ComputeTriangleFrame and, when `normals` (unit shading normals per point) are given, its
+ * corners' weights for `method` signed with their handedness (SignCornerWeights; else zeros), for
+ * any point and texture coordinate arrays. The triangles are computed a block at a time
+ * (ComputeFrameBlock).
  */
 struct VisitTriangleFrames
 {
@@ -375,42 +390,52 @@ struct VisitTriangleFrames
   void operator()(PointArray* pointArray,
     UVArray* uvArray,
     const Triangles& tris,
+    vtkIdType begin,
+    vtkIdType end,
     const DegeneracyTolerance& tol,
-    bool angles,
-    bool inOrder,
+    TangentMethod method,
+    const dvec3* normals,
     const Visit& visit) const
   {
+    using vtkNormalMapping::TriangleBlock;
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
     const auto visitRange = [&](vtkIdType begin, vtkIdType end)
     {
-      for (vtkIdType t = begin; t < end; ++t)
+      TriangleBlock b; // not initialized: each triangle's entries are written before use
+      for (vtkIdType first = begin; first < end; first += TriangleBlock::Size)
       {
-        dvec3 p[3];
-        dvec2 uv[3];
-        for (int k = 0; k < 3; ++k)
+        const int count = static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, end - first));
+        for (int i = 0; i < count; ++i)
         {
-          const vtkIdType id = tris.Ids[3 * t + k];
-          const auto point = points[id];
-          const auto texture = uvs[id];
-          p[k] = dvec3(point[0], point[1], point[2]);
-          uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+          for (int k = 0; k < 3; ++k)
+          {
+            const vtkIdType id = tris.Ids[3 * (first + i) + k];
+            const auto point = points[id];
+            const auto texture = uvs[id];
+            for (int c = 0; c < 3; ++c)
+            {
+              b.P[k][c][i] = static_cast<double>(point[c]);
+              b.N[k][c][i] = normals ? normals[id][c] : 0.0;
+            }
+            b.UV[k][0][i] = static_cast<double>(texture[0]);
+            b.UV[k][1][i] = hasV ? static_cast<double>(texture[1]) : 0.0;
+          }
         }
-        double corner[3] = { 0.0, 0.0, 0.0 };
-        const TriangleFrame f = vtkNormalMapping::ComputeTriangleFrame(
-          p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles ? corner : nullptr);
-        visit(t, f, corner);
+        ComputeFrameBlock(b, count, tol, method, normals != nullptr);
+        for (int i = 0; i < count; ++i)
+        {
+          double weights[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            weights[k] = normals ? b.SignedWeight[k][i] : 0.0;
+          }
+          visit(first + i, b.Frame(i), weights);
+        }
       }
     };
-    if (inOrder)
-    {
-      visitRange(0, tris.Count);
-    }
-    else
-    {
-      vtkSMPTools::For(0, tris.Count, visitRange);
-    }
+    vtkSMPTools::For(begin, end, visitRange);
   }
 };
 
@@ -495,34 +520,81 @@ struct PointSums
   dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
   double Weight[2] = { 0.0, 0.0 };
 
-  /// Whether a corner has this handedness: the weights added are positive (corner angles, areas
-  /// clamped to DBL_MAX, or 1), so a side's sum is positive once it has one.
+  /// Whether a corner has this handedness: the weights added are non-zero with the sign of the
+  /// handedness (corner angles, areas clamped to DBL_MAX, or 1), so |a side's sum| is positive
+  /// once it has one.
   bool Has(int side) const { return this->Weight[side] > 0.0; }
+};
 
-  /// Adds one corner: its triangle's tangent with the corner's signed weight (TriangleFrames).
-  void Add(double signedWeight, const dvec3& tangent)
+/**
+ * Every point's sums, in half the memory of a PointSums per point: per point the sum of the
+ * handedness its first corner gave it (Weight signed with that handedness; 0 before any corner),
+ * and the other handedness, which only points on mirror seams have, aside. Each side adds its
+ * corners in the order they come (SumFrames: triangle order).
+ */
+struct ScatteredSums
+{
+  struct Side
   {
+    dvec3 Tangent{ 0.0 };
+    double Weight = 0.0;
+    void Add(double signedWeight, const dvec3& tangent)
+    {
+      this->Tangent += std::abs(signedWeight) * tangent;
+      this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
+    }
+  };
+  std::vector<Side> First;
+  std::vector<bool> HasOther;
+  std::unordered_map<vtkIdType, Side> Other;
+
+  explicit ScatteredSums(vtkIdType numPoints)
+    : First(static_cast<size_t>(numPoints))
+    , HasOther(static_cast<size_t>(numPoints), false)
+  {
+  }
+
+  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight.
+  void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
+  {
+    Side& first = this->First[p];
     if (signedWeight == 0.0)
     {
       return;
     }
-    const int side = signedWeight > 0.0 ? 0 : 1;
-    const double w = std::abs(signedWeight);
-    this->Tangent[side] += w * tangent;
-    this->Weight[side] += w;
+    if (first.Weight == 0.0 || (first.Weight > 0.0) == (signedWeight > 0.0))
+    {
+      first.Add(signedWeight, tangent);
+      return;
+    }
+    this->HasOther[p] = true;
+    this->Other[p].Add(signedWeight, tangent);
+  }
+
+  /// Point p's sums; safe to call from several threads.
+  PointSums Of(vtkIdType p) const
+  {
+    PointSums s;
+    const auto put = [&](const Side& side)
+    {
+      const int index = side.Weight > 0.0 ? 0 : 1;
+      s.Tangent[index] = side.Tangent;
+      s.Weight[index] = std::abs(side.Weight);
+    };
+    if (this->First[p].Weight != 0.0)
+    {
+      put(this->First[p]);
+    }
+    if (this->HasOther[p])
+    {
+      put(this->Other.at(p));
+    }
+    return s;
   }
 };
 
-/// The sums of point p over its triangles, in triangle order.
-PointSums SumPoint(const Links& links, const TriangleFrames& frames, vtkIdType p)
-{
-  PointSums s;
-  links.ForEach(
-    p, [&](vtkIdType t, int k) { s.Add(frames.SignedWeight[3 * t + k], frames.TangentOf(t)); });
-  return s;
-}
 
-/// What the gather found at a point.
+/// What the sums of a point show.
 enum class PointKind : unsigned char
 {
   Framed,   ///< its corners have one handedness
@@ -596,6 +668,12 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   vtkIdType numPoints)
 {
   std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  // Which points are split, looked up per connectivity entry before any search.
+  std::vector<bool> isSplit(static_cast<size_t>(numPoints), false);
+  for (const SplitPoint& s : splits)
+  {
+    isSplit[s.Id] = true;
+  }
   vtkIdType firstCell = 0;
   vtkIdType base = 0;
   for (int kind = 0; kind < 2; ++kind)
@@ -612,6 +690,10 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           for (vtkIdType k = 0; k < n; ++k)
           {
             const vtkIdType id = conn[offsets[c] + k];
+            if (!isSplit[id])
+            {
+              continue;
+            }
             const auto it = std::lower_bound(splits.begin(),
               splits.end(),
               id,
@@ -880,9 +962,13 @@ struct vtkPolyDataTangentFrames::Internals
     return *this->PointLinks;
   }
 
-  /// visit(t, frame, angles) for every triangle (VisitTriangleFrames).
+  /// visit(t, frame, signedWeights) for every triangle of [begin, end) (VisitTriangleFrames).
   template<typename Visit>
-  void VisitFrames(bool angles, const Visit& visit, bool inOrder = false)
+  void VisitFrames(TangentMethod method,
+    const dvec3* normals,
+    const Visit& visit,
+    vtkIdType begin,
+    vtkIdType end)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -890,9 +976,11 @@ struct vtkPolyDataTangentFrames::Internals
       this->UVs,
       VisitTriangleFrames(),
       this->Tris,
+      begin,
+      end,
       tol,
-      angles,
-      inOrder,
+      method,
+      normals,
       visit);
   }
 
@@ -904,7 +992,8 @@ struct vtkPolyDataTangentFrames::Internals
   {
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
-    this->VisitFrames(false,
+    this->VisitFrames(TangentMethod::AreaWeighted,
+      nullptr,
       [&](vtkIdType t, const TriangleFrame& f, const double*)
       {
         weighted[t] = f.Area * SafeNormalize(f.Normal);
@@ -912,7 +1001,9 @@ struct vtkPolyDataTangentFrames::Internals
         {
           area[t] = f.Area;
         }
-      });
+      },
+      0,
+      this->Tris.Count);
     if (cellNormals)
     {
       vtkSMPTools::For(0,
@@ -935,58 +1026,73 @@ struct vtkPolyDataTangentFrames::Internals
     return AreaWeightedNormals(this->PointLinksOf(), weighted, empty);
   }
 
-  /// The frames pass: tangents and signed corner weights with the points' shading normals.
-  void ComputeFrames(TangentMethod method, const dvec3* normals, bool cellTangents)
+  /**
+   * The frames of the triangles [begin, end), stored (triangle t at t - begin): tangents and
+   * corner weights signed with the handedness they give the points' shading normals, and the
+   * corners' handedness (CornerSides).
+   */
+  void ComputeFrames(TangentMethod method, const dvec3* normals, vtkIdType begin, vtkIdType end)
   {
-    this->Frames.reset(new TriangleFrames(this->Tris.Count, cellTangents));
     TriangleFrames& out = *this->Frames;
-    const vtkIdType* ids = this->Tris.Ids;
-    this->VisitFrames(method == TangentMethod::AngleWeighted,
-      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+    this->VisitFrames(
+      method,
+      normals,
+      [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
       {
+        const vtkIdType i = t - begin;
         for (int k = 0; k < 3; ++k)
         {
-          out.Tangent[3 * t + k] = f.Tangent[k];
-          out.SignedWeight[3 * t + k] =
-            SignedCornerWeight(method, f, angles, k, normals[ids[3 * t + k]]);
-          this->CornerSides[3 * t + k] = SideOf(out.SignedWeight[3 * t + k]);
+          out.Tangent[3 * i + k] = f.Tangent[k];
+          out.SignedWeight[3 * i + k] = signedWeights[k];
+          this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
         }
         if (out.Area)
         {
           for (int k = 0; k < 3; ++k)
           {
-            out.Normal[3 * t + k] = f.Normal[k];
+            out.Normal[3 * i + k] = f.Normal[k];
           }
-          out.Area[t] = f.Area;
+          out.Area[i] = f.Area;
         }
-      });
+      },
+      begin,
+      end);
   }
 
   /**
-   * Every point's sums, each triangle added to its corners in triangle order on this thread: the
-   * order in which SumPoint adds them through the links, so the same bits, without the links or
-   * stored frames. Counts the triangles without a frame in `degenerate`.
+   * Every point's sums. The frames of a chunk of triangles are computed in parallel and stored
+   * (ComputeFrames), then added to the points of their corners in triangle order on this thread,
+   * chunk after chunk: each point adds the same terms in the same order for any number of
+   * threads, so the same bits. A chunk's frames stay in the cache until they are added; with
+   * cell tangents the chunk is every triangle, whose frames CellTangentArray reads. Counts the
+   * triangles without a frame in `degenerate`.
    */
-  std::vector<PointSums> ScatterSums(TangentMethod method,
+  ScatteredSums SumFrames(TangentMethod method,
     const dvec3* normals,
+    bool cellTangents,
     vtkIdType& degenerate)
   {
-    std::vector<PointSums> sums(static_cast<size_t>(this->NumberOfPoints));
+    constexpr vtkIdType ChunkSize = 16384;
+    const vtkIdType count = this->Tris.Count;
+    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
+    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
+    const TriangleFrames& frames = *this->Frames;
     const vtkIdType* ids = this->Tris.Ids;
-    this->VisitFrames(
-      method == TangentMethod::AngleWeighted,
-      [&](vtkIdType t, const TriangleFrame& f, const double* angles)
+    ScatteredSums sums(this->NumberOfPoints);
+    for (vtkIdType begin = 0; begin < count; begin += chunk)
+    {
+      const vtkIdType end = std::min(begin + chunk, count);
+      this->ComputeFrames(method, normals, begin, end);
+      for (vtkIdType t = begin; t < end; ++t)
       {
-        degenerate += f.Orientation == 0 ? 1 : 0;
+        const vtkIdType i = t - begin;
+        degenerate += frames.HasFrame(i) ? 0 : 1;
         for (int k = 0; k < 3; ++k)
         {
-          const vtkIdType id = ids[3 * t + k];
-          const double signedWeight = SignedCornerWeight(method, f, angles, k, normals[id]);
-          sums[id].Add(signedWeight, f.Tangent);
-          this->CornerSides[3 * t + k] = SideOf(signedWeight);
+          sums.Add(ids[3 * t + k], frames.SignedWeight[3 * i + k], frames.TangentOf(i));
         }
-      },
-      true);
+      }
+    }
     return sums;
   }
 
@@ -1118,26 +1224,10 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
       bitangents ? bitangents->GetPointer(0) : nullptr };
   };
 
-  // One thread scatters the triangles to their points; several gather them through the links.
-  const bool scatter =
-    vtkSMPTools::GetEstimatedNumberOfThreads() == 1 && !self->ComputeCellTangents;
-  std::vector<PointSums> scattered;
   this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
-  if (scatter)
-  {
-    scattered = this->ScatterSums(method, normals, self->NumberOfDegenerateTriangles);
-  }
-  else
-  {
-    this->ComputeFrames(method, normals, self->ComputeCellTangents);
-    this->PointLinksOf();
-    for (vtkIdType t = 0; t < this->Tris.Count; ++t)
-    {
-      self->NumberOfDegenerateTriangles += this->Frames->HasFrame(t) ? 0 : 1;
-    }
-  }
-  const auto sumsOf = [&](vtkIdType p)
-  { return scatter ? scattered[p] : SumPoint(*this->PointLinks, *this->Frames, p); };
+  const ScatteredSums sums = this->SumFrames(
+    method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+  const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
   const std::vector<vtkIdType> conflicts =

@@ -119,11 +119,17 @@ inline double PowerOfTwo(int k)
 constexpr double SafeMinimum = 0x1p-160;
 constexpr double SafeMaximum = 0x1p160;
 
+/// Whether vectors whose largest component is m need no rescaling (false for 0 and non-finite m).
+inline bool InSafeRange(double m)
+{
+  return (m >= SafeMinimum) & (m <= SafeMaximum);
+}
+
 /// The exponent by which vectors whose largest component is m > 0 are rescaled: 0 inside the
 /// safe range, else the one that brings m into [0.5, 1).
 inline int RescaleExponent(double m)
 {
-  return (m >= SafeMinimum && m <= SafeMaximum) ? 0 : UnitExponent(m);
+  return InSafeRange(m) ? 0 : UnitExponent(m);
 }
 
 /// The same for the normalization of one vector (normals, summed tangents): no product of two
@@ -186,7 +192,8 @@ constexpr double Pi = 3.14159265358979323846;
  * atan2(s, c) for s >= 0, in [0, pi]: reduce to z = min/max in [0, 1], then to |z'| <= tan(pi/8)
  * with atan(z) = pi/4 + atan((z - 1) / (z + 1)), and evaluate AtanOfReduced: one division and a
  * polynomial, for the three corner angles of every triangle, instead of a library call. Within
- * about one ulp of std::atan2 (TestTangentFrameKernels bounds it).
+ * about one ulp of std::atan2 (TestTangentFrameKernels bounds it). Selects instead of branches,
+ * so that loops over many angles vectorize.
  */
 inline double AngleFromSineCosine(double s, double c)
 {
@@ -194,17 +201,14 @@ inline double AngleFromSineCosine(double s, double c)
   const bool steep = s > ac;
   const double num = steep ? ac : s;
   const double den = steep ? s : ac;
-  if (!(den > 0.0))
-  {
-    return 0.0;
-  }
   // One division either way: (num - den) / (num + den) is (z - 1) / (z + 1) for z = num / den.
   const bool reduce = num > TanPiOver8 * den;
-  const double z = reduce ? (num - den) / (num + den) : num / den;
+  const double z = (reduce ? num - den : num) / (reduce ? num + den : den);
   const double base = reduce ? PiOver4 : 0.0;
   double angle = base + AtanOfReduced(z); // atan(num / den) in [0, pi/2]
   angle = steep ? PiOver2 - angle : angle;
-  return c < 0.0 ? Pi - angle : angle;
+  angle = c < 0.0 ? Pi - angle : angle;
+  return den > 0.0 ? angle : 0.0;
 }
 
 /**
@@ -223,16 +227,80 @@ inline void CornerAnglesFromEdges(const glm::dvec3& e1,
   angles[2] = AngleFromSineCosine(sine, glm::dot(e2, e3));
 }
 
+/// c ? a : b, per component: selects of scalars, which a vectorizing compiler turns into blends.
+inline glm::dvec3 Select(bool c, const glm::dvec3& a, const glm::dvec3& b)
+{
+  return glm::dvec3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z);
+}
+
 inline bool IsFinite(const glm::dvec3& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 } // namespace detail
 
+namespace detail
+{
 /**
- * Solve E1 = du1 T + dv1 B, E2 = du2 T + dv2 B for one triangle and classify it.
- * The tangent direction is sign(det) * (dv2 E1 - dv1 E2), normalized: dP/du without the
- * division by det, so a tiny determinant never overflows.
+ * The frame of a triangle from its edges e1 = p1 - p0, e2 = p2 - p0 and UV deltas d1, d2, whose
+ * largest components need no rescaling (RescaleExponent 0, or rescaled already). Selects instead
+ * of branches, so that a loop over many triangles vectorizes (ComputeTriangleBlock); the Area is
+ * that of the edges as given.
+ */
+inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
+  const glm::dvec3& e2,
+  const glm::dvec2& d1,
+  const glm::dvec2& d2,
+  const DegeneracyTolerance& tol)
+{
+  const glm::dvec3 e3 = e2 - e1;
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double twiceArea2 = glm::dot(n, n);
+  const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
+  const glm::dvec2 d3 = d2 - d1;
+  const double det = d1.x * d2.y - d2.x * d1.y;
+  const double longestUV2 = std::max({ glm::dot(d1, d1), glm::dot(d2, d2), glm::dot(d3, d3) });
+  // The tangent direction is sign(det) * (dv2 E1 - dv1 E2): dP/du without the division by det,
+  // so a tiny determinant never overflows.
+  glm::dvec3 t = d2.y * e1 - d1.y * e2;
+  t = Select(det < 0.0, -t, t);
+  const double tLength = glm::length(t);
+
+  // Degeneracy, decided here only. Position: |n| > tol * longest^2, squared (no square root);
+  // UV: |det| > tol * longestUV^2. NaN fails both.
+  const bool hasArea = twiceArea2 > tol.Position * tol.Position * longest2 * longest2;
+  const bool hasUVArea = std::abs(det) > tol.UV * longestUV2;
+  const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0) & (tLength <= DBL_MAX);
+
+  const double sine = std::sqrt(twiceArea2);
+  TriangleFrame frame;
+  frame.Normal = Select(hasArea, n, glm::dvec3(0.0));
+  frame.Area = hasArea ? 0.5 * sine : 0.0;
+  frame.Tangent = Select(hasTangent, t * (1.0 / tLength), glm::dvec3(0.0));
+  frame.Orientation = static_cast<signed char>(hasTangent ? (det > 0.0 ? 1 : -1) : 0);
+  return frame;
+}
+
+/// The corner angles of a triangle whose edges FrameFromEdges took and whose frame it gave:
+/// zero when it is degenerate in position (its Normal is zero).
+inline void FrameCornerAngles(const glm::dvec3& e1,
+  const glm::dvec3& e2,
+  const TriangleFrame& f,
+  double angles[3])
+{
+  const double sine = std::sqrt(glm::dot(f.Normal, f.Normal)); // |e1 x e2|, or 0
+  CornerAnglesFromEdges(e1, e2, e2 - e1, sine, angles);
+  for (int k = 0; k < 3; ++k)
+  {
+    angles[k] = sine > 0.0 ? angles[k] : 0.0;
+  }
+}
+} // namespace detail
+
+/**
+ * Solve E1 = du1 T + dv1 B, E2 = du2 T + dv2 B for one triangle and classify it
+ * (detail::FrameFromEdges), with its edges and UV deltas rescaled by exact powers of two when
+ * they lie outside the safe range (see the file comment).
  */
 inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec3& p1,
@@ -244,7 +312,6 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   bool withArea = true,
   double* angles = nullptr)
 {
-  TriangleFrame frame;
   if (angles)
   {
     angles[0] = angles[1] = angles[2] = 0.0;
@@ -254,63 +321,143 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const double maxE = detail::MaxAbs(e1, e2);
   if (!(maxE > 0.0) || !std::isfinite(maxE))
   {
-    return frame; // coincident corners or non-finite positions
+    return TriangleFrame(); // coincident corners or non-finite positions
   }
   const int ePos = detail::RescaleExponent(maxE);
   e1 = detail::ScaleByPowerOfTwo(e1, ePos);
   e2 = detail::ScaleByPowerOfTwo(e2, ePos);
-  const glm::dvec3 e3 = e2 - e1;
-  const glm::dvec3 n = glm::cross(e1, e2);
-  const double twiceArea2 = glm::dot(n, n);
-  const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
-  // |n| > tol * longest^2, squared (no square root); NaN fails it.
-  if (!(twiceArea2 > tol.Position * tol.Position * longest2 * longest2))
-  {
-    return frame; // zero area (collinear or repeated points), within the position tolerance
-  }
-  frame.Normal = n;
-  if (angles)
-  {
-    detail::CornerAnglesFromEdges(e1, e2, e3, std::sqrt(twiceArea2), angles);
-  }
-  if (withArea)
-  {
-    // Undo the exact scaling; clamp instead of overflowing for huge double input.
-    const double area = detail::ScaleByPowerOfTwo(
-      detail::ScaleByPowerOfTwo(0.5 * std::sqrt(twiceArea2), -ePos), -ePos);
-    frame.Area = std::isfinite(area) ? area : DBL_MAX;
-  }
 
   glm::dvec2 d1 = uv1 - uv0;
   glm::dvec2 d2 = uv2 - uv0;
   const double maxUV = detail::MaxAbs(d1, d2);
-  if (!(maxUV > 0.0) || !std::isfinite(maxUV))
+  // Collapsed or non-finite texture coordinates: no tangent, but the normal and angles.
+  const bool usableUV = maxUV > 0.0 && std::isfinite(maxUV);
+  const int eUV = usableUV ? detail::RescaleExponent(maxUV) : 0;
+  d1 = usableUV ? detail::ScaleByPowerOfTwo(d1, eUV) : glm::dvec2(0.0);
+  d2 = usableUV ? detail::ScaleByPowerOfTwo(d2, eUV) : glm::dvec2(0.0);
+
+  TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, tol);
+  if (angles)
   {
-    return frame; // collapsed or non-finite texture coordinates
+    detail::FrameCornerAngles(e1, e2, frame, angles);
   }
-  const int eUV = detail::RescaleExponent(maxUV);
-  d1 = detail::ScaleByPowerOfTwo(d1, eUV);
-  d2 = detail::ScaleByPowerOfTwo(d2, eUV);
-  const glm::dvec2 d3 = d2 - d1;
-  const double det = d1.x * d2.y - d2.x * d1.y;
-  const double longestUV2 = std::max({ glm::dot(d1, d1), glm::dot(d2, d2), glm::dot(d3, d3) });
-  if (!(std::abs(det) > tol.UV * longestUV2))
-  {
-    return frame; // zero UV area within the UV tolerance
-  }
-  glm::dvec3 t = d2.y * e1 - d1.y * e2;
-  if (det < 0.0)
-  {
-    t = -t;
-  }
-  const double tLength = glm::length(t);
-  if (!(tLength > 0.0) || !std::isfinite(tLength))
-  {
-    return frame;
-  }
-  frame.Tangent = t * (1.0 / tLength);
-  frame.Orientation = det > 0.0 ? 1 : -1;
+  // Undo the exact scaling; clamp instead of overflowing for huge double input.
+  const double area =
+    detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(frame.Area, -ePos), -ePos);
+  frame.Area = !withArea ? 0.0 : (std::isfinite(area) ? area : DBL_MAX);
   return frame;
+}
+
+/// Triangles in structure-of-arrays form for ComputeTriangleBlock: corner positions and texture
+/// coordinates in, frames and corner angles out.
+struct TriangleBlock
+{
+  static constexpr int Size = 64;
+  double P[3][3][Size];  ///< corner k, component c of triangle i at P[k][c][i]
+  double UV[3][2][Size]; ///< the same for texture coordinates
+  double Tangent[3][Size];
+  double Normal[3][Size];
+  double Area[Size];
+  double Angle[3][Size]; ///< corner angles, when asked for
+  double Orientation[Size]; ///< +1, -1 or 0 (TriangleFrame::Orientation)
+  double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
+  /// For SignCornerWeights: the unit shading normal of corner k's point, component c, at
+  /// N[k][c][i] (in), and the corner's weight signed with its handedness (out).
+  double N[3][3][Size];
+  double SignedWeight[3][Size];
+
+  /// Stores triangle i's frame and corner angles.
+  void Set(int i, const TriangleFrame& f, const double angles[3])
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Tangent[c][i] = f.Tangent[c];
+      this->Normal[c][i] = f.Normal[c];
+      this->Angle[c][i] = angles[c];
+    }
+    this->Area[i] = f.Area;
+    this->Orientation[i] = f.Orientation;
+  }
+
+  /// Triangle i's frame, as ComputeTriangleFrame gives it.
+  TriangleFrame Frame(int i) const
+  {
+    TriangleFrame f;
+    f.Tangent = glm::dvec3(this->Tangent[0][i], this->Tangent[1][i], this->Tangent[2][i]);
+    f.Normal = glm::dvec3(this->Normal[0][i], this->Normal[1][i], this->Normal[2][i]);
+    f.Area = this->Area[i];
+    f.Orientation = static_cast<signed char>(this->Orientation[i]);
+    return f;
+  }
+};
+
+namespace detail
+{
+/// The common case of ComputeTriangleBlock: every triangle as if it needed no rescaling, and
+/// which ones do (Rare). WithAngles is a template argument: a loop-invariant branch inside the
+/// loop would keep it from vectorizing.
+template<bool WithAngles>
+void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyTolerance& tol)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const glm::dvec3 p0(b.P[0][0][i], b.P[0][1][i], b.P[0][2][i]);
+    const glm::dvec3 e1 = glm::dvec3(b.P[1][0][i], b.P[1][1][i], b.P[1][2][i]) - p0;
+    const glm::dvec3 e2 = glm::dvec3(b.P[2][0][i], b.P[2][1][i], b.P[2][2][i]) - p0;
+    const glm::dvec2 uv0(b.UV[0][0][i], b.UV[0][1][i]);
+    const glm::dvec2 d1 = glm::dvec2(b.UV[1][0][i], b.UV[1][1][i]) - uv0;
+    const glm::dvec2 d2 = glm::dvec2(b.UV[2][0][i], b.UV[2][1][i]) - uv0;
+    const bool safe = InSafeRange(MaxAbs(e1, e2)) && InSafeRange(MaxAbs(d1, d2));
+    b.Rare[i] = safe ? 0.0 : 1.0;
+    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, tol);
+    double angles[3] = { 0.0, 0.0, 0.0 };
+    if (WithAngles)
+    {
+      FrameCornerAngles(e1, e2, f, angles);
+    }
+    b.Set(i, f, angles);
+  }
+}
+} // namespace detail
+
+/**
+ * ComputeTriangleFrame (with the area) for the first `count` triangles of a block, bit for bit,
+ * and their corner angles when `withAngles` (else zeros): a plain loop over the common case
+ * (edges and UV deltas that need no rescaling) that the compiler vectorizes, then
+ * ComputeTriangleFrame again for the triangles that need rescaling or are not finite.
+ */
+inline void ComputeTriangleBlock(TriangleBlock& b,
+  int count,
+  const DegeneracyTolerance& tol,
+  bool withAngles)
+{
+  if (withAngles)
+  {
+    detail::ComputeSafeTriangleBlock<true>(b, count, tol);
+  }
+  else
+  {
+    detail::ComputeSafeTriangleBlock<false>(b, count, tol);
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    if (b.Rare[i] == 0.0)
+    {
+      continue;
+    }
+    glm::dvec3 p[3];
+    glm::dvec2 uv[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = glm::dvec3(b.P[k][0][i], b.P[k][1][i], b.P[k][2][i]);
+      uv[k] = glm::dvec2(b.UV[k][0][i], b.UV[k][1][i]);
+    }
+    double angles[3];
+    const TriangleFrame f =
+      ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles);
+    const double none[3] = { 0.0, 0.0, 0.0 };
+    b.Set(i, f, withAngles ? angles : none);
+  }
 }
 
 /// Interior angles (radians) of a triangle at its three corners, from atan2(|a x b|, a.b),
@@ -365,6 +512,47 @@ inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const g
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
   return CornerSign(frame.Orientation, frame.Normal, n);
+}
+
+namespace detail
+{
+/// SignCornerWeights for one method, a template argument so that the loop has no branch.
+template<TangentMethod Method>
+void SignCornerWeightsFor(TriangleBlock& b, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const TriangleFrame f = b.Frame(i);
+    const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
+    for (int k = 0; k < 3; ++k)
+    {
+      const glm::dvec3 n(b.N[k][0][i], b.N[k][1][i], b.N[k][2][i]);
+      b.SignedWeight[k][i] = CornerSign(f, n) * CornerWeight(Method, f, angles, k);
+    }
+  }
+}
+} // namespace detail
+
+/**
+ * Per corner of the first `count` triangles of a block whose frames ComputeTriangleBlock gave
+ * (with the angles for AngleWeighted), and whose corners' unit shading normals are in N: its
+ * weight signed with the handedness the triangle gives it (CornerSign); zero without a frame.
+ */
+inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+{
+  switch (method)
+  {
+    case TangentMethod::AngleWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AngleWeighted>(b, count);
+      break;
+    case TangentMethod::AreaWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AreaWeighted>(b, count);
+      break;
+    case TangentMethod::Unweighted:
+    default:
+      detail::SignCornerWeightsFor<TangentMethod::Unweighted>(b, count);
+      break;
+  }
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.

@@ -261,3 +261,84 @@ TEST(TangentFrameKernels, FrameAnglesMatchCornerAngles)
     angles);
   EXPECT_EQ(angles[0] + angles[1] + angles[2], 0.0);
 }
+
+TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
+{
+  // ComputeTriangleBlock computes the common case in a vectorized loop and sends the rest to
+  // ComputeTriangleFrame: every triangle, common or not, must come out with the same bits as
+  // ComputeTriangleFrame (exact comparison: the same IEEE operations in the same order). The
+  // block mixes ordinary triangles with ones that need rescaling, are degenerate in position or
+  // in UV, or are not finite, at every position in the block.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const DegeneracyTolerance tol;
+  TriangleBlock block;
+  for (int round = 0; round < 20; ++round)
+  {
+    const int count = round == 0 ? TriangleBlock::Size : 1 + static_cast<int>(rng() % 64);
+    for (int i = 0; i < count; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          block.P[k][c][i] = d(rng);
+        }
+        block.UV[k][0][i] = d(rng);
+        block.UV[k][1][i] = d(rng);
+      }
+      switch ((i + round) % 8)
+      {
+        case 1: // needs rescaling: huge positions
+          for (int k = 0; k < 3; ++k)
+            for (int c = 0; c < 3; ++c)
+              block.P[k][c][i] *= 1e300;
+          break;
+        case 2: // needs rescaling: tiny UV deltas
+          for (int k = 0; k < 3; ++k)
+            block.UV[k][0][i] = 0.5 + 1e-60 * block.UV[k][0][i];
+          break;
+        case 3: // collinear corners
+          for (int c = 0; c < 3; ++c)
+            block.P[2][c][i] = 2.0 * block.P[1][c][i] - block.P[0][c][i];
+          break;
+        case 4: // collapsed texture coordinates
+          block.UV[1][0][i] = block.UV[0][0][i];
+          block.UV[1][1][i] = block.UV[0][1][i];
+          break;
+        case 5: // not finite
+          block.P[1][0][i] = nan;
+          break;
+        default:
+          break;
+      }
+    }
+    for (bool withAngles : { false, true })
+    {
+      ComputeTriangleBlock(block, count, tol, withAngles);
+      for (int i = 0; i < count; ++i)
+      {
+        glm::dvec3 p[3];
+        glm::dvec2 uv[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          p[k] = glm::dvec3(block.P[k][0][i], block.P[k][1][i], block.P[k][2][i]);
+          uv[k] = glm::dvec2(block.UV[k][0][i], block.UV[k][1][i]);
+        }
+        double angles[3];
+        const TriangleFrame ref =
+          ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles);
+        const TriangleFrame f = block.Frame(i);
+        EXPECT_EQ(f.Tangent, ref.Tangent) << "triangle " << i << " of round " << round;
+        EXPECT_EQ(f.Normal, ref.Normal) << "triangle " << i << " of round " << round;
+        EXPECT_EQ(f.Area, ref.Area) << "triangle " << i << " of round " << round;
+        EXPECT_EQ(f.Orientation, ref.Orientation) << "triangle " << i << " of round " << round;
+        for (int k = 0; k < 3; ++k)
+        {
+          EXPECT_EQ(block.Angle[k][i], withAngles ? angles[k] : 0.0) << "corner " << k;
+        }
+      }
+    }
+  }
+}
