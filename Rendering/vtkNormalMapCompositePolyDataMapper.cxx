@@ -105,7 +105,16 @@ protected:
     {
       this->VBOs->ArrayExists("vertexMC", points->GetData(), reusedOffset, appendedBefore);
     }
+    // VTK's own code appends the block's active Tangents (tangentMC) whenever they exist; it
+    // sees a copy without them unless its shader reads them.
+    vtkPolyData* block = hdata->Data;
+    const auto forVTK = vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
+    if (forVTK)
+    {
+      hdata->Data = forVTK;
+    }
     this->Superclass::AppendOneBufferObject(ren, actor, hdata, voffset, colors, normals);
+    hdata->Data = block;
     // Nothing appended (no points), or the block reuses vertices appended for an earlier block
     // with the same point arrays (then it also has that block's tangents).
     if (!points || points->GetNumberOfPoints() == 0 || voffset != appendedBefore ||

@@ -5,6 +5,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 
@@ -140,7 +141,16 @@ void vtkNormalMapPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* 
   this->VBOs->CacheDataArray(
     vtkNormalMapShading::TangentAttribute, tangents.Vectors, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray(vtkNormalMapShading::SignAttribute, tangents.Signs, cache, VTK_FLOAT);
+  // VTK's own code uploads the active Tangents (tangentMC) whenever they exist; it sees a copy
+  // without them unless its shader reads them.
+  vtkPolyData* input = this->CurrentInput;
+  const auto forVTK = vtkNormalMapShading::WithoutUnusedVTKTangents(input, actor);
+  if (forVTK)
+  {
+    this->CurrentInput = forVTK;
+  }
   this->Superclass::BuildBufferObjects(ren, actor);
+  this->CurrentInput = input;
 }
 
 //------------------------------------------------------------------------------

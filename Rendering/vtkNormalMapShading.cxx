@@ -165,6 +165,31 @@ void vtkNormalMapShading::EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor)
 }
 
 //------------------------------------------------------------------------------
+bool vtkNormalMapShading::VTKUsesTangents(vtkActor* actor)
+{
+  vtkProperty* property = actor->GetProperty();
+  return property->GetInterpolation() == VTK_PBR &&
+    (property->GetAnisotropy() != 0.0 ||
+      (property->GetCoatStrength() > 0.0 && property->GetTexture("coatNormalTex")));
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkNormalMapShading::WithoutUnusedVTKTangents(vtkPolyData* poly,
+  vtkActor* actor)
+{
+  if (!poly || !poly->GetPointData()->GetTangents() || VTKUsesTangents(actor))
+  {
+    return nullptr;
+  }
+  // The copy shares every array; only its attribute flags differ, so the input is untouched
+  // (its modification time too, which decides when the buffers are rebuilt).
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(poly);
+  copy->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::TANGENTS);
+  return copy;
+}
+
+//------------------------------------------------------------------------------
 vtkNormalMapShading::Tangents vtkNormalMapShading::FindTangents(vtkPolyData* poly,
   vtkActor* actor,
   const Settings& settings)

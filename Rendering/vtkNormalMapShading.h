@@ -8,7 +8,8 @@
 #ifndef vtkNormalMapShading_h
 #define vtkNormalMapShading_h
 
-#include "vtkShader.h" // For vtkShader::Type
+#include "vtkShader.h"       // For vtkShader::Type
+#include "vtkSmartPointer.h" // For the dataset without tangents
 
 #include <map>     // For per-shader and per-actor state
 #include <string>  // For array names and messages
@@ -112,6 +113,16 @@ public:
   static bool WantsPointTangents(vtkActor* actor, const Settings& settings);
   /// Turns the normal texture's mipmaps on when it interpolates (trilinear filtering).
   static void EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor);
+
+  /// Whether VTK's own shader code reads its Tangents attribute (tangentMC): PBR anisotropy or a
+  /// clear-coat normal map.
+  static bool VTKUsesTangents(vtkActor* actor);
+  /**
+   * The dataset VTK's own vertex buffer code should see: a shallow copy of `poly` without an
+   * active Tangents attribute when VTK's shader would not read it (so it is not uploaded);
+   * nullptr when `poly` itself will do.
+   */
+  static vtkSmartPointer<vtkPolyData> WithoutUnusedVTKTangents(vtkPolyData* poly, vtkActor* actor);
 
   /// The tangent arrays of a dataset, checked (Derivatives when point tangents are not wanted).
   static Tangents FindTangents(vtkPolyData* poly, vtkActor* actor, const Settings& settings);

@@ -1,0 +1,209 @@
+// The vertex buffers both mappers build hold only what the scene uses: the point tangents (and
+// their signs) when a tangent-space map reads them, and VTK's own tangent attribute (tangentMC)
+// only when VTK's shader reads it (PBR anisotropy), never on the derivative path or without a
+// normal texture. Read back from each mapper's vertex buffer group after a render.
+#include "NormalMapTestScenes.h"
+
+// GLenum, which vtkCompositeMapperHelper2.h uses without including its declaration.
+#include "vtk_glew.h"
+
+#include "vtkActor.h"
+#include "vtkColor.h" // vtkColor3d, which vtkCompositeMapperHelper2.h uses without including it
+#include "vtkCompositeMapperHelper2.h"
+#include "vtkMultiBlockDataSet.h"
+#include "vtkNormalMapCompositePolyDataMapper.h"
+#include "vtkNormalMapPolyDataMapper.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLVertexBufferObject.h"
+#include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Mapper = vtkNormalMapPolyDataMapper;
+
+/// The composite mapper with its per-block helpers' vertex buffer groups exposed.
+class CompositeMapperProbe : public vtkNormalMapCompositePolyDataMapper
+{
+public:
+  static CompositeMapperProbe* New();
+  vtkTypeMacro(CompositeMapperProbe, vtkNormalMapCompositePolyDataMapper);
+  std::vector<vtkOpenGLVertexBufferObjectGroup*> HelperBuffers() const
+  {
+    std::vector<vtkOpenGLVertexBufferObjectGroup*> groups;
+    for (const auto& helper : this->Helpers)
+    {
+      groups.push_back(helper.second->GetVBOs());
+    }
+    return groups;
+  }
+};
+vtkStandardNewMacro(CompositeMapperProbe);
+
+/// Per attribute present, its components and its buffer's bytes per vertex.
+struct Attribute
+{
+  int Components = 0;
+  int Stride = 0;
+};
+using Attributes = std::map<std::string, Attribute>;
+
+Attributes Read(vtkOpenGLVertexBufferObjectGroup* group)
+{
+  Attributes found;
+  for (const char* name :
+    { "vertexMC", "normalMC", "tcoord", "tangentMC", "nmTangentMC", "nmTangentSignMC" })
+  {
+    if (vtkOpenGLVertexBufferObject* vbo = group->GetVBO(name))
+    {
+      found[name] = { group->GetNumberOfComponents(name), static_cast<int>(vbo->GetStride()) };
+    }
+  }
+  return found;
+}
+
+std::string Describe(const Attributes& attributes)
+{
+  std::string text;
+  for (const auto& a : attributes)
+  {
+    text += (text.empty() ? "" : ", ") + a.first + " " + std::to_string(a.second.Components) +
+      " (" + std::to_string(a.second.Stride) + " bytes)";
+  }
+  return text;
+}
+
+/// What one scene must (and must not) upload, besides positions, normals and coordinates.
+struct Case
+{
+  std::string Name;
+  bool NormalTexture = true;
+  int FrameSource = Mapper::AUTOMATIC;
+  bool PBRAnisotropy = false;
+  bool PointTangents = false; // nmTangentMC (3 floats) and nmTangentSignMC (1 float)
+  bool VTKTangents = false;   // tangentMC (3 floats)
+};
+
+/// Renders the mesh (or two blocks of it) once with the case's settings; returns the vertex
+/// buffer groups of the mapper (or of each composite helper).
+std::vector<Attributes> Render(const Case& c, vtkPolyData* mesh, vtkTexture* texture, bool blocks)
+{
+  nmtest::FlatSetup setup;
+  auto window = nmtest::MakeWindow(setup.Width, setup.Height);
+  vtkNew<vtkRenderer> renderer;
+  nmtest::AddSceneLight(renderer, setup.LightPosition);
+  vtkNew<vtkActor> actor;
+  vtkProperty* property = actor->GetProperty();
+  if (c.NormalTexture)
+  {
+    property->SetNormalTexture(texture);
+  }
+  if (c.PBRAnisotropy)
+  {
+    property->SetInterpolationToPBR();
+    property->SetAnisotropy(0.5);
+  }
+  vtkNew<Mapper> single;
+  vtkNew<CompositeMapperProbe> composite;
+  vtkNew<vtkMultiBlockDataSet> multiblock;
+  if (blocks)
+  {
+    multiblock->SetBlock(0, mesh);
+    multiblock->SetBlock(1, nmtest::Placed(mesh, 2.5, 0.0));
+    composite->SetInputDataObject(multiblock);
+    composite->SetFrameSource(c.FrameSource);
+    actor->SetMapper(composite);
+  }
+  else
+  {
+    single->SetInputData(mesh);
+    single->SetFrameSource(c.FrameSource);
+    actor->SetMapper(single);
+  }
+  renderer->AddActor(actor);
+  nmtest::SetFlatCamera(renderer, setup);
+  window->AddRenderer(renderer);
+  window->Render();
+  nmtest::ReportRenderPath(window);
+  std::vector<Attributes> groups;
+  if (blocks)
+  {
+    for (auto* group : composite->HelperBuffers())
+    {
+      groups.push_back(Read(group));
+    }
+  }
+  else
+  {
+    groups.push_back(Read(single->GetVBOs()));
+  }
+  return groups;
+}
+
+bool Has(const Attributes& a, const std::string& name, int components, int stride)
+{
+  const auto found = a.find(name);
+  return found != a.end() && found->second.Components == components &&
+    found->second.Stride == stride;
+}
+}
+
+int TestNormalMapVertexBuffers(int, char*[])
+{
+  nmtest::Checks check;
+  // A mesh with what vtkPolyDataTangentFrames writes: active float Tangents and TangentSigns.
+  auto mesh = nmtest::WithTangents(nmtest::MakeQuad(4));
+  check(mesh->GetPointData()->GetTangents() != nullptr, "the mesh has an active Tangents array");
+  auto texture = nmtest::MakeNormalTexture(
+    nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 64, nmtest::Storage::OpenGL));
+  const vtkMTimeType meshTime = mesh->GetMTime();
+
+  const Case cases[] = {
+    { "point tangents", true, Mapper::AUTOMATIC, false, true, false },
+    { "screen derivatives", true, Mapper::SCREEN_DERIVATIVES, false, false, false },
+    { "no normal texture", false, Mapper::AUTOMATIC, false, false, false },
+    { "PBR anisotropy, point tangents", true, Mapper::AUTOMATIC, true, true, true },
+    { "PBR anisotropy, no normal texture", false, Mapper::AUTOMATIC, true, false, true },
+  };
+  for (bool blocks : { false, true })
+  {
+    for (const Case& c : cases)
+    {
+      const std::string name =
+        std::string(blocks ? "composite mapper, " : "polydata mapper, ") + c.Name;
+      const auto groups = Render(c, mesh, texture, blocks);
+      check(!groups.empty(), name + ": the mapper built vertex buffers");
+      for (const Attributes& a : groups)
+      {
+        std::cout << name << ": " << Describe(a) << std::endl;
+        // Always positions and normals (3 floats each); texture coordinates (2 floats) at
+        // least when the normal texture reads them (VTK's composite helper leaves them out
+        // when no texture does).
+        check(Has(a, "vertexMC", 3, 12) && Has(a, "normalMC", 3, 12) &&
+            (!c.NormalTexture || Has(a, "tcoord", 2, 8)),
+          name + ": positions, normals and texture coordinates");
+        check(c.VTKTangents ? Has(a, "tangentMC", 3, 12) : a.count("tangentMC") == 0,
+          name + (c.VTKTangents ? ": VTK's tangentMC, 3 floats" : ": no tangentMC"));
+        // The polydata mapper uploads the tangents and their signs as they are; the composite
+        // helpers append them packed, 4 floats with the sign in w.
+        const bool ours = blocks ? Has(a, "nmTangentMC", 4, 16) && a.count("nmTangentSignMC") == 0
+                                 : Has(a, "nmTangentMC", 3, 12) && Has(a, "nmTangentSignMC", 1, 4);
+        const bool none = a.count("nmTangentMC") == 0 && a.count("nmTangentSignMC") == 0;
+        check(c.PointTangents ? ours : none,
+          name + (c.PointTangents ? ": the point tangents and signs" : ": no point tangents"));
+      }
+    }
+  }
+  // The mappers hide VTK's tangents through a copy: the input itself is never modified.
+  check(mesh->GetMTime() == meshTime && mesh->GetPointData()->GetTangents() != nullptr,
+    "the input's Tangents attribute and modification time are untouched");
+  return check.Result();
+}
