@@ -44,13 +44,16 @@ enum class TangentMethod : int
   AngleWeighted = 2,
 };
 
-/// Relative thresholds below which a triangle is degenerate. They are "shape" ratios,
-/// 2*area / (longest edge)^2, in position space and in UV space; below a few units of the
-/// stored type's epsilon the rounding of the stored coordinates alone decides the frame.
+/// Relative thresholds below which a triangle is degenerate. Position and UV are "shape"
+/// ratios, 2*area / (longest edge)^2, in position space and in UV space; below a few units of
+/// the stored type's epsilon the rounding of the stored coordinates alone decides the frame.
+/// PositionNoise bounds the height of a triangle relative to its largest coordinate
+/// (IsRoundingNoise).
 struct DegeneracyTolerance
 {
   double Position = 4.0 * FLT_EPSILON;
   double UV = 4.0 * FLT_EPSILON;
+  double PositionNoise = 64.0 * FLT_EPSILON;
 
   /// Tolerances for data stored with the given machine epsilons.
   static DegeneracyTolerance ForEpsilons(double positionEpsilon, double uvEpsilon)
@@ -58,9 +61,34 @@ struct DegeneracyTolerance
     DegeneracyTolerance tol;
     tol.Position = 4.0 * positionEpsilon;
     tol.UV = 4.0 * uvEpsilon;
+    tol.PositionNoise = 64.0 * positionEpsilon;
     return tol;
   }
 };
+
+/**
+ * Whether a triangle's height h = |n| / L (n the cross product of two edges, L the longest edge)
+ * lies within the rounding noise of its coordinates: h <= noise * m, where m is the largest
+ * coordinate magnitude of its corners and noise = 64 epsilon of the stored precision
+ * (DegeneracyTolerance::PositionNoise). Such a triangle carries no direction: moving a corner by
+ * its coordinates' rounding (epsilon * m per stored value, more where they are computed from
+ * rounded parameters, such as an angle near 2 pi whose own ulp is 4 epsilon) turns its plane by
+ * 1/64 radian or more. Points that should coincide, like the seam and pole points of parametric
+ * surfaces, make such triangles, tens of ulps high and with full-size UVs; without this rule
+ * they steer their corners' frames (angle and unweighted votes do not shrink with the height)
+ * depending on the rounding of one evaluation. Both sides scale with the coordinates, so
+ * scaling a mesh keeps every triangle on its side of the bound. A mesh far from the origin
+ * compared with its size has every triangle under the bound once its triangles are less than
+ * 64 ulps of its coordinates high: its frames are then the fallback frames.
+ * Inputs are those of ComputeTriangleFrame, in its rescaled units: twiceArea2 = |n|^2,
+ * longest2 = L^2, m the largest coordinate scaled likewise (inf where that overflows, which
+ * makes the triangle noise, as it is). Squared, without a square root; NaN is noise.
+ */
+inline bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
+{
+  const double bound = noise * m;
+  return !(twiceArea2 > bound * bound * longest2);
+}
 
 /// What one triangle contributes to the frames of its corners.
 struct TriangleFrame
@@ -263,10 +291,12 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec3 n = glm::cross(e1, e2);
   const double twiceArea2 = glm::dot(n, n);
   const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
+  const double maxP = std::max(detail::MaxAbs(p0, p1), detail::MaxAbs(p2, p2));
   // |n| > tol * longest^2, squared (no square root); NaN fails it.
-  if (!(twiceArea2 > tol.Position * tol.Position * longest2 * longest2))
+  if (!(twiceArea2 > tol.Position * tol.Position * longest2 * longest2) ||
+    IsRoundingNoise(twiceArea2, longest2, detail::ScaleByPowerOfTwo(maxP, ePos), tol.PositionNoise))
   {
-    return frame; // zero area (collinear or repeated points), within the position tolerance
+    return frame; // zero area (collinear or repeated points) or a height at the rounding noise
   }
   frame.Normal = n;
   if (angles)

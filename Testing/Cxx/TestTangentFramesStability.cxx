@@ -8,9 +8,13 @@
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkParametricEllipsoid.h"
+#include "vtkParametricFunctionSource.h"
+#include "vtkParametricTorus.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTexturedSphereSource.h"
 
 #include <gtest/gtest.h>
 
@@ -46,14 +50,29 @@ double AngleDeg(const Vec& a, const Vec& b)
     180.0 / Pi;
 }
 
-vtkSmartPointer<vtkPolyData> Frames(vtkPolyData* input, int method, int precision)
+/// The filter's output on one input, with its counts.
+struct FilterRun
+{
+  vtkSmartPointer<vtkPolyData> Output;
+  vtkIdType Degenerate;
+  vtkIdType Splits;
+};
+
+FilterRun RunFilter(vtkPolyData* input, int method, int precision)
 {
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(input);
   filter->SetMethod(method);
   filter->SetOutputPrecision(precision);
   filter->Update();
-  return filter->GetOutput();
+  return {
+    filter->GetOutput(), filter->GetNumberOfDegenerateTriangles(), filter->GetNumberOfSplitPoints()
+  };
+}
+
+vtkSmartPointer<vtkPolyData> Frames(vtkPolyData* input, int method, int precision)
+{
+  return RunFilter(input, method, precision).Output;
 }
 
 /// Every tangent finite, unit and perpendicular to its (normalized) normal within `tol`, every
@@ -181,6 +200,9 @@ TEST(TangentFramesStability, TranslatedFarFromTheOrigin)
   // 1e7): edges of length h lose relative accuracy ulp(T)/h, and the tangent (a combination of
   // two edges) turns by up to a few times that. This torus has h >= 0.07, so the bound is
   // min(180, 4 * ulp(T) / 0.07 rad). Double input keeps ulp(T) = T * 2^-53 (2e-9 at 1e7).
+  // Where 64 epsilon (T + 1.35) exceeds the longest edge (0.27 < 0.3) every triangle is within
+  // the rounding noise of its coordinates (vtkNormalMapping::IsRoundingNoise): all degenerate,
+  // every point a fallback point with a valid frame.
   auto mesh = Torus(false);
   std::cout << "translation | float input max angle (deg) | double input max angle (deg)\n";
   for (int method : WeightedMethods)
@@ -192,11 +214,18 @@ TEST(TangentFramesStability, TranslatedFarFromTheOrigin)
       double worst[2];
       for (bool dbl : { false, true })
       {
-        auto out =
-          Frames(Transformed(mesh, 1.0, offset, 1.0, dbl), method, vtkAlgorithm::DOUBLE_PRECISION);
+        const FilterRun run = RunFilter(
+          Transformed(mesh, 1.0, offset, 1.0, dbl), method, vtkAlgorithm::DOUBLE_PRECISION);
         SCOPED_TRACE(std::to_string(offset) + (dbl ? " double" : " float"));
-        ExpectValid(out, 1e-12); // always a valid frame, however wrong its direction
-        worst[dbl] = MaxAngleBetween(out, reference);
+        ExpectValid(run.Output, 1e-12); // always a valid frame, however wrong its direction
+        worst[dbl] = MaxAngleBetween(run.Output, reference);
+        const double epsilon = dbl ? DBL_EPSILON : FLT_EPSILON;
+        if (64.0 * epsilon * (offset + 1.35) > 0.3)
+        {
+          EXPECT_EQ(run.Degenerate, mesh->GetNumberOfPolys());
+          continue;
+        }
+        EXPECT_EQ(run.Degenerate, 0);
         const double ulp = offset * std::ldexp(1.0, dbl ? -53 : -24);
         const double bound = std::min(180.0, 4.0 * ulp / 0.07 * 180.0 / Pi);
         EXPECT_LE(worst[dbl], bound);
@@ -393,5 +422,149 @@ TEST(TangentFramesStability, MeshOfOnlyDegenerateTriangles)
     ExpectValid(out, 1e-6); // float output: 2^-23 per component
     EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 10000);
     EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 30000);
+  }
+}
+
+namespace
+{
+struct NamedMesh
+{
+  const char* Name;
+  vtkSmartPointer<vtkPolyData> Mesh;
+};
+
+vtkSmartPointer<vtkPolyData> ParametricSurface(vtkParametricFunction* function, int u, int v)
+{
+  vtkNew<vtkParametricFunctionSource> source;
+  source->SetParametricFunction(function);
+  source->SetUResolution(u);
+  source->SetVResolution(v);
+  source->GenerateTextureCoordinatesOn();
+  source->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  source->Update();
+  return source->GetOutput();
+}
+
+/**
+ * Triangulated surfaces with seams and poles as VTK's sources make them, points in double. Their
+ * seam and pole points are computed more than once and differ by rounding: the parametric torus
+ * has seam slivers about 30 epsilon * (largest coordinate) high, the ellipsoid and the sphere
+ * pole triangles below one such unit, next to triangles about 1e14 units high.
+ */
+std::vector<NamedMesh> SeamAndPoleSurfaces()
+{
+  vtkNew<vtkParametricTorus> torus; // ring radius 1, tube radius 0.5
+  vtkNew<vtkParametricEllipsoid> ellipsoid;
+  ellipsoid->SetXRadius(1.0);
+  ellipsoid->SetYRadius(0.7);
+  ellipsoid->SetZRadius(0.5);
+  vtkNew<vtkTexturedSphereSource> sphere;
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(24);
+  sphere->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  sphere->Update();
+  return { { "vtkParametricTorus 64x32", ParametricSurface(torus, 64, 32) },
+    { "vtkParametricEllipsoid 48x24", ParametricSurface(ellipsoid, 48, 24) },
+    { "vtkTexturedSphereSource 48x24", sphere->GetOutput() } };
+}
+
+/// The largest coordinate magnitude of a mesh, and the smallest height (2 area / longest edge)
+/// of its triangles that are more than 1e-6 of that high (the rest are rounding noise).
+void Extent(vtkPolyData* mesh, double& largest, double& smallestHeight)
+{
+  largest = 0.0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    const Vec x = Get3(mesh->GetPoints()->GetData(), p);
+    largest = std::max({ largest, std::abs(x[0]), std::abs(x[1]), std::abs(x[2]) });
+  }
+  smallestHeight = largest;
+  vtkIdType n;
+  const vtkIdType* ids;
+  mesh->GetPolys()->InitTraversal();
+  while (mesh->GetPolys()->GetNextCell(n, ids))
+  {
+    ASSERT_EQ(n, 3);
+    const Vec a = Get3(mesh->GetPoints()->GetData(), ids[0]);
+    const Vec b = Get3(mesh->GetPoints()->GetData(), ids[1]);
+    const Vec c = Get3(mesh->GetPoints()->GetData(), ids[2]);
+    const Vec e1{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const Vec e2{ c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    const Vec e3{ c[0] - b[0], c[1] - b[1], c[2] - b[2] };
+    const Vec cr{
+      e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]
+    };
+    const auto length = [](const Vec& v)
+    { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
+    const double h = length(cr) / std::max({ length(e1), length(e2), length(e3) });
+    if (h > 1e-6 * largest)
+    {
+      smallestHeight = std::min(smallestHeight, h);
+    }
+  }
+}
+}
+
+TEST(TangentFramesStability, SeamAndPoleNoiseIsDegenerateAtAnyScaleAndPrecision)
+{
+  // The same surface stored in float, translated by 1e4 in double, and scaled in double and in
+  // float gives the frames, signs, split points and degenerate counts of the unit double one.
+  // Frames: rounding the stored coordinates moves a corner by up to epsilon * (M + T) (M the
+  // largest coordinate of the unit mesh, T the translation), which turns a triangle whose height
+  // is h by about that over h; a point's frame is a weighted mean of such directions, then made
+  // perpendicular to the same normal. Bound: 8 epsilon (M + T) / h_min radians (h_min the
+  // smallest height of a real triangle), a factor 8 for the two edges a tangent combines and
+  // the UV distortion of these surfaces (largest measured: a quarter of the bound).
+  struct Variant
+  {
+    const char* Name;
+    double Scale;
+    double Offset;
+    bool Double;
+  };
+  const Variant variants[] = { { "float", 1.0, 0.0, false },
+    { "double +1e4", 1.0, 1e4, true },
+    { "double x1e-30", 1e-30, 0.0, true },
+    { "double x1e30", 1e30, 0.0, true },
+    { "float x1e-20", 1e-20, 0.0, false },
+    { "float x1e20", 1e20, 0.0, false } };
+  for (const NamedMesh& surface : SeamAndPoleSurfaces())
+  {
+    double largest = 0.0, smallestHeight = 0.0;
+    Extent(surface.Mesh, largest, smallestHeight);
+    for (int method : WeightedMethods)
+    {
+      const int precision = vtkAlgorithm::DOUBLE_PRECISION;
+      const FilterRun reference =
+        RunFilter(Transformed(surface.Mesh, 1.0, 0.0, 1.0, true), method, precision);
+      for (const Variant& v : variants)
+      {
+        SCOPED_TRACE(std::string(surface.Name) + " " + v.Name + " method " +
+          vtkPolyDataTangentFrames::GetMethodName(method));
+        const FilterRun run =
+          RunFilter(Transformed(surface.Mesh, v.Scale, v.Offset, 1.0, v.Double), method, precision);
+        EXPECT_EQ(run.Degenerate, reference.Degenerate);
+        ExpectValid(run.Output, 1e-12);
+        EXPECT_EQ(run.Splits, reference.Splits);
+        if (run.Splits != reference.Splits)
+        {
+          continue; // the points differ: nothing to compare them with
+        }
+        const double epsilon = v.Double ? DBL_EPSILON : FLT_EPSILON;
+        const double bound = 8.0 * epsilon * (largest + v.Offset) / smallestHeight * 180.0 / Pi;
+        const double worst = MaxAngleBetween(run.Output, reference.Output);
+        std::cout << surface.Name << " " << v.Name << " "
+                  << vtkPolyDataTangentFrames::GetMethodName(method) << ": degenerate "
+                  << run.Degenerate << " splits " << run.Splits << " max " << worst
+                  << " deg (bound " << bound << ")\n";
+        EXPECT_LE(worst, bound);
+        vtkDataArray* s0 = reference.Output->GetPointData()->GetArray("TangentSigns");
+        vtkDataArray* s1 = run.Output->GetPointData()->GetArray("TangentSigns");
+        for (vtkIdType p = 0; p < run.Output->GetNumberOfPoints(); ++p)
+        {
+          ASSERT_EQ(s0->GetComponent(p, 0), s1->GetComponent(p, 0)) << "point " << p;
+        }
+      }
+    }
   }
 }
