@@ -1,5 +1,6 @@
 // Numerical stability of vtkPolyDataTangentFrames at the extremes: scaled, translated and
 // near-degenerate input, a vertex of very high valence, and meshes of degenerate triangles.
+#include "NormalMappingTestData.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
@@ -15,6 +16,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkTexturedSphereSource.h"
+#include "vtkXMLPolyDataReader.h"
 
 #include <gtest/gtest.h>
 
@@ -468,6 +470,15 @@ std::vector<NamedMesh> SeamAndPoleSurfaces()
     { "vtkTexturedSphereSource 48x24", sphere->GetOutput() } };
 }
 
+/// A copy of a mesh made by Transformed(mesh, Scale, Offset, 1, Double).
+struct Variant
+{
+  const char* Name;
+  double Scale;
+  double Offset;
+  bool Double;
+};
+
 /// The largest coordinate magnitude of a mesh, and the smallest height (2 area / longest edge)
 /// of its triangles that are more than 1e-6 of that high (the rest are rounding noise).
 void Extent(vtkPolyData* mesh, double& largest, double& smallestHeight)
@@ -514,14 +525,7 @@ TEST(TangentFramesStability, SeamAndPoleNoiseIsDegenerateAtAnyScaleAndPrecision)
   // is h by about that over h; a point's frame is a weighted mean of such directions, then made
   // perpendicular to the same normal. Bound: 8 epsilon (M + T) / h_min radians (h_min the
   // smallest height of a real triangle), a factor 8 for the two edges a tangent combines and
-  // the UV distortion of these surfaces (largest measured: a quarter of the bound).
-  struct Variant
-  {
-    const char* Name;
-    double Scale;
-    double Offset;
-    bool Double;
-  };
+  // the UV distortion of these surfaces.
   const Variant variants[] = { { "float", 1.0, 0.0, false },
     { "double +1e4", 1.0, 1e4, true },
     { "double x1e-30", 1e-30, 0.0, true },
@@ -564,6 +568,118 @@ TEST(TangentFramesStability, SeamAndPoleNoiseIsDegenerateAtAnyScaleAndPrecision)
         {
           ASSERT_EQ(s0->GetComponent(p, 0), s1->GetComponent(p, 0)) << "point " << p;
         }
+      }
+    }
+  }
+}
+
+namespace
+{
+/// Whether two outputs have the same points and bit-identical tangents and signs.
+void ExpectSameBits(vtkPolyData* a, vtkPolyData* b)
+{
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+  vtkDataArray* ta = a->GetPointData()->GetTangents();
+  vtkDataArray* tb = b->GetPointData()->GetTangents();
+  vtkDataArray* sa = a->GetPointData()->GetArray("TangentSigns");
+  vtkDataArray* sb = b->GetPointData()->GetArray("TangentSigns");
+  vtkIdType differing = 0;
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    differing += Get3(ta, p) != Get3(tb, p) || sa->GetComponent(p, 0) != sb->GetComponent(p, 0);
+  }
+  EXPECT_EQ(differing, 0);
+}
+}
+
+TEST(TangentFramesStability, MikkTSpaceScaledByPowersOfTwoKeepsEveryBit)
+{
+  // The MikkTSpace reference meshes (float) scaled by 2^-40 and 2^100, exactly (checked): the
+  // kernel computes in float, where products of such coordinates under- or overflow; brought
+  // back to unit extent by a power of two, the kernel gets the unit mesh's floats times a power
+  // of two and gives the unit mesh's frames bit for bit.
+  REQUIRE_SHARED_DATA(dataDir);
+  for (const char* name : { "torus", "mirror_grid", "cylinder_seam", "noisy", "NormalTangentTest" })
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((dataDir + "/mikktspace/" + name + ".vtp").c_str());
+    reader->Update();
+    vtkPolyData* mesh = reader->GetOutput();
+    ASSERT_GT(mesh->GetNumberOfPoints(), 0) << name;
+    ASSERT_EQ(mesh->GetPoints()->GetDataType(), VTK_FLOAT) << name;
+    const auto unit =
+      Frames(mesh, vtkPolyDataTangentFrames::MIKKTSPACE, vtkAlgorithm::DOUBLE_PRECISION);
+    for (int exponent : { -40, 100 })
+    {
+      SCOPED_TRACE(std::string(name) + " x 2^" + std::to_string(exponent));
+      const double scale = std::ldexp(1.0, exponent);
+      auto scaled = Transformed(mesh, scale, 0.0, 1.0, false);
+      for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+      {
+        const Vec a = Get3(mesh->GetPoints()->GetData(), p);
+        const Vec b = Get3(scaled->GetPoints()->GetData(), p);
+        ASSERT_EQ(a, Vec({ b[0] / scale, b[1] / scale, b[2] / scale })) << "point " << p;
+      }
+      ExpectSameBits(
+        Frames(scaled, vtkPolyDataTangentFrames::MIKKTSPACE, vtkAlgorithm::DOUBLE_PRECISION), unit);
+    }
+    // Double input near the origin is the float input, rounded as the reference rounds it.
+    ExpectSameBits(Frames(Transformed(mesh, 1.0, 0.0, 1.0, true),
+                     vtkPolyDataTangentFrames::MIKKTSPACE,
+                     vtkAlgorithm::DOUBLE_PRECISION),
+      unit);
+  }
+}
+
+TEST(TangentFramesStability, MikkTSpaceAtAnyScaleAndFarFromTheOrigin)
+{
+  // MikkTSpace computes in float: a double mesh scaled by 1e-30 ... 1e30 (or a float one by
+  // 1e-20 ... 1e20) goes into the kernel at unit extent, rounded to float from a value that
+  // differs from the unit mesh's by a factor that is not a power of two; a double mesh
+  // translated by 1e4 goes in centred. Either way the kernel's floats differ from the unit
+  // mesh's by their rounding, FLT_EPSILON * M (M the largest coordinate), which turns a frame
+  // by about that over the smallest real triangle height h_min: bound 8 FLT_EPSILON M / h_min
+  // radians, as in SeamAndPoleNoiseIsDegenerateAtAnyScaleAndPrecision. Split points: the same.
+  const Variant variants[] = { { "double +1e4", 1.0, 1e4, true },
+    { "double x1e-30", 1e-30, 0.0, true },
+    { "double x1e30", 1e30, 0.0, true },
+    { "float x1e-20", 1e-20, 0.0, false },
+    { "float x1e20", 1e20, 0.0, false } };
+  // The meshes are tori without rounding noise: MikkTSpace, like the reference, takes every
+  // triangle of non-zero area as real, so where a translation makes noise-separated points
+  // coincide (the seams and poles of SeamAndPoleSurfaces) its frames change there by design.
+  for (bool mirror : { false, true })
+  {
+    const auto mesh = Torus(mirror);
+    double largest = 0.0, smallestHeight = 0.0;
+    Extent(mesh, largest, smallestHeight);
+    const double bound = 8.0 * FLT_EPSILON * largest / smallestHeight * 180.0 / Pi;
+    for (bool dbl : { false, true })
+    {
+      const FilterRun unit = RunFilter(Transformed(mesh, 1.0, 0.0, 1.0, dbl),
+        vtkPolyDataTangentFrames::MIKKTSPACE,
+        vtkAlgorithm::DOUBLE_PRECISION);
+      for (const Variant& v : variants)
+      {
+        if (v.Double != dbl)
+        {
+          continue;
+        }
+        SCOPED_TRACE(std::string(mirror ? "mirrored torus " : "torus ") + v.Name);
+        const FilterRun run = RunFilter(Transformed(mesh, v.Scale, v.Offset, 1.0, dbl),
+          vtkPolyDataTangentFrames::MIKKTSPACE,
+          vtkAlgorithm::DOUBLE_PRECISION);
+        ExpectValid(run.Output, 1e-4);
+        EXPECT_EQ(run.Splits, unit.Splits);
+        if (run.Splits != unit.Splits)
+        {
+          continue;
+        }
+        const double worst = MaxAngleBetween(run.Output, unit.Output);
+        std::cout << (mirror ? "mirrored torus" : "torus") << " MikkTSpace " << v.Name
+                  << ": splits " << run.Splits << " max " << worst << " deg (bound " << bound
+                  << ")\n";
+        EXPECT_LE(worst, bound);
       }
     }
   }
