@@ -684,3 +684,86 @@ TEST(TangentFramesStability, MikkTSpaceAtAnyScaleAndFarFromTheOrigin)
     }
   }
 }
+
+TEST(TangentFramesStability, TriangleFacingAwayFromTheNormalKeepsTheTextureHandedness)
+{
+  // A flat 2 x 2 grid, u = x / 2, v = y / 2, point normals +z, with one triangle wound the
+  // other way (its winding normal is -z; its texture map is that of its neighbours). A renderer
+  // computes B = sign * cross(N, T) with the point normal: B must be dP/dv = +y everywhere, so
+  // the sign is +1 at every point, the flipped triangle agrees with its neighbours and nothing
+  // splits. MikkTSpace keeps the reference's sign, that of the UV winding: -1 at the flipped
+  // triangle's corners, whose points it splits (what tools that bake normal maps expect).
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> tc, normals;
+  tc->SetNumberOfComponents(2);
+  tc->SetName("TCoords");
+  normals->SetNumberOfComponents(3);
+  normals->SetName("Normals");
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      points->InsertNextPoint(i, j, 0.0);
+      tc->InsertNextTuple2(0.5 * i, 0.5 * j);
+      normals->InsertNextTuple3(0.0, 0.0, 1.0);
+    }
+  }
+  vtkNew<vtkCellArray> polys;
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      const vtkIdType a = 3 * j + i, b = a + 1, c = a + 4, d = a + 3;
+      const bool flipped = i == 0 && j == 0;
+      const vtkIdType first[3] = { a, flipped ? c : b, flipped ? b : c };
+      const vtkIdType second[3] = { a, c, d };
+      polys->InsertNextCell(3, first);
+      polys->InsertNextCell(3, second);
+    }
+  }
+  vtkNew<vtkPolyData> grid;
+  grid->SetPoints(points);
+  grid->SetPolys(polys);
+  grid->GetPointData()->SetTCoords(tc);
+  grid->GetPointData()->SetNormals(normals);
+  for (int method : WeightedMethods)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(grid);
+    filter->SetMethod(method);
+    filter->ComputeBitangentsOn();
+    filter->SetOutputPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 0);
+    ASSERT_EQ(out->GetNumberOfPoints(), 9);
+    for (vtkIdType p = 0; p < 9; ++p)
+    {
+      // Exact input, one tangent direction: only the rounding of a normalization (1e-12 deg).
+      EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetComponent(p, 0), 1.0) << p;
+      EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetTangents(), p), { 1, 0, 0 }), 1e-12) << p;
+      EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetArray("Bitangents"), p), { 0, 1, 0 }), 1e-12)
+        << p;
+    }
+  }
+  vtkNew<vtkPolyDataTangentFrames> mikk;
+  mikk->SetInputData(grid);
+  mikk->SetMethodToMikkTSpace();
+  mikk->Update();
+  vtkPolyData* out = mikk->GetOutput();
+  // Points 0, 1 and 4 are the flipped triangle's, the first cell: they keep its frame (their
+  // first corner's), and their copies, appended in that order, the +1 frame of the others.
+  EXPECT_EQ(mikk->GetNumberOfSplitPoints(), 3);
+  ASSERT_EQ(out->GetNumberOfPoints(), 12);
+  vtkDataArray* signs = out->GetPointData()->GetArray("TangentSigns");
+  for (vtkIdType p : { 0, 1, 4 })
+  {
+    EXPECT_EQ(signs->GetComponent(p, 0), -1.0) << p;
+  }
+  for (vtkIdType p = 9; p < 12; ++p)
+  {
+    EXPECT_EQ(signs->GetComponent(p, 0), 1.0) << p;
+  }
+}
