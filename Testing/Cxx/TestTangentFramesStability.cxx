@@ -242,38 +242,49 @@ TEST(TangentFramesStability, TranslatedFarFromTheOrigin)
 
 namespace
 {
-/// Two triangles sharing the edge (0,1)-(1,0) plus one test triangle (0, 1, 2) given by its
-/// points and texture coordinates.
-vtkSmartPointer<vtkPolyData> WithTestTriangle(const std::array<Vec, 3>& p,
-  const std::array<std::array<double, 2>, 3>& uv)
+using TexCoord = std::array<double, 2>;
+
+/// A mesh of double points xyz[k] with texture coordinates uv[k] and point normals (0, 0, 1),
+/// whose triangles are the consecutive triples of `ids`.
+vtkSmartPointer<vtkPolyData> FacingUp(const std::vector<Vec>& xyz,
+  const std::vector<TexCoord>& uv,
+  const std::vector<vtkIdType>& ids)
 {
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> tc, n;
+  vtkNew<vtkDoubleArray> tc, normals;
   tc->SetNumberOfComponents(2);
   tc->SetName("TCoords");
-  n->SetNumberOfComponents(3);
-  n->SetName("Normals");
-  for (int k = 0; k < 3; ++k)
+  normals->SetNumberOfComponents(3);
+  normals->SetName("Normals");
+  for (size_t k = 0; k < xyz.size(); ++k)
   {
-    points->InsertNextPoint(p[k].data());
+    points->InsertNextPoint(xyz[k].data());
     tc->InsertNextTuple(uv[k].data());
-    n->InsertNextTuple3(0, 0, 1);
+    normals->InsertNextTuple3(0, 0, 1);
   }
-  // A well-shaped neighbour so that the test triangle's points are not all fallback points.
-  points->InsertNextPoint(0.0, -1.0, 0.0);
-  tc->InsertNextTuple2(0.0, -1.0);
-  n->InsertNextTuple3(0, 0, 1);
   vtkNew<vtkCellArray> polys;
-  const vtkIdType t0[3] = { 0, 1, 2 }, t1[3] = { 0, 3, 1 };
-  polys->InsertNextCell(3, t0);
-  polys->InsertNextCell(3, t1);
+  for (size_t t = 0; t + 2 < ids.size(); t += 3)
+  {
+    polys->InsertNextCell(3, &ids[t]);
+  }
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
   mesh->SetPoints(points);
   mesh->SetPolys(polys);
   mesh->GetPointData()->SetTCoords(tc);
-  mesh->GetPointData()->SetNormals(n);
+  mesh->GetPointData()->SetNormals(normals);
   return mesh;
+}
+
+/// Two triangles sharing the edge (0,1)-(1,0) plus one test triangle (0, 1, 2) given by its
+/// points and texture coordinates.
+vtkSmartPointer<vtkPolyData> WithTestTriangle(const std::array<Vec, 3>& p,
+  const std::array<TexCoord, 3>& uv)
+{
+  // A well-shaped neighbour so that the test triangle's points are not all fallback points.
+  return FacingUp({ p[0], p[1], p[2], { 0.0, -1.0, 0.0 } },
+    { uv[0], uv[1], uv[2], { 0.0, -1.0 } },
+    { 0, 1, 2, 0, 3, 1 });
 }
 }
 
@@ -339,34 +350,17 @@ TEST(TangentFramesStability, VertexSharedByHundredThousandTriangles)
   // tangent is (1, 0, 0) for every weighting (the fan is symmetric), up to the rounding of
   // 100,000 summands (relative 1e5 * 2^-53 ~ 1e-11): bound 1e-8 degrees.
   const int n = 100000;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> tc, nrm;
-  tc->SetNumberOfComponents(2);
-  tc->SetName("TCoords");
-  nrm->SetNumberOfComponents(3);
-  nrm->SetName("Normals");
-  points->InsertNextPoint(0, 0, 0);
-  tc->InsertNextTuple2(0, 0);
-  nrm->InsertNextTuple3(0, 0, 1);
+  std::vector<Vec> xyz{ { 0, 0, 0 } };
+  std::vector<TexCoord> uv{ { 0, 0 } };
+  std::vector<vtkIdType> ids;
   for (int i = 0; i < n; ++i)
   {
     const double a = 2 * Pi * i / n;
-    points->InsertNextPoint(std::cos(a), std::sin(a), 0);
-    tc->InsertNextTuple2(std::cos(a), std::sin(a));
-    nrm->InsertNextTuple3(0, 0, 1);
+    xyz.push_back({ std::cos(a), std::sin(a), 0 });
+    uv.push_back({ std::cos(a), std::sin(a) });
+    ids.insert(ids.end(), { 0, 1 + i, 1 + (i + 1) % n });
   }
-  vtkNew<vtkCellArray> polys;
-  for (int i = 0; i < n; ++i)
-  {
-    const vtkIdType tri[3] = { 0, 1 + i, 1 + (i + 1) % n };
-    polys->InsertNextCell(3, tri);
-  }
-  vtkNew<vtkPolyData> disk;
-  disk->SetPoints(points);
-  disk->SetPolys(polys);
-  disk->GetPointData()->SetTCoords(tc);
-  disk->GetPointData()->SetNormals(nrm);
+  const auto disk = FacingUp(xyz, uv, ids);
   for (int method : WeightedMethods)
   {
     auto out = Frames(disk, method, vtkAlgorithm::DOUBLE_PRECISION);
@@ -693,40 +687,27 @@ TEST(TangentFramesStability, TriangleFacingAwayFromTheNormalKeepsTheTextureHande
   // the sign is +1 at every point, the flipped triangle agrees with its neighbours and nothing
   // splits. MikkTSpace keeps the reference's sign, that of the UV winding: -1 at the flipped
   // triangle's corners, whose points it splits (what tools that bake normal maps expect).
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> tc, normals;
-  tc->SetNumberOfComponents(2);
-  tc->SetName("TCoords");
-  normals->SetNumberOfComponents(3);
-  normals->SetName("Normals");
+  std::vector<Vec> xyz;
+  std::vector<TexCoord> uv;
   for (int j = 0; j < 3; ++j)
   {
     for (int i = 0; i < 3; ++i)
     {
-      points->InsertNextPoint(i, j, 0.0);
-      tc->InsertNextTuple2(0.5 * i, 0.5 * j);
-      normals->InsertNextTuple3(0.0, 0.0, 1.0);
+      xyz.push_back({ double(i), double(j), 0.0 });
+      uv.push_back({ 0.5 * i, 0.5 * j });
     }
   }
-  vtkNew<vtkCellArray> polys;
+  std::vector<vtkIdType> ids;
   for (int j = 0; j < 2; ++j)
   {
     for (int i = 0; i < 2; ++i)
     {
       const vtkIdType a = 3 * j + i, b = a + 1, c = a + 4, d = a + 3;
       const bool flipped = i == 0 && j == 0;
-      const vtkIdType first[3] = { a, flipped ? c : b, flipped ? b : c };
-      const vtkIdType second[3] = { a, c, d };
-      polys->InsertNextCell(3, first);
-      polys->InsertNextCell(3, second);
+      ids.insert(ids.end(), { a, flipped ? c : b, flipped ? b : c, a, c, d });
     }
   }
-  vtkNew<vtkPolyData> grid;
-  grid->SetPoints(points);
-  grid->SetPolys(polys);
-  grid->GetPointData()->SetTCoords(tc);
-  grid->GetPointData()->SetNormals(normals);
+  const auto grid = FacingUp(xyz, uv, ids);
   for (int method : WeightedMethods)
   {
     SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
