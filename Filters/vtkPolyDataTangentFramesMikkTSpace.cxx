@@ -6,7 +6,8 @@
 // * Kernel faces: every polygon as it is (the kernel splits quads like the reference and fans
 //   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
 //   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
-//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0).
+//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0);
+//   positions at unit extent, by a power of two, and centred when far away (KernelPositions).
 // * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
 //   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
 //   strip triangle containing it. Strip corners whose triangles disagree (bitwise) are counted in
