@@ -4,6 +4,7 @@
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
+#include "vtkTangentFrameKernels.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -508,6 +509,32 @@ void Extent(vtkPolyData* mesh, double& largest, double& smallestHeight)
     }
   }
 }
+}
+
+TEST(TangentFramesStability, SliverAtTheRoundingNoiseIsDegenerate)
+{
+  // The seam sliver of vtkParametricTorus: two points 31 epsilon * M apart (M = 1.5, the largest
+  // coordinate) joined to a third 0.1 away, with full-size UVs. Its shape ratio (1e-13) passes
+  // the shape test; its height is within 64 epsilon * M, so it has no frame. The same sliver
+  // 128 epsilon * M high is a real (thin) triangle, and with the noise bound at 0 the seam
+  // sliver would get a frame: the rule, not the shape test, classifies it.
+  using vtkNormalMapping::ComputeTriangleFrame;
+  using vtkNormalMapping::DegeneracyTolerance;
+  const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(DBL_EPSILON, FLT_EPSILON);
+  DegeneracyTolerance withoutNoise = tol;
+  withoutNoise.PositionNoise = 0.0;
+  const double unit = DBL_EPSILON * 1.5;
+  const glm::dvec2 uv0(0.0, 1.0), uv1(1.0, 1.0), uv2(1.0, 0.9677);
+  for (double height : { 31.0, 128.0 })
+  {
+    const glm::dvec3 p0(0.0, 1.5, 0.0), p1(height * unit, 1.5, 0.0),
+      p2(height * unit, 1.4898, 0.1006);
+    const bool noise = height < 64.0;
+    EXPECT_EQ(ComputeTriangleFrame(p0, p1, p2, uv0, uv1, uv2, tol).Orientation == 0, noise)
+      << height;
+    EXPECT_NE(ComputeTriangleFrame(p0, p1, p2, uv0, uv1, uv2, withoutNoise).Orientation, 0)
+      << height;
+  }
 }
 
 TEST(TangentFramesStability, SeamAndPoleNoiseIsDegenerateAtAnyScaleAndPrecision)
