@@ -243,14 +243,14 @@ struct ConvertPositions
  * products of edges under- or overflow for meshes far from unit size, and whose rounding to
  * float loses what a double mesh far from the origin needs. So the positions are multiplied by
  * the power of two 2^k that brings the mesh's extent (the largest side of its bounding box)
- * into [0.5, 1), and a mesh stored in another type than float whose largest coordinate exceeds
- * 16 times its extent is first moved, in double, to its bounding box's centre. Multiplying by
- * 2^k commutes with the rounding to float and with every operation of the kernel (it normalizes
- * directions and compares magnitudes with each other; its FLT_MIN tests only matter where
- * something under- or overflows), so float input, and other input within 16 extents of the
- * origin, give the reference's frames bit for bit wherever the reference neither under- nor
- * overflows. Float input is never moved: the reference rounds nothing, so neither does this.
- * A mesh without a finite, non-zero extent goes in unchanged.
+ * into [0.5, 1) when it lies outside [2^-16, 2^16], and a mesh stored in another type than float
+ * whose largest coordinate exceeds 16 times its extent is first moved, in double, to its bounding
+ * box's centre. Multiplying by 2^k commutes with the rounding to float and with every operation of
+ * the kernel (it normalizes directions and compares magnitudes with each other; its FLT_MIN tests
+ * only matter where something under- or overflows), so float input, and other input within 16
+ * extents of the origin, give the reference's frames bit for bit wherever the reference neither
+ * under- nor overflows. Float input is never moved: the reference rounds nothing, so neither does
+ * this. A mesh without a finite, non-zero extent goes in unchanged.
  */
 const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>& storage)
 {
@@ -281,8 +281,12 @@ const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>&
     reach = extent;
   }
   // The exponent for the extent, limited so that no coordinate exceeds 2^100 (float input far
-  // from the origin compared with its extent, which stays where it is).
-  const int k = std::min(UnitExponent(extent), UnitExponent(reach) + 100);
+  // from the origin compared with its extent, which stays where it is). Within [2^-16, 2^16] no
+  // product of up to four position differences leaves float's normal range, so scaling could
+  // not change a bit and is skipped (float input is then read without a copy).
+  const bool ordinary = extent >= 0x1p-16 && extent <= 0x1p16;
+  const int k =
+    centred || !ordinary ? std::min(UnitExponent(extent), UnitExponent(reach) + 100) : 0;
   if (k == 0 && !centred)
   {
     return FloatData(array, n, 3, storage);
