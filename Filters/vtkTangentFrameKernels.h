@@ -113,6 +113,11 @@ inline double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
   return std::max(
     { std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z) });
 }
+/// The largest component magnitude of a, with two-operand maxima (no initializer list).
+inline double MaxAbs(const glm::dvec3& a)
+{
+  return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
+}
 inline double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
 {
   return std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y) });
@@ -284,6 +289,8 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   {
     return frame; // coincident corners or non-finite positions
   }
+  const double maxP =
+    std::max(detail::MaxAbs(p0), std::max(detail::MaxAbs(p1), detail::MaxAbs(p2)));
   const int ePos = detail::RescaleExponent(maxE);
   e1 = detail::ScaleByPowerOfTwo(e1, ePos);
   e2 = detail::ScaleByPowerOfTwo(e2, ePos);
@@ -291,10 +298,12 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec3 n = glm::cross(e1, e2);
   const double twiceArea2 = glm::dot(n, n);
   const double longest2 = std::max({ glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3) });
-  const double maxP = std::max(detail::MaxAbs(p0, p1), detail::MaxAbs(p2, p2));
   // |n| > tol * longest^2, squared (no square root); NaN fails it.
   if (!(twiceArea2 > tol.Position * tol.Position * longest2 * longest2) ||
-    IsRoundingNoise(twiceArea2, longest2, detail::ScaleByPowerOfTwo(maxP, ePos), tol.PositionNoise))
+    IsRoundingNoise(twiceArea2,
+      longest2,
+      ePos == 0 ? maxP : detail::ScaleByPowerOfTwo(maxP, ePos),
+      tol.PositionNoise))
   {
     return frame; // zero area (collinear or repeated points) or a height at the rounding noise
   }
