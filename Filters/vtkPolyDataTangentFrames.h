@@ -27,8 +27,10 @@
  * strips give frames; vertex and line cells pass through untouched.
  *
  * Degenerate input never produces NaN or Inf. Triangles with zero UV area or zero area (within a
- * few epsilons of the stored precision, see vtkNormalMapping::DegeneracyTolerance) or with
- * non-finite coordinates contribute nothing and are counted (NumberOfDegenerateTriangles). A
+ * few epsilons of the stored precision, see vtkNormalMapping::DegeneracyTolerance), with a
+ * height within the rounding noise of their coordinates (vtkNormalMapping::IsRoundingNoise),
+ * or with non-finite coordinates contribute nothing and are counted
+ * (NumberOfDegenerateTriangles). A
  * point with no usable triangle (a "fallback" point) takes the mean of its neighbours' tangents
  * projected onto its tangent plane, or where that fails a fixed rule (the Duff et al. basis of
  * the normal), and the majority sign of its neighbours (+1 if none); they are counted in

@@ -6,7 +6,8 @@
 // * Kernel faces: every polygon as it is (the kernel splits quads like the reference and fans
 //   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
 //   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
-//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0).
+//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0);
+//   positions at unit extent, by a power of two, and centred when far away (KernelPositions).
 // * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
 //   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
 //   strip triangle containing it. Strip corners whose triangles disagree (bitwise) are counted in
@@ -56,6 +57,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -207,6 +209,94 @@ const float* FloatData(vtkDataArray* array, vtkIdType n, int outComps, std::vect
   if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, storage.data()))
   {
     worker(array, n, outComps, storage.data());
+  }
+  return storage.data();
+}
+
+/// Positions as the kernel's floats: (x - centre) * scale for each coordinate, computed in
+/// double, then rounded to float.
+struct ConvertPositions
+{
+  template<typename ArrayT>
+  void operator()(ArrayT* array, vtkIdType n, const double centre[3], double scale, float* out)
+    const
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(array, 0, n);
+    ParallelFor(n,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType i = b; i < e; ++i)
+        {
+          const auto tuple = tuples[i];
+          for (int k = 0; k < 3; ++k)
+          {
+            out[3 * i + k] =
+              static_cast<float>((static_cast<double>(tuple[k]) - centre[k]) * scale);
+          }
+        }
+      });
+  }
+};
+
+/**
+ * The positions the kernel gets. The kernel computes in float like the reference, whose
+ * products of edges under- or overflow for meshes far from unit size, and whose rounding to
+ * float loses what a double mesh far from the origin needs. So the positions are multiplied by
+ * the power of two 2^k that brings the mesh's extent (the largest side of its bounding box)
+ * into [0.5, 1) when it lies outside [2^-16, 2^16], and a mesh stored in another type than float
+ * whose largest coordinate exceeds 16 times its extent is first moved, in double, to its bounding
+ * box's centre. Multiplying by 2^k commutes with the rounding to float and with every operation of
+ * the kernel (it normalizes directions and compares magnitudes with each other; its FLT_MIN tests
+ * only matter where something under- or overflows), so float input, and other input within 16
+ * extents of the origin, give the reference's frames bit for bit wherever the reference neither
+ * under- nor overflows. Float input is never moved: the reference rounds nothing, so neither does
+ * this. A mesh without a finite, non-zero extent goes in unchanged.
+ */
+const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>& storage)
+{
+  vtkDataArray* array = points->GetData();
+  double bounds[6];
+  points->GetBounds(bounds);
+  const double extent =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] });
+  const double largest = std::max({ std::abs(bounds[0]),
+    std::abs(bounds[1]),
+    std::abs(bounds[2]),
+    std::abs(bounds[3]),
+    std::abs(bounds[4]),
+    std::abs(bounds[5]) });
+  if (n == 0 || !(extent > 0.0) || !std::isfinite(extent) || !std::isfinite(largest))
+  {
+    return FloatData(array, n, 3, storage);
+  }
+  const bool centred = array->GetDataType() != VTK_FLOAT && largest > 16.0 * extent;
+  double centre[3] = { 0.0, 0.0, 0.0 };
+  double reach = largest; // the largest coordinate magnitude after centring
+  if (centred)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      centre[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
+    }
+    reach = extent;
+  }
+  // The exponent for the extent, limited so that no coordinate exceeds 2^100 (float input far
+  // from the origin compared with its extent, which stays where it is). Within [2^-16, 2^16] no
+  // product of up to four position differences leaves float's normal range, so scaling could
+  // not change a bit and is skipped (float input is then read without a copy).
+  const bool ordinary = extent >= 0x1p-16 && extent <= 0x1p16;
+  const int k =
+    centred || !ordinary ? std::min(UnitExponent(extent), UnitExponent(reach) + 100) : 0;
+  if (k == 0 && !centred)
+  {
+    return FloatData(array, n, 3, storage);
+  }
+  storage.resize(static_cast<size_t>(n) * 3);
+  ConvertPositions worker;
+  const double scale = ScaleByPowerOfTwo(1.0, k);
+  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, centre, scale, storage.data()))
+  {
+    worker(array, n, centre, scale, storage.data());
   }
   return storage.data();
 }
@@ -974,7 +1064,7 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   }
 
   std::vector<float> positionStore, normalStore, tcoordStore;
-  const float* positions = FloatData(input->GetPoints()->GetData(), numPoints, 3, positionStore);
+  const float* positions = KernelPositions(input->GetPoints(), numPoints, positionStore);
   const float* normals = FloatData(request.Normals, numPoints, 3, normalStore);
   const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
   filter->UpdateProgress(0.05);

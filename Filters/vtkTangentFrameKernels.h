@@ -44,13 +44,16 @@ enum class TangentMethod : int
   AngleWeighted = 2,
 };
 
-/// Relative thresholds below which a triangle is degenerate. They are "shape" ratios,
-/// 2*area / (longest edge)^2, in position space and in UV space; below a few units of the
-/// stored type's epsilon the rounding of the stored coordinates alone decides the frame.
+/// Relative thresholds below which a triangle is degenerate. Position and UV are "shape"
+/// ratios, 2*area / (longest edge)^2, in position space and in UV space; below a few units of
+/// the stored type's epsilon the rounding of the stored coordinates alone decides the frame.
+/// PositionNoise bounds the height of a triangle relative to its largest coordinate
+/// (IsRoundingNoise).
 struct DegeneracyTolerance
 {
   double Position = 4.0 * FLT_EPSILON;
   double UV = 4.0 * FLT_EPSILON;
+  double PositionNoise = 64.0 * FLT_EPSILON;
 
   /// Tolerances for data stored with the given machine epsilons.
   static DegeneracyTolerance ForEpsilons(double positionEpsilon, double uvEpsilon)
@@ -58,9 +61,34 @@ struct DegeneracyTolerance
     DegeneracyTolerance tol;
     tol.Position = 4.0 * positionEpsilon;
     tol.UV = 4.0 * uvEpsilon;
+    tol.PositionNoise = 64.0 * positionEpsilon;
     return tol;
   }
 };
+
+/**
+ * Whether a triangle's height h = |n| / L (n the cross product of two edges, L the longest edge)
+ * lies within the rounding noise of its coordinates: h <= noise * m, where m is the largest
+ * coordinate magnitude of its corners and noise = 64 epsilon of the stored precision
+ * (DegeneracyTolerance::PositionNoise). Such a triangle carries no direction: moving a corner by
+ * its coordinates' rounding (epsilon * m per stored value, more where they are computed from
+ * rounded parameters, such as an angle near 2 pi whose own ulp is 4 epsilon) turns its plane by
+ * 1/64 radian or more. Points that should coincide, like the seam and pole points of parametric
+ * surfaces, make such triangles, tens of ulps high and with full-size UVs; without this rule
+ * they steer their corners' frames (angle and unweighted votes do not shrink with the height)
+ * depending on the rounding of one evaluation. Both sides scale with the coordinates, so
+ * scaling a mesh keeps every triangle on its side of the bound. A mesh far from the origin
+ * compared with its size has every triangle under the bound once its triangles are less than
+ * 64 ulps of its coordinates high: its frames are then the fallback frames.
+ * Inputs are those of ComputeTriangleFrame, in its rescaled units: twiceArea2 = |n|^2,
+ * longest2 = L^2, m the largest coordinate scaled likewise (inf where that overflows, which
+ * makes the triangle noise, as it is). Squared, without a square root; NaN is noise.
+ */
+inline bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
+{
+  const double bound = noise * m;
+  return !(twiceArea2 > bound * bound * longest2);
+}
 
 /// What one triangle contributes to the frames of its corners.
 struct TriangleFrame
@@ -84,6 +112,11 @@ inline double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
 {
   return std::max(
     { std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z) });
+}
+/// The largest component magnitude of a, with two-operand maxima (no initializer list).
+inline double MaxAbs(const glm::dvec3& a)
+{
+  return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
 }
 inline double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
 {
@@ -251,6 +284,7 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   const glm::dvec3& e2,
   const glm::dvec2& d1,
   const glm::dvec2& d2,
+  double maxCoordinate,
   const DegeneracyTolerance& tol)
 {
   const glm::dvec3 e3 = e2 - e1;
@@ -266,9 +300,11 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   t = Select(det < 0.0, -t, t);
   const double tLength = glm::length(t);
 
-  // Degeneracy, decided here only. Position: |n| > tol * longest^2, squared (no square root);
-  // UV: |det| > tol * longestUV^2. NaN fails both.
-  const bool hasArea = twiceArea2 > tol.Position * tol.Position * longest2 * longest2;
+  // Degeneracy, decided here only. Position: |n| > tol * longest^2, squared (no square root),
+  // and a height above the rounding noise of the coordinates (IsRoundingNoise);
+  // UV: |det| > tol * longestUV^2. NaN fails all three.
+  const bool hasArea = (twiceArea2 > tol.Position * tol.Position * longest2 * longest2) &
+    !IsRoundingNoise(twiceArea2, longest2, maxCoordinate, tol.PositionNoise);
   const bool hasUVArea = std::abs(det) > tol.UV * longestUV2;
   const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0) & (tLength <= DBL_MAX);
 
@@ -336,7 +372,11 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   d1 = usableUV ? detail::ScaleByPowerOfTwo(d1, eUV) : glm::dvec2(0.0);
   d2 = usableUV ? detail::ScaleByPowerOfTwo(d2, eUV) : glm::dvec2(0.0);
 
-  TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, tol);
+  // The largest coordinate, scaled like the edges, for the rounding-noise test.
+  const double maxP =
+    std::max(detail::MaxAbs(p0), std::max(detail::MaxAbs(p1), detail::MaxAbs(p2)));
+  const double scaledMaxP = ePos == 0 ? maxP : detail::ScaleByPowerOfTwo(maxP, ePos);
+  TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, scaledMaxP, tol);
   if (angles)
   {
     detail::FrameCornerAngles(e1, e2, frame, angles);
@@ -402,14 +442,17 @@ void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyToler
   for (int i = 0; i < count; ++i)
   {
     const glm::dvec3 p0(b.P[0][0][i], b.P[0][1][i], b.P[0][2][i]);
-    const glm::dvec3 e1 = glm::dvec3(b.P[1][0][i], b.P[1][1][i], b.P[1][2][i]) - p0;
-    const glm::dvec3 e2 = glm::dvec3(b.P[2][0][i], b.P[2][1][i], b.P[2][2][i]) - p0;
     const glm::dvec2 uv0(b.UV[0][0][i], b.UV[0][1][i]);
     const glm::dvec2 d1 = glm::dvec2(b.UV[1][0][i], b.UV[1][1][i]) - uv0;
     const glm::dvec2 d2 = glm::dvec2(b.UV[2][0][i], b.UV[2][1][i]) - uv0;
+    const glm::dvec3 p1(b.P[1][0][i], b.P[1][1][i], b.P[1][2][i]);
+    const glm::dvec3 p2(b.P[2][0][i], b.P[2][1][i], b.P[2][2][i]);
+    const glm::dvec3 e1 = p1 - p0;
+    const glm::dvec3 e2 = p2 - p0;
+    const double maxP = std::max(MaxAbs(p0), std::max(MaxAbs(p1), MaxAbs(p2)));
     const bool safe = InSafeRange(MaxAbs(e1, e2)) && InSafeRange(MaxAbs(d1, d2));
     b.Rare[i] = safe ? 0.0 : 1.0;
-    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, tol);
+    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, maxP, tol);
     double angles[3] = { 0.0, 0.0, 0.0 };
     if (WithAngles)
     {
