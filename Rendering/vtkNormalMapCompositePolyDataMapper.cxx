@@ -71,7 +71,6 @@ protected:
 
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* actor) override
   {
-    vtkNormalMapShading::EnsureMipmaps(ren, actor);
     // Each block's tangents, before the superclass appends the blocks: whether blocks without
     // tangents need a zero placeholder depends on the others.
     this->BlockTangents.clear();

@@ -131,7 +131,6 @@ std::vector<std::pair<vtkTexture*, std::string>> vtkNormalMapPolyDataMapper::Get
 //------------------------------------------------------------------------------
 void vtkNormalMapPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* actor)
 {
-  vtkNormalMapShading::EnsureMipmaps(ren, actor);
   // Point tangents are uploaded only when a tangent-space map will use them. They go into the
   // same vertex buffer group, before the superclass builds it; the buffer cache shares one
   // buffer between attributes that read the same array.

@@ -33,7 +33,8 @@
  * Never silent: when the map cannot be applied (no 2-component texture coordinates, a
  * one-channel texture), the surface is drawn without it and a warning is given once per actor
  * and reason. An sRGB normal texture gets a warning and is decoded back to its stored values.
- * When the normal texture interpolates, the mapper turns its mipmaps on (trilinear filtering).
+ * The normal texture is sampled as it is set up: for trilinear filtering of a minified map turn
+ * its mipmaps on (vtkTexture::MipmapOn), as for any texture; the mapper does not change it.
  *
  * Flat, Gouraud, Phong and PBR interpolation all show the map (VTK lights every model per
  * fragment). Wireframe and point representations, vertices and lines draw without it.

@@ -152,19 +152,6 @@ bool vtkNormalMapShading::WantsPointTangents(vtkActor* actor, const Settings& se
 }
 
 //------------------------------------------------------------------------------
-void vtkNormalMapShading::EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor)
-{
-  vtkTexture* texture = NormalTexture(actor);
-  if (WantsMap(actor) && texture->GetInterpolate() && !texture->GetMipmap())
-  {
-    // Trilinear filtering of a minified normal map needs mipmaps. The property rendered the
-    // texture already this frame; load it again so the first frame has them too.
-    texture->MipmapOn();
-    texture->Load(renderer);
-  }
-}
-
-//------------------------------------------------------------------------------
 bool vtkNormalMapShading::VTKUsesTangents(vtkActor* actor)
 {
   vtkProperty* property = actor->GetProperty();

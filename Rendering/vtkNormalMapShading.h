@@ -111,8 +111,6 @@ public:
   static bool WantsMap(vtkActor* actor);
   /// Whether a dataset's point tangents will be used (read from the settings and the actor).
   static bool WantsPointTangents(vtkActor* actor, const Settings& settings);
-  /// Turns the normal texture's mipmaps on when it interpolates (trilinear filtering).
-  static void EnsureMipmaps(vtkRenderer* renderer, vtkActor* actor);
 
   /// Whether VTK's own shader code reads its Tangents attribute (tangentMC): PBR anisotropy or a
   /// clear-coat normal map.

@@ -121,6 +121,7 @@ def main():
     normal_map = vtkTexture()
     normal_map.SetInputData(stud_normal_map())
     normal_map.InterpolateOn()
+    normal_map.MipmapOn()  # trilinear filtering where the map is minified
     normal_map.RepeatOn()
     mapper = vtkNormalMapPolyDataMapper()  # or vtkNormalMapObjectFactory.Install()
     mapper.SetInputData(out)

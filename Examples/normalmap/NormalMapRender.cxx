@@ -269,6 +269,7 @@ vtkSmartPointer<vtkTexture> MakeTexture(vtkImageData* image)
   auto texture = vtkSmartPointer<vtkTexture>::New();
   texture->SetInputData(image);
   texture->InterpolateOn();
+  texture->MipmapOn(); // trilinear: a minified normal map does not alias
   texture->RepeatOn();
   return texture;
 }

@@ -1,6 +1,6 @@
 // Rendering cost and accuracy of normal mapping on the software rasterizer (Mesa llvmpipe):
 // VTK's stock mapper without and with its own normal mapping (with the texture as given, and
-// with its mipmaps on: the trilinear filtering our mappers turn on), and
+// with its mipmaps on: trilinear filtering), and
 // vtkNormalMapPolyDataMapper with each frame source (point tangents, screen-space derivatives),
 // each under Phong and PBR.
 //
@@ -58,7 +58,7 @@ struct Configuration
   int FrameSource = Mapper::AUTOMATIC;
   bool WithTangents = true; // the mesh has point Tangents and TangentSigns
   bool PBR = false;
-  bool Mipmapped = false; // the texture's own mipmaps on (trilinear filtering; ours always has)
+  bool Mipmapped = false; // the texture's own mipmaps on (trilinear filtering)
 };
 
 std::vector<Configuration> Configurations()
@@ -340,10 +340,9 @@ int main(int argc, char* argv[])
      << Bench::Count((quadResolution + 1LL) * (quadResolution + 1LL)) << " points) covering "
      << quadPixels << " x " << quadPixels
      << " pixels, a 128 x 128 SineBump normal map (magnified), one directional light, "
-        "perspective camera. Our mappers turn an interpolating normal texture's mipmaps on "
-        "(trilinear filtering, which on llvmpipe costs even where the map is magnified); VTK's "
-        "mapper filters the texture as it is given (bilinear here), and the \"mipmapped "
-        "texture\" row gives it the same trilinear filtering as ours. The point tangents are "
+        "perspective camera. Every mapper samples the same texture as it is given (bilinear); "
+        "the \"mipmapped texture\" row shows what trilinear filtering costs VTK's mapper "
+        "(on llvmpipe, even where the map is magnified). The point tangents are "
         "`vtkPolyDataTangentFrames`' (AngleWeighted; VTK's mapper uses the same float "
         "`Tangents`); the rows without tangents render the mesh without tangent arrays.\n\n"
      << "- **ms/frame**: median of " << frames

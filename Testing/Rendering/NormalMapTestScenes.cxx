@@ -166,6 +166,7 @@ vtkSmartPointer<vtkTexture> MakeNormalTexture(vtkImageData* image)
   auto texture = vtkSmartPointer<vtkTexture>::New();
   texture->SetInputData(image);
   texture->InterpolateOn();
+  texture->MipmapOn(); // trilinear: the maps are minified on the smaller shapes
   texture->RepeatOn();
   return texture;
 }

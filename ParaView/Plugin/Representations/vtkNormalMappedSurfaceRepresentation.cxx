@@ -69,8 +69,15 @@ void vtkNormalMappedSurfaceRepresentation::SetNormalMapTexture(vtkTexture* textu
 
 void vtkNormalMappedSurfaceRepresentation::ApplyNormalTexture()
 {
-  this->Superclass::SetNormalTexture(
-    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture);
+  vtkTexture* texture =
+    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture;
+  // The representation draws normal maps with trilinear filtering (mipmaps), so that a map seen
+  // from afar does not alias; the mapper itself leaves textures as they are set up.
+  if (texture && texture->GetInterpolate())
+  {
+    texture->MipmapOn();
+  }
+  this->Superclass::SetNormalTexture(texture);
 }
 
 void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
