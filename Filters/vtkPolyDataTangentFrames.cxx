@@ -1560,7 +1560,21 @@ int vtkPolyDataTangentFrames::ComputeBlock(vtkPolyData* input,
   Internals run{
     this, input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
   };
-  return this->DoubleOutput(input) ? run.Run<double>() : run.Run<float>();
+  const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
+  const int result = this->DoubleOutput(input) ? run.Run<double>() : run.Run<float>();
+  const vtkIdType triangles = run.Tris.Count;
+  if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
+  {
+    // Not an error (the output is complete), but no frame came from the texture coordinates.
+    vtkWarningMacro("None of the " << triangles
+                                   << " triangles has a usable frame (zero area, zero texture-"
+                                      "coordinate area, or a height at the rounding noise of "
+                                      "coordinates far from the origin for their precision): "
+                                      "every point gets a fallback tangent. Check the texture "
+                                      "coordinates, or store the positions in double or nearer "
+                                      "the origin.");
+  }
+  return result;
 }
 
 bool vtkPolyDataTangentFrames::DoubleOutput(vtkPolyData* input) const

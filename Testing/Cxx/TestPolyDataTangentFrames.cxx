@@ -1711,6 +1711,9 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
     std::string Error;   // expected error text (empty: none)
     std::string Warning; // expected warning text (empty: none)
     std::string TCoordsName = std::string();
+    // The warning comes from the weighted methods only: MikkTSpace classifies triangles as the
+    // reference does and does not count every one of these as degenerate, so it does not warn.
+    bool WeightedMethodsOnly = false;
   };
   const auto removeTCoords = [](vtkPolyData* m)
   {
@@ -1845,7 +1848,9 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
         m->GetPointData()->GetTCoords()->SetTuple2(3, INFINITY, 0);
       },
       "",
-      "" },
+      "None of the 3 triangles has a usable frame",
+      "",
+      true },
     { "other point arrays shorter and longer",
       [](vtkPolyData* m)
       {
@@ -1878,7 +1883,9 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
           return;
         }
         EXPECT_TRUE(messages.Errors.empty()) << messages.Errors.front();
-        if (c.Warning.empty())
+        if (c.Warning.empty() ||
+          (c.WeightedMethodsOnly &&
+            filter->GetMethod() == vtkPolyDataTangentFrames::MIKKTSPACE))
         {
           EXPECT_TRUE(messages.Warnings.empty()) << messages.Warnings.front();
         }
