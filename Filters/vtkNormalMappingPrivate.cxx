@@ -4,11 +4,6 @@
 
 #include <algorithm>
 
-void vtkNormalMapping::detail::ParallelFor(vtkIdType n, vtkIdType grain, RangeFunction f)
-{
-  vtkSMPTools::For(0, n, grain, [&f](vtkIdType begin, vtkIdType end) { f(begin, end); });
-}
-
 int vtkNormalMapping::detail::UsableThreads()
 {
   if (vtkSMPTools::IsParallelScope() && !vtkSMPTools::GetNestedParallelism())

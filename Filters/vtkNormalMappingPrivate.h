@@ -41,43 +41,6 @@ namespace vtkNormalMapping
 {
 namespace detail
 {
-/**
- * A reference to a callable on an id range [begin, end), without its type, for ParallelFor. The
- * callable must outlive the call (a lambda passed straight to ParallelFor does).
- */
-class RangeFunction
-{
-public:
-  /// f: a callable object, const or not (a non-const one is called as vtkSMPTools calls a
-  /// functor passed by reference: the same object from every thread).
-  template<typename F,
-    typename = std::enable_if_t<!std::is_same<std::decay_t<F>, RangeFunction>::value>>
-  RangeFunction(F&& f)
-    : Object(const_cast<void*>(static_cast<const void*>(&f)))
-    , Call([](void* o, vtkIdType begin, vtkIdType end)
-        { (*static_cast<std::remove_reference_t<F>*>(o))(begin, end); })
-  {
-  }
-  void operator()(vtkIdType begin, vtkIdType end) const { this->Call(this->Object, begin, end); }
-
-private:
-  void* Object;
-  void (*Call)(void*, vtkIdType, vtkIdType);
-};
-
-/**
- * vtkSMPTools::For(0, n, grain, f) (grain 0: the backend chooses), compiled once, in
- * vtkNormalMappingPrivate.cxx. The filters' parallel loops go through it, so that the SMP
- * backends' templates (sequential, STDThread and TBB in Debian's VTK) are instantiated once rather
- * than for every loop body. The cost is one indirect call per range a thread takes. The MikkTSpace
- * kernel and its glue use it; vtkPolyDataTangentFrames.cxx calls vtkSMPTools::For directly.
- */
-void ParallelFor(vtkIdType n, vtkIdType grain, RangeFunction f);
-inline void ParallelFor(vtkIdType n, RangeFunction f)
-{
-  ParallelFor(n, 0, f);
-}
-
 /// The number of ranges of `size` ids (the last one shorter) that cover [0, n).
 inline vtkIdType ChunkCount(vtkIdType n, vtkIdType size)
 {
@@ -85,7 +48,7 @@ inline vtkIdType ChunkCount(vtkIdType n, vtkIdType size)
 }
 
 /**
- * The number of threads ParallelFor can use from here: 1 inside a vtkSMPTools parallel scope
+ * The number of threads a vtkSMPTools::For can use from here: 1 inside a vtkSMPTools parallel scope
  * with nested parallelism turned off (VTK then runs the inner loops serially, on the calling
  * thread), else vtkSMPTools' estimate.
  */

@@ -75,7 +75,6 @@ namespace detail
 namespace
 {
 using mikk::CornerFrame;
-using vtkNormalMapping::detail::ParallelFor;
 using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
@@ -162,7 +161,8 @@ struct ConvertTuples
   {
     const auto tuples = vtk::DataArrayTupleRange(array, 0, n);
     const int copy = std::min(array->GetNumberOfComponents(), outComps);
-    ParallelFor(n,
+    vtkSMPTools::For(0,
+      n,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType i = b; i < e; ++i)
@@ -222,7 +222,8 @@ struct ConvertPositions
     const
   {
     const auto tuples = vtk::DataArrayTupleRange<3>(array, 0, n);
-    ParallelFor(n,
+    vtkSMPTools::For(0,
+      n,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType i = b; i < e; ++i)
@@ -332,7 +333,8 @@ struct ContractNormals
 vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
 {
   std::atomic<vtkIdType> count(0);
-  ParallelFor(static_cast<vtkIdType>(frames.size()),
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(frames.size()),
     [&](vtkIdType b, vtkIdType e)
     {
       vtkIdType local = 0;
@@ -357,7 +359,8 @@ struct GatherTriples
   {
     const auto tuples = vtk::DataArrayTupleRange<3>(array);
     const vtkIdType n = numIn + static_cast<vtkIdType>(source.size());
-    ParallelFor(n,
+    vtkSMPTools::For(0,
+      n,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType i = b; i < e; ++i)
@@ -484,7 +487,8 @@ bool BuildSurface(vtkCellArray* polys,
         // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
         // points (rare) are noted: their corners get no frame.
         std::atomic<bool> small(false), decreasing(false);
-        ParallelFor(s.NumPolys,
+        vtkSMPTools::For(0,
+          s.NumPolys,
           [&](vtkIdType b, vtkIdType e)
           {
             bool anySmall = false, anyDecreasing = false;
@@ -552,7 +556,8 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(polys,
       [&](auto* off, auto* ids)
       {
-        ParallelFor(s.NumPolys,
+        vtkSMPTools::For(0,
+          s.NumPolys,
           [&](vtkIdType b, vtkIdType e)
           {
             for (vtkIdType k = b; k < e; ++k)
@@ -573,7 +578,8 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(strips,
       [&](auto*, auto* ids)
       {
-        ParallelFor(s.NumStrips,
+        vtkSMPTools::For(0,
+          s.NumStrips,
           [&](vtkIdType b, vtkIdType e)
           {
             for (vtkIdType k = b; k < e; ++k)
@@ -645,7 +651,8 @@ void FirstCornersAndDifferences(const Surface& s,
   {
     std::unique_ptr<std::atomic<long long>[]> first(
       new std::atomic<long long>[static_cast<size_t>(numPoints)]);
-    ParallelFor(numPoints,
+    vtkSMPTools::For(0,
+      numPoints,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType p = b; p < e; ++p)
@@ -653,7 +660,8 @@ void FirstCornersAndDifferences(const Surface& s,
           first[p].store(kNoCorner, std::memory_order_relaxed);
         }
       });
-    ParallelFor(numCorners,
+    vtkSMPTools::For(0,
+      numCorners,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType c = b; c < e; ++c)
@@ -670,7 +678,8 @@ void FirstCornersAndDifferences(const Surface& s,
         }
       });
     a.FirstCorner.resize(static_cast<size_t>(numPoints));
-    ParallelFor(numPoints,
+    vtkSMPTools::For(0,
+      numPoints,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType p = b; p < e; ++p)
@@ -680,7 +689,8 @@ void FirstCornersAndDifferences(const Surface& s,
       });
   }
 
-  ParallelFor(numChunks,
+  vtkSMPTools::For(0,
+    numChunks,
     1,
     [&](vtkIdType b, vtkIdType e)
     {
@@ -766,7 +776,8 @@ void Assign(const Surface& s,
   // 3. Strip corners whose strip triangles disagree.
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
   std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
-  ParallelFor(numStripChunks,
+  vtkSMPTools::For(0,
+    numStripChunks,
     1,
     [&](vtkIdType b, vtkIdType e)
     {
@@ -921,7 +932,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
   OutT* tOut = tangents->GetPointer(0);
   OutT* sOut = signs->GetPointer(0);
   OutT* bOut = bitangents ? bitangents->GetPointer(0) : nullptr;
-  ParallelFor(numOut,
+  vtkSMPTools::For(0,
+    numOut,
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType p = b; p < e; ++p)
@@ -980,7 +992,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
     cellTangents->SetNumberOfTuples(numCells);
     OutT* cOut = cellTangents->GetPointer(0);
     std::fill(cOut, cOut + 3 * numCells, OutT(0));
-    ParallelFor(s.NumPolys + s.NumStrips,
+    vtkSMPTools::For(0,
+      s.NumPolys + s.NumStrips,
       [&](vtkIdType b, vtkIdType e)
       {
         for (vtkIdType cell = b; cell < e; ++cell)
