@@ -53,6 +53,17 @@ inline vtkSmartPointer<vtkPolyDataAlgorithm> MakeTangentFilter(const TangentFilt
   return ours;
 }
 
+/// The q-quantile of `values` (0.5: the median), interpolated between the two nearest.
+inline double Quantile(std::vector<double> values, double q)
+{
+  std::sort(values.begin(), values.end());
+  const double x = q * static_cast<double>(values.size() - 1);
+  const size_t i = static_cast<size_t>(x);
+  return i + 1 < values.size()
+    ? values[i] + (x - static_cast<double>(i)) * (values[i + 1] - values[i])
+    : values.back();
+}
+
 /// A number with `digits` significant digits, without an exponent between 1e-4 and 1e6.
 inline std::string Format(double value, int digits = 3)
 {

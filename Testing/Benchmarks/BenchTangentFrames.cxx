@@ -348,15 +348,14 @@ struct Paired
 {
   std::string Name;
   int Threads = 1;
-  std::vector<double> Ratios; // the first run's time / the second's, one per pair
-  double FastestRatio = 0.0;  // the first's fastest Update / the second's fastest Update
-  double Quantile(double q) const
+  std::vector<double> Ratios;     // the first run's time / the second's, one per pair
+  double FastestRatio = 0.0;      // the first's fastest Update / the second's fastest Update
+  std::vector<double> Seconds[2]; // the first's and the second's times, one per pair
+  double Quantile(double q) const { return Bench::Quantile(this->Ratios, q); }
+  /// The median time of run `which` (0: first, 1: second), in milliseconds.
+  double MedianMilliseconds(int which) const
   {
-    std::vector<double> r = this->Ratios;
-    std::sort(r.begin(), r.end());
-    const double x = q * static_cast<double>(r.size() - 1);
-    const size_t i = static_cast<size_t>(x);
-    return i + 1 < r.size() ? r[i] + (x - static_cast<double>(i)) * (r[i + 1] - r[i]) : r.back();
+    return 1000.0 * Bench::Quantile(this->Seconds[which], 0.5);
   }
   /// The two cells of a table row: "median [first quartile, third quartile] | fastest runs".
   std::string Cells() const
@@ -397,6 +396,8 @@ void AlternatePairs(const R0& run0, const R1& run1, int pairs, Paired& result)
     t[first] = run(first);
     t[1 - first] = run(1 - first);
     result.Ratios.push_back(t[0] / t[1]);
+    result.Seconds[0].push_back(t[0]);
+    result.Seconds[1].push_back(t[1]);
     fastest[0] = std::min(fastest[0], t[0]);
     fastest[1] = std::min(fastest[1], t[1]);
   }
@@ -571,6 +572,10 @@ int PrintPairedRuns(int pairs)
       std::cout << m.Name << " (" << m.Mesh->GetNumberOfPolys() << " triangles), " << threads
                 << " thread" << (threads > 1 ? "s" : "") << ": x VTK " << p.Cells() << std::endl;
     }
+    const Paired scaling = MeasureScaling(angleWeighted, m.Mesh, pairs);
+    std::cout << m.Name << ", two threads against one: " << scaling.Cells() << " (median "
+              << Bench::Format(scaling.MedianMilliseconds(0), 3) << " ms with one, "
+              << Bench::Format(scaling.MedianMilliseconds(1), 3) << " ms with two)" << std::endl;
   }
   if (!note.empty())
   {
