@@ -586,6 +586,28 @@ struct ScatteredSums
     this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
   }
 
+  /**
+   * Adds the corners of triangles [begin, end) whose points `owner` owns, in triangle order;
+   * `frames` holds those triangles' frames (triangle t at t - begin).
+   */
+  void AddCorners(const vtkIdType* ids,
+    const TriangleFrames& frames,
+    vtkIdType begin,
+    vtkIdType end,
+    int owner)
+  {
+    const bool all = this->Owners() == 1;
+    for (vtkIdType c = 3 * begin; c < 3 * end; ++c)
+    {
+      const vtkIdType p = ids[c];
+      if (all || this->OwnerOf(p) == owner)
+      {
+        const vtkIdType i = c - 3 * begin;
+        this->Add(p, frames.SignedWeight[i], frames.TangentOf(i / 3));
+      }
+    }
+  }
+
   /// Point p's sums; safe to call from several threads.
   PointSums Of(vtkIdType p) const
   {
@@ -1099,24 +1121,23 @@ struct vtkPolyDataTangentFrames::Internals
     {
       const vtkIdType end = std::min(begin + chunk, count);
       this->ComputeFrames(method, normals, begin, end);
-      vtkSMPTools::For(0,
-        owners,
-        1,
-        [&](vtkIdType firstOwner, vtkIdType lastOwner)
-        {
-          for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+      if (owners == 1)
+      {
+        sums.AddCorners(ids, frames, begin, end, 0);
+      }
+      else
+      {
+        vtkSMPTools::For(0,
+          owners,
+          1,
+          [&](vtkIdType firstOwner, vtkIdType lastOwner)
           {
-            for (vtkIdType c = 3 * begin; c < 3 * end; ++c)
+            for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
             {
-              const vtkIdType p = ids[c];
-              if (owners == 1 || sums.OwnerOf(p) == owner)
-              {
-                const vtkIdType i = c / 3 - begin;
-                sums.Add(p, frames.SignedWeight[c - 3 * begin], frames.TangentOf(i));
-              }
+              sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
             }
-          }
-        });
+          });
+      }
       for (vtkIdType i = 0; i < end - begin; ++i)
       {
         degenerate += frames.HasFrame(i) ? 0 : 1;
