@@ -45,11 +45,11 @@
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
  * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
- *    the frames of a chunk of triangles are computed in parallel, then added to their points on
- *    one thread, chunk after chunk. Each point adds the same terms in the same order, so the
- *    output is bit-identical for any number of threads. A point then takes the frame of its one
- *    handedness, or on a mirror seam the +1 frame (the -1 frame goes to the point's copy) or the
- *    heavier side.
+ *    the frames of a chunk of triangles are computed in parallel, then added to their points,
+ *    chunk after chunk, each thread adding to the points it owns. Each point adds the same terms
+ *    in the same order, so the output is bit-identical for any number of threads. A point then
+ *    takes the frame of its one handedness, or on a mirror seam the +1 frame (the -1 frame goes to
+ *    the point's copy) or the heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -530,7 +530,8 @@ struct PointSums
  * Every point's sums, in half the memory of a PointSums per point: per point the sum of the
  * handedness its first corner gave it (Weight signed with that handedness; 0 before any corner),
  * and the other handedness, which only points on mirror seams have, aside. Each side adds its
- * corners in the order they come (SumFrames: triangle order).
+ * corners in the order they come (SumFrames: triangle order). The points are dealt in blocks of
+ * BlockSize to a power of two of owners; Add may run concurrently for points of different owners.
  */
 struct ScatteredSums
 {
@@ -544,15 +545,29 @@ struct ScatteredSums
       this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
     }
   };
+  /// Points per block of one owner: whole cache lines of First.
+  static constexpr vtkIdType BlockSize = 256;
   std::vector<Side> First;
-  std::vector<bool> HasOther;
-  std::unordered_map<vtkIdType, Side> Other;
+  std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
+  std::vector<std::unordered_map<vtkIdType, Side>> Other; // per owner
+  int OwnerMask = 0;
 
-  explicit ScatteredSums(vtkIdType numPoints)
+  /// At most maxOwners owners (at least one).
+  ScatteredSums(vtkIdType numPoints, int maxOwners)
     : First(static_cast<size_t>(numPoints))
-    , HasOther(static_cast<size_t>(numPoints), false)
+    , HasOther(static_cast<size_t>(numPoints), 0)
   {
+    int owners = 1;
+    while (2 * owners <= maxOwners)
+    {
+      owners *= 2;
+    }
+    this->Other.resize(static_cast<size_t>(owners));
+    this->OwnerMask = owners - 1;
   }
+
+  int Owners() const { return this->OwnerMask + 1; }
+  int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
@@ -567,8 +582,30 @@ struct ScatteredSums
       first.Add(signedWeight, tangent);
       return;
     }
-    this->HasOther[p] = true;
-    this->Other[p].Add(signedWeight, tangent);
+    this->HasOther[p] = 1;
+    this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
+  }
+
+  /**
+   * Adds the corners of triangles [begin, end) whose points `owner` owns, in triangle order;
+   * `frames` holds those triangles' frames (triangle t at t - begin).
+   */
+  void AddCorners(const vtkIdType* ids,
+    const TriangleFrames& frames,
+    vtkIdType begin,
+    vtkIdType end,
+    int owner)
+  {
+    const bool all = this->Owners() == 1;
+    for (vtkIdType c = 3 * begin; c < 3 * end; ++c)
+    {
+      const vtkIdType p = ids[c];
+      if (all || this->OwnerOf(p) == owner)
+      {
+        const vtkIdType i = c - 3 * begin;
+        this->Add(p, frames.SignedWeight[i], frames.TangentOf(i / 3));
+      }
+    }
   }
 
   /// Point p's sums; safe to call from several threads.
@@ -587,12 +624,11 @@ struct ScatteredSums
     }
     if (this->HasOther[p])
     {
-      put(this->Other.at(p));
+      put(this->Other[this->OwnerOf(p)].at(p));
     }
     return s;
   }
 };
-
 
 /// What the sums of a point show.
 enum class PointKind : unsigned char
@@ -1061,11 +1097,12 @@ struct vtkPolyDataTangentFrames::Internals
 
   /**
    * Every point's sums. The frames of a chunk of triangles are computed in parallel and stored
-   * (ComputeFrames), then added to the points of their corners in triangle order on this thread,
-   * chunk after chunk: each point adds the same terms in the same order for any number of
-   * threads, so the same bits. A chunk's frames stay in the cache until they are added; with
-   * cell tangents the chunk is every triangle, whose frames CellTangentArray reads. Counts the
-   * triangles without a frame in `degenerate`.
+   * (ComputeFrames), then added to the points of their corners in triangle order, chunk after
+   * chunk: each owner of points (ScatteredSums: a power of two of them, up to the usable threads)
+   * goes through the chunk's corners and adds those of its points. Each point adds the same terms
+   * in the same order for any number of threads, so the same bits. A chunk's frames stay in the
+   * cache until they are added; with cell tangents the chunk is every triangle, whose frames
+   * CellTangentArray reads. Counts the triangles without a frame in `degenerate`.
    */
   ScatteredSums SumFrames(TangentMethod method,
     const dvec3* normals,
@@ -1078,19 +1115,32 @@ struct vtkPolyDataTangentFrames::Internals
     this->Frames.reset(new TriangleFrames(chunk, cellTangents));
     const TriangleFrames& frames = *this->Frames;
     const vtkIdType* ids = this->Tris.Ids;
-    ScatteredSums sums(this->NumberOfPoints);
+    ScatteredSums sums(this->NumberOfPoints, vtkNormalMapping::detail::UsableThreads());
+    const int owners = sums.Owners();
     for (vtkIdType begin = 0; begin < count; begin += chunk)
     {
       const vtkIdType end = std::min(begin + chunk, count);
       this->ComputeFrames(method, normals, begin, end);
-      for (vtkIdType t = begin; t < end; ++t)
+      if (owners == 1)
       {
-        const vtkIdType i = t - begin;
+        sums.AddCorners(ids, frames, begin, end, 0);
+      }
+      else
+      {
+        vtkSMPTools::For(0,
+          owners,
+          1,
+          [&](vtkIdType firstOwner, vtkIdType lastOwner)
+          {
+            for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+            {
+              sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
+            }
+          });
+      }
+      for (vtkIdType i = 0; i < end - begin; ++i)
+      {
         degenerate += frames.HasFrame(i) ? 0 : 1;
-        for (int k = 0; k < 3; ++k)
-        {
-          sums.Add(ids[3 * t + k], frames.SignedWeight[3 * i + k], frames.TangentOf(i));
-        }
       }
     }
     return sums;

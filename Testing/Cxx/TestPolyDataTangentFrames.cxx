@@ -1264,8 +1264,8 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // Several threads compute the triangle frames in chunks; the frames are then added to their
-  // points in triangle order whatever the thread count, so the bits must not change. Two mirrored
+  // One thread adds every triangle to its points in triangle order; several threads split that
+  // adding among owners of blocks of points: both must give the same bits. Two mirrored
   // tori of different sizes, and the first again with its quads written as quads, strips and
   // triangle pairs in turn, so that cells that are not all triangles take both paths too.
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
