@@ -1028,7 +1028,8 @@ struct vtkPolyDataTangentFrames::Internals
   {
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
-    this->VisitFrames(TangentMethod::AreaWeighted,
+    this->VisitFrames(
+      TangentMethod::AreaWeighted,
       nullptr,
       [&](vtkIdType t, const TriangleFrame& f, const double*)
       {
@@ -1275,8 +1276,8 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   };
 
   this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
-  const ScatteredSums sums = this->SumFrames(
-    method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+  const ScatteredSums sums =
+    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
   const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());

@@ -398,7 +398,7 @@ struct TriangleBlock
   double Tangent[3][Size];
   double Normal[3][Size];
   double Area[Size];
-  double Angle[3][Size]; ///< corner angles, when asked for
+  double Angle[3][Size];    ///< corner angles, when asked for
   double Orientation[Size]; ///< +1, -1 or 0 (TriangleFrame::Orientation)
   double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
   /// For SignCornerWeights: the unit shading normal of corner k's point, component c, at

@@ -1884,8 +1884,7 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
         }
         EXPECT_TRUE(messages.Errors.empty()) << messages.Errors.front();
         if (c.Warning.empty() ||
-          (c.WeightedMethodsOnly &&
-            filter->GetMethod() == vtkPolyDataTangentFrames::MIKKTSPACE))
+          (c.WeightedMethodsOnly && filter->GetMethod() == vtkPolyDataTangentFrames::MIKKTSPACE))
         {
           EXPECT_TRUE(messages.Warnings.empty()) << messages.Warnings.front();
         }
