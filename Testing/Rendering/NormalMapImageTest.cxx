@@ -425,27 +425,17 @@ void AddKhronosView(vtkRenderWindow* window,
 vtkSmartPointer<vtkImageData> MakeObjectSpaceSphereMap(Pattern pattern, int size)
 {
   const double pi = 3.14159265358979323846;
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(size, size, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  auto* texels = static_cast<unsigned char*>(image->GetScalarPointer());
-  for (int j = 0; j < size; ++j)
-  {
-    for (int i = 0; i < size; ++i)
+  return MakeRGBNormalImage(size,
+    [&](double u, double v)
     {
       // vtkTexturedSphereSource: u = theta / 2 pi around z, v = 1 - phi / pi from the +z pole.
-      const double u = (i + 0.5) / size, v = (j + 0.5) / size;
       const double theta = 2.0 * pi * u, phi = pi * (1.0 - v);
       const glm::dvec3 normal(
         std::sin(phi) * std::cos(theta), std::sin(phi) * std::sin(theta), std::cos(phi));
       const glm::dvec3 tangent(-std::sin(theta), std::cos(theta), 0.0);
       const glm::dvec3 bitangent = glm::cross(normal, tangent);
       const glm::dvec3 t = PatternNormal(pattern, u, v);
-      const glm::dvec3 n = glm::normalize(t.x * tangent + t.y * bitangent + t.z * normal);
-      unsigned char* texel = texels + 3 * (static_cast<size_t>(j) * size + i);
-      texel[0] = Encode(n.x), texel[1] = Encode(n.y), texel[2] = Encode(n.z);
-    }
-  }
-  return image;
+      return glm::normalize(t.x * tangent + t.y * bitangent + t.z * normal);
+    });
 }
 }

@@ -122,6 +122,26 @@ unsigned char Encode(double x)
 }
 
 //------------------------------------------------------------------------------
+vtkSmartPointer<vtkImageData> MakeRGBNormalImage(int size,
+  const std::function<glm::dvec3(double u, double v)>& normalAt)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(size, size, 1);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* texels = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (int j = 0; j < size; ++j)
+  {
+    for (int i = 0; i < size; ++i)
+    {
+      const glm::dvec3 n = normalAt((i + 0.5) / size, (j + 0.5) / size);
+      unsigned char* t = texels + 3 * (static_cast<size_t>(j) * size + i);
+      t[0] = Encode(n.x), t[1] = Encode(n.y), t[2] = Encode(n.z);
+    }
+  }
+  return image;
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Storage storage)
 {
   const int components = storage == Storage::OneChannel                         ? 1

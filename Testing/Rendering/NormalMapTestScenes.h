@@ -14,6 +14,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,10 @@ unsigned char Encode(double x);
 
 /// A size x size texture image of the pattern (texel centres at (i + 0.5) / size).
 vtkSmartPointer<vtkImageData> MakeNormalMapImage(Pattern pattern, int size, Storage storage);
+/// A size x size RGB map (Encode per channel) of the unit normals normalAt(u, v), sampled at
+/// texel centres: for maps whose normals are not a pattern's tangent-space ones.
+vtkSmartPointer<vtkImageData> MakeRGBNormalImage(int size,
+  const std::function<glm::dvec3(double u, double v)>& normalAt);
 
 /// A texture for a normal map: repeat, linear interpolation (mipmaps follow from the mapper).
 vtkSmartPointer<vtkTexture> MakeNormalTexture(vtkImageData* image);

@@ -103,23 +103,7 @@ glm::dvec3 ObjectSpaceNormal(double u, double v)
 
 vtkSmartPointer<vtkImageData> MakeObjectSpaceImage(int size)
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(size, size, 1);
-  image->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
-  auto* texels = static_cast<unsigned char*>(image->GetScalarPointer());
-  for (int j = 0; j < size; ++j)
-  {
-    for (int i = 0; i < size; ++i)
-    {
-      const glm::dvec3 n = ObjectSpaceNormal((i + 0.5) / size, (j + 0.5) / size);
-      for (int c = 0; c < 3; ++c)
-      {
-        texels[3 * (j * size + i) + c] =
-          static_cast<unsigned char>(std::lround((n[c] * 0.5 + 0.5) * 255.0));
-      }
-    }
-  }
-  return image;
+  return nmtest::MakeRGBNormalImage(size, ObjectSpaceNormal);
 }
 }
 
