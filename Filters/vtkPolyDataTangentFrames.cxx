@@ -39,8 +39,9 @@
  * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
  *    normals are computed, every point gets the list of its triangle corners in that order (the
  *    links).
- * 2. Every point gets its unit shading normal: the input's, or where that is unusable (or the
- *    input has none) the area-weighted sum of its triangles' normals, through the links.
+ * 2. Every point gets its shading normal: the input's, or where that is unusable (or the input
+ *    has none) the area-weighted sum of its triangles' normals, through the links. Float normals
+ *    that are all usable are read in place (ShadingNormals); any others become unit vectors.
  * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
@@ -61,10 +62,13 @@ namespace
 using glm::dvec2;
 using glm::dvec3;
 using vtkNormalMapping::CornerSign;
+using vtkNormalMapping::CornerWeight;
 using vtkNormalMapping::DegeneracyTolerance;
+using vtkNormalMapping::IsUsableNormal;
 using vtkNormalMapping::PerpendicularTangent;
 using vtkNormalMapping::SafeNormalize;
 using vtkNormalMapping::TangentMethod;
+using vtkNormalMapping::TriangleBlock;
 using vtkNormalMapping::TriangleFrame;
 using vtkNormalMapping::detail::WithCellStorage;
 
@@ -352,39 +356,30 @@ struct TriangleFrames
   {
     return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
   }
-  bool HasFrame(vtkIdType t) const { return this->TangentOf(t) != dvec3(0.0); }
 };
 
 /**
- * The frames pass over one block of triangles: ComputeTriangleBlock, then, with `signs`,
- * SignCornerWeights. Compiled also for the wider vector units of x86-64 CPUs and picked at load
- * time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loops are worth
- * it. Every clone performs the same IEEE operations (no contraction into fused multiply-adds:
- * see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ * ComputeTriangleBlock, compiled also for the wider vector units of x86-64 CPUs and picked at
+ * load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loops are
+ * worth it. Every clone performs the same IEEE operations (no contraction into fused
+ * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
 VTK_NORMALMAPPING_TARGET_CLONES
-void ComputeFrameBlock(vtkNormalMapping::TriangleBlock& block,
+void ComputeFrameBlock(TriangleBlock& block,
   int count,
   const DegeneracyTolerance& tol,
-  TangentMethod method,
-  bool signs)
+  bool withAngles)
 {
-  vtkNormalMapping::ComputeTriangleBlock(
-    block, count, tol, signs && method == TangentMethod::AngleWeighted);
-  if (signs)
-  {
-    vtkNormalMapping::SignCornerWeights(block, count, method);
-  }
+  vtkNormalMapping::ComputeTriangleBlock(block, count, tol, withAngles);
 }
 
 /**
- * Calls visit(t, frame, signedWeights), in parallel, for every triangle t of [begin, end) with its
- * ComputeTriangleFrame and, when `normals` (unit shading normals per point) are given, its
- * corners' weights for `method` signed with their handedness (SignCornerWeights; else zeros), for
- * any point and texture coordinate arrays. The triangles are computed a block at a time
- * (ComputeFrameBlock).
+ * Calls visit(first, block, count), in parallel, for consecutive blocks of the triangles
+ * [begin, end): `block` holds the frames of triangles [first, first + count)
+ * (ComputeFrameBlock, with corner angles when `withAngles`), for any point and texture
+ * coordinate arrays.
  */
-struct VisitTriangleFrames
+struct VisitTriangleBlocks
 {
   template<typename PointArray, typename UVArray, typename Visit>
   void operator()(PointArray* pointArray,
@@ -393,46 +388,35 @@ struct VisitTriangleFrames
     vtkIdType begin,
     vtkIdType end,
     const DegeneracyTolerance& tol,
-    TangentMethod method,
-    const dvec3* normals,
+    bool withAngles,
     const Visit& visit) const
   {
-    using vtkNormalMapping::TriangleBlock;
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
     const auto uvs = vtk::DataArrayTupleRange(uvArray);
     const bool hasV = uvArray->GetNumberOfComponents() > 1;
-    const auto visitRange = [&](vtkIdType begin, vtkIdType end)
+    const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd)
     {
       TriangleBlock b; // not initialized: each triangle's entries are written before use
-      for (vtkIdType first = begin; first < end; first += TriangleBlock::Size)
+      for (vtkIdType first = rangeBegin; first < rangeEnd; first += TriangleBlock::Size)
       {
-        const int count = static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, end - first));
+        const int count =
+          static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, rangeEnd - first));
         for (int i = 0; i < count; ++i)
         {
+          dvec3 p[3];
+          dvec2 uv[3];
           for (int k = 0; k < 3; ++k)
           {
             const vtkIdType id = tris.Ids[3 * (first + i) + k];
             const auto point = points[id];
             const auto texture = uvs[id];
-            for (int c = 0; c < 3; ++c)
-            {
-              b.P[k][c][i] = static_cast<double>(point[c]);
-              b.N[k][c][i] = normals ? normals[id][c] : 0.0;
-            }
-            b.UV[k][0][i] = static_cast<double>(texture[0]);
-            b.UV[k][1][i] = hasV ? static_cast<double>(texture[1]) : 0.0;
+            p[k] = dvec3(point[0], point[1], point[2]);
+            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
           }
+          b.SetCorners(i, p, uv);
         }
-        ComputeFrameBlock(b, count, tol, method, normals != nullptr);
-        for (int i = 0; i < count; ++i)
-        {
-          double weights[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            weights[k] = normals ? b.SignedWeight[k][i] : 0.0;
-          }
-          visit(first + i, b.Frame(i), weights);
-        }
+        ComputeFrameBlock(b, count, tol, withAngles);
+        visit(first, static_cast<const TriangleBlock&>(b), count);
       }
     };
     vtkSMPTools::For(begin, end, visitRange);
@@ -452,14 +436,45 @@ void DispatchReals2(vtkDataArray* a, vtkDataArray* b, Worker&& worker, Args&&...
   }
 }
 
-/// Unit shading normals from a normal array (zero where it is zero or non-finite); counts those.
+/// Calls worker(a, args...) with a as its concrete float or double array type, or as plain
+/// vtkDataArray (virtual access) for any other type.
+template<typename Worker, typename... Args>
+void DispatchReals(vtkDataArray* a, Worker&& worker, Args&&... args)
+{
+  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(a, worker, args...))
+  {
+    worker(a, args...);
+  }
+}
+
+/// Unit shading normals from a normal array (zero where it is zero or non-finite).
 struct UnitNormals
 {
   template<typename NormalArray>
-  void operator()(NormalArray* array, dvec3* out, vtkIdType n, vtkIdType& unusable) const
+  void operator()(NormalArray* array, dvec3* out, vtkIdType n) const
   {
     const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
-    std::atomic<vtkIdType> zero{ 0 };
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          const auto v = normals[p];
+          out[p] = SafeNormalize(dvec3(v[0], v[1], v[2]));
+        }
+      });
+  }
+};
+
+/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
+struct CountUnusableNormals
+{
+  template<typename NormalArray>
+  void operator()(NormalArray* array, vtkIdType n, vtkIdType& unusable) const
+  {
+    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
+    std::atomic<vtkIdType> count{ 0 };
     vtkSMPTools::For(0,
       n,
       [&](vtkIdType begin, vtkIdType end)
@@ -468,27 +483,37 @@ struct UnitNormals
         for (vtkIdType p = begin; p < end; ++p)
         {
           const auto v = normals[p];
-          out[p] = SafeNormalize(dvec3(v[0], v[1], v[2]));
-          here += out[p] == dvec3(0.0) ? 1 : 0;
+          here += IsUsableNormal(dvec3(v[0], v[1], v[2])) ? 0 : 1;
         }
-        zero += here;
+        count += here;
       });
-    unusable = zero;
+    unusable = count;
   }
 };
 
-/// UnitNormals for an array of any type; returns the number of unusable normals.
-vtkIdType ComputeUnitNormals(vtkDataArray* normals, dvec3* out, vtkIdType n)
+/**
+ * The shading normal of every point, as 3-tuples of floats or doubles: either unit vectors
+ * (Unit), or a float normal array whose every normal is usable, normalized where a unit vector
+ * is needed. Corner signs need only the direction, so they read the stored vector: a float
+ * normal's dot product with a triangle normal neither overflows nor underflows in double.
+ */
+struct ShadingNormals
 {
-  vtkIdType unusable = 0;
-  UnitNormals worker;
-  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(
-        normals, worker, out, n, unusable))
+  const float* Float = nullptr;
+  const double* Double = nullptr;
+  bool Unit = true;
+
+  dvec3 Stored(vtkIdType p) const
   {
-    worker(normals, out, n, unusable);
+    return this->Float
+      ? dvec3(this->Float[3 * p], this->Float[3 * p + 1], this->Float[3 * p + 2])
+      : dvec3(this->Double[3 * p], this->Double[3 * p + 1], this->Double[3 * p + 2]);
   }
-  return unusable;
-}
+  dvec3 UnitOf(vtkIdType p) const
+  {
+    return this->Unit ? this->Stored(p) : SafeNormalize(this->Stored(p));
+  }
+};
 
 /**
  * Smooth point normals: per point the sum, in triangle order, of its triangles' area-weighted
@@ -676,7 +701,7 @@ struct SplitPoint
 /// The sign of a signed corner weight: the handedness, or 0 without a frame or weight.
 signed char SideOf(double signedWeight)
 {
-  return signedWeight > 0.0 ? 1 : (signedWeight < 0.0 ? -1 : 0);
+  return static_cast<signed char>((signedWeight > 0.0) - (signedWeight < 0.0));
 }
 
 /// The handedness (CornerSides) triangle t gives its corner at point id.
@@ -819,7 +844,7 @@ PointKind WriteFrame(const PointSums& s,
 template<typename OutT, typename SumsOf>
 void WriteFrames(vtkIdType numPoints,
   const SumsOf& sumsOf,
-  const dvec3* normals,
+  const ShadingNormals& normals,
   bool splitting,
   const FrameArrays<OutT>& out,
   PointKind* kinds)
@@ -830,7 +855,7 @@ void WriteFrames(vtkIdType numPoints,
     {
       for (vtkIdType p = begin; p < end; ++p)
       {
-        kinds[p] = WriteFrame(sumsOf(p), p, normals[p], splitting, out);
+        kinds[p] = WriteFrame(sumsOf(p), p, normals.UnitOf(p), splitting, out);
       }
     });
 }
@@ -853,11 +878,13 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
  * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
  * corners in order collects, per fallback point, its neighbours in triangle order (the order of
- * the links, which this pass does not need).
+ * the links, which this pass does not need). A fallback point's corners have no handedness
+ * (`sides`), so only those corners are looked at.
  */
 template<typename OutT>
 void FillFallbacks(const Triangles& tris,
-  const dvec3* normals,
+  const signed char* sides,
+  const ShadingNormals& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
   const FrameArrays<OutT>& out)
@@ -866,11 +893,11 @@ void FillFallbacks(const Triangles& tris,
   std::vector<int> votes(fallbacks.size(), 0);
   for (vtkIdType c = 0; c < 3 * tris.Count; ++c)
   {
-    const vtkIdType p = tris.Ids[c];
-    if (kinds[p] != PointKind::Fallback)
+    if (sides[c] != 0 || kinds[tris.Ids[c]] != PointKind::Fallback)
     {
       continue;
     }
+    const vtkIdType p = tris.Ids[c];
     const size_t i = std::lower_bound(fallbacks.begin(), fallbacks.end(), p) - fallbacks.begin();
     const vtkIdType* triangle = tris.Ids + 3 * (c / 3);
     for (int m = 0; m < 3; ++m)
@@ -890,8 +917,8 @@ void FillFallbacks(const Triangles& tris,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = fallbacks[i];
-        out.Write(
-          p, normals[p], PerpendicularTangent(normals[p], sums[i]), votes[i] < 0 ? -1.0 : 1.0);
+        const dvec3 n = normals.UnitOf(p);
+        out.Write(p, n, PerpendicularTangent(n, sums[i]), votes[i] < 0 ? -1.0 : 1.0);
       }
     });
 }
@@ -899,7 +926,7 @@ void FillFallbacks(const Triangles& tris,
 /// The -1 frames of the seam points, for their copies, with `sumsOf(p)` giving their sums.
 template<typename SumsOf>
 std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
-  const dvec3* normals,
+  const ShadingNormals& normals,
   const std::vector<vtkIdType>& conflicts)
 {
   std::vector<SplitPoint> splits(conflicts.size());
@@ -911,7 +938,8 @@ std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
       {
         const vtkIdType p = conflicts[i];
         const PointSums& s = sumsOf(p);
-        splits[i] = SplitPoint{ p, normals[p], PerpendicularTangent(normals[p], s.Tangent[1]) };
+        const dvec3 n = normals.UnitOf(p);
+        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, s.Tangent[1]) };
       }
     });
   return splits;
@@ -998,25 +1026,20 @@ struct vtkPolyDataTangentFrames::Internals
     return *this->PointLinks;
   }
 
-  /// visit(t, frame, signedWeights) for every triangle of [begin, end) (VisitTriangleFrames).
+  /// visit(first, block, count) for the triangles of [begin, end) (VisitTriangleBlocks).
   template<typename Visit>
-  void VisitFrames(TangentMethod method,
-    const dvec3* normals,
-    const Visit& visit,
-    vtkIdType begin,
-    vtkIdType end)
+  void VisitFrames(bool withAngles, const Visit& visit, vtkIdType begin, vtkIdType end)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
     DispatchReals2(this->Input->GetPoints()->GetData(),
       this->UVs,
-      VisitTriangleFrames(),
+      VisitTriangleBlocks(),
       this->Tris,
       begin,
       end,
       tol,
-      method,
-      normals,
+      withAngles,
       visit);
   }
 
@@ -1029,14 +1052,17 @@ struct vtkPolyDataTangentFrames::Internals
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
     this->VisitFrames(
-      TangentMethod::AreaWeighted,
-      nullptr,
-      [&](vtkIdType t, const TriangleFrame& f, const double*)
+      false,
+      [&](vtkIdType first, const TriangleBlock& b, int count)
       {
-        weighted[t] = f.Area * SafeNormalize(f.Normal);
-        if (cellNormals)
+        for (int i = 0; i < count; ++i)
         {
-          area[t] = f.Area;
+          const TriangleFrame f = b.Frame(i);
+          weighted[first + i] = f.Area * SafeNormalize(f.Normal);
+          if (cellNormals)
+          {
+            area[first + i] = f.Area;
+          }
         }
       },
       0,
@@ -1066,34 +1092,54 @@ struct vtkPolyDataTangentFrames::Internals
   /**
    * The frames of the triangles [begin, end), stored (triangle t at t - begin): tangents and
    * corner weights signed with the handedness they give the points' shading normals, and the
-   * corners' handedness (CornerSides).
+   * corners' handedness (CornerSides). Returns the number of triangles without a frame.
    */
-  void ComputeFrames(TangentMethod method, const dvec3* normals, vtkIdType begin, vtkIdType end)
+  vtkIdType ComputeFrames(TangentMethod method,
+    const ShadingNormals& normals,
+    vtkIdType begin,
+    vtkIdType end)
   {
     TriangleFrames& out = *this->Frames;
+    std::atomic<vtkIdType> degenerate{ 0 };
     this->VisitFrames(
-      method,
-      normals,
-      [&](vtkIdType t, const TriangleFrame& f, const double* signedWeights)
+      method == TangentMethod::AngleWeighted,
+      [&](vtkIdType first, const TriangleBlock& b, int count)
       {
-        const vtkIdType i = t - begin;
-        for (int k = 0; k < 3; ++k)
+        // Local pointers: the stores through `sides` (char) may alias any object in memory.
+        const vtkIdType* ids = this->Tris.Ids + 3 * first;
+        signed char* sides = this->CornerSides.get() + 3 * first;
+        double* tangents = out.Tangent.get() + 3 * (first - begin);
+        double* weights = out.SignedWeight.get() + 3 * (first - begin);
+        double* cellNormals = out.Normal ? out.Normal.get() + 3 * (first - begin) : nullptr;
+        double* areas = out.Area ? out.Area.get() + (first - begin) : nullptr;
+        vtkIdType none = 0;
+        for (int i = 0; i < count; ++i)
         {
-          out.Tangent[3 * i + k] = f.Tangent[k];
-          out.SignedWeight[3 * i + k] = signedWeights[k];
-          this->CornerSides[3 * t + k] = SideOf(signedWeights[k]);
-        }
-        if (out.Area)
-        {
+          const TriangleFrame f = b.Frame(i);
+          const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
           for (int k = 0; k < 3; ++k)
           {
-            out.Normal[3 * i + k] = f.Normal[k];
+            const double w =
+              CornerSign(f, normals.Stored(ids[3 * i + k])) * CornerWeight(method, f, angles, k);
+            tangents[3 * i + k] = f.Tangent[k];
+            weights[3 * i + k] = w;
+            sides[3 * i + k] = SideOf(w);
           }
-          out.Area[i] = f.Area;
+          if (areas)
+          {
+            for (int k = 0; k < 3; ++k)
+            {
+              cellNormals[3 * i + k] = f.Normal[k];
+            }
+            areas[i] = f.Area;
+          }
+          none += f.Orientation == 0 ? 1 : 0;
         }
+        degenerate += none;
       },
       begin,
       end);
+    return degenerate;
   }
 
   /**
@@ -1106,11 +1152,11 @@ struct vtkPolyDataTangentFrames::Internals
    * CellTangentArray reads. Counts the triangles without a frame in `degenerate`.
    */
   ScatteredSums SumFrames(TangentMethod method,
-    const dvec3* normals,
+    const ShadingNormals& normals,
     bool cellTangents,
     vtkIdType& degenerate)
   {
-    constexpr vtkIdType ChunkSize = 16384;
+    constexpr vtkIdType ChunkSize = 4096;
     const vtkIdType count = this->Tris.Count;
     const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
     this->Frames.reset(new TriangleFrames(chunk, cellTangents));
@@ -1121,7 +1167,7 @@ struct vtkPolyDataTangentFrames::Internals
     for (vtkIdType begin = 0; begin < count; begin += chunk)
     {
       const vtkIdType end = std::min(begin + chunk, count);
-      this->ComputeFrames(method, normals, begin, end);
+      degenerate += this->ComputeFrames(method, normals, begin, end);
       if (owners == 1)
       {
         sums.AddCorners(ids, frames, begin, end, 0);
@@ -1139,12 +1185,37 @@ struct vtkPolyDataTangentFrames::Internals
             }
           });
       }
-      for (vtkIdType i = 0; i < end - begin; ++i)
-      {
-        degenerate += frames.HasFrame(i) ? 0 : 1;
-      }
     }
     return sums;
+  }
+
+  /**
+   * The shading normals from a point normal array with `unusable` unusable normals: the float
+   * array itself when every normal is usable, else unit normals stored in `unit`, where the
+   * unusable ones take the area-weighted normal of their triangles.
+   */
+  ShadingNormals ShadingNormalsOf(vtkDataArray* array, vtkIdType unusable, Buffer<dvec3>& unit)
+  {
+    ShadingNormals normals;
+    auto* floats = vtkFloatArray::FastDownCast(array);
+    if (floats && unusable == 0)
+    {
+      normals.Float = floats->GetPointer(0);
+      normals.Unit = false;
+      return normals;
+    }
+    unit.reset(new dvec3[this->NumberOfPoints]);
+    DispatchReals(array, UnitNormals(), unit.get(), this->NumberOfPoints);
+    if (unusable > 0)
+    {
+      const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
+      for (vtkIdType p = 0; p < this->NumberOfPoints; ++p)
+      {
+        unit[p] = unit[p] == dvec3(0.0) ? geometric[p] : unit[p];
+      }
+    }
+    normals.Double = &unit[0].x;
+    return normals;
   }
 
   template<typename OutT>
@@ -1152,7 +1223,7 @@ struct vtkPolyDataTangentFrames::Internals
   template<typename OutT>
   int RunWeighted(TangentMethod method,
     vtkSmartPointer<OutArray<OutT>> computedNormals,
-    const dvec3* normals);
+    const ShadingNormals& normals);
 
   /// The split points' -1 frames, written after the input points, and the cells on their
   /// mirrored side re-pointed to them in the output.
@@ -1190,12 +1261,11 @@ int vtkPolyDataTangentFrames::Internals::Run()
     mikkTSpace ? TangentMethod::AreaWeighted : static_cast<TangentMethod>(self->Method);
 
   // Normals: the input's (unit, with geometric stand-ins where unusable), or computed.
-  Buffer<dvec3> normals(new dvec3[this->NumberOfPoints]);
   vtkSmartPointer<OutArray<OutT>> computedNormals;
   vtkIdType unusable = 0;
   if (this->Normals)
   {
-    unusable = ComputeUnitNormals(this->Normals, normals.get(), this->NumberOfPoints);
+    DispatchReals(this->Normals, CountUnusableNormals(), this->NumberOfPoints, unusable);
     self->NumberOfInvalidNormals += unusable;
   }
   if (!mikkTSpace || !this->Normals)
@@ -1216,16 +1286,6 @@ int vtkPolyDataTangentFrames::Internals::Run()
       {
         out[3 * p + c] = static_cast<OutT>(smooth[p][c]);
       }
-    }
-    // The frames follow the normals as stored.
-    ComputeUnitNormals(computedNormals, normals.get(), this->NumberOfPoints);
-  }
-  else if (unusable > 0 && !mikkTSpace)
-  {
-    const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
-    for (vtkIdType p = 0; p < this->NumberOfPoints; ++p)
-    {
-      normals[p] = normals[p] == dvec3(0.0) ? geometric[p] : normals[p];
     }
   }
 
@@ -1250,13 +1310,17 @@ int vtkPolyDataTangentFrames::Internals::Run()
     self->NumberOfSplitPoints += counts.SplitPoints;
     return result;
   }
-  return this->RunWeighted<OutT>(method, computedNormals, normals.get());
+  // The frames follow the normals as stored.
+  Buffer<dvec3> unitNormals;
+  const ShadingNormals normals = this->ShadingNormalsOf(
+    computedNormals ? computedNormals.Get() : this->Normals, unusable, unitNormals);
+  return this->RunWeighted<OutT>(method, computedNormals, normals);
 }
 
 template<typename OutT>
 int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkSmartPointer<OutArray<OutT>> computedNormals,
-  const dvec3* normals)
+  const ShadingNormals& normals)
 {
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
@@ -1293,7 +1357,8 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(this->Tris, normals, kinds.get(), fallbacks, frameArrays());
+    FillFallbacks(
+      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frameArrays());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();

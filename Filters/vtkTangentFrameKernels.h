@@ -333,10 +333,68 @@ inline void FrameCornerAngles(const glm::dvec3& e1,
 }
 } // namespace detail
 
+namespace detail
+{
+/// The largest coordinate magnitude of a triangle's corners (the scale of their rounding).
+inline double MaxCoordinate(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2)
+{
+  return std::max(MaxAbs(p0), std::max(MaxAbs(p1), MaxAbs(p2)));
+}
+} // namespace detail
+
+/**
+ * ComputeTriangleFrame from a triangle's edges e1 = p1 - p0, e2 = p2 - p0, UV deltas
+ * d1 = uv1 - uv0, d2 = uv2 - uv0 and detail::MaxCoordinate of its corners: the edges and UV
+ * deltas are rescaled by exact powers of two when they lie outside the safe range (see the file
+ * comment), then solved and classified (detail::FrameFromEdges).
+ */
+inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
+  glm::dvec3 e2,
+  glm::dvec2 d1,
+  glm::dvec2 d2,
+  double maxCoordinate,
+  const DegeneracyTolerance& tol,
+  bool withArea,
+  double* angles)
+{
+  if (angles)
+  {
+    angles[0] = angles[1] = angles[2] = 0.0;
+  }
+  const double maxE = detail::MaxAbs(e1, e2);
+  if (!(maxE > 0.0) || !std::isfinite(maxE))
+  {
+    return TriangleFrame(); // coincident corners or non-finite positions
+  }
+  const int ePos = detail::RescaleExponent(maxE);
+  e1 = detail::ScaleByPowerOfTwo(e1, ePos);
+  e2 = detail::ScaleByPowerOfTwo(e2, ePos);
+
+  const double maxUV = detail::MaxAbs(d1, d2);
+  // Coincident or non-finite UVs leave the triangle with no tangent (hasUVArea below).
+  const bool usableUV = maxUV > 0.0 && std::isfinite(maxUV);
+  const int eUV = usableUV ? detail::RescaleExponent(maxUV) : 0;
+  d1 = usableUV ? detail::ScaleByPowerOfTwo(d1, eUV) : glm::dvec2(0.0);
+  d2 = usableUV ? detail::ScaleByPowerOfTwo(d2, eUV) : glm::dvec2(0.0);
+
+  // The rounding-noise bound scales with the edges (IsRoundingNoise).
+  const double scaledMaxP =
+    ePos == 0 ? maxCoordinate : detail::ScaleByPowerOfTwo(maxCoordinate, ePos);
+  TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, scaledMaxP, tol);
+  if (angles)
+  {
+    detail::FrameCornerAngles(e1, e2, frame, angles);
+  }
+  // Back to the input's units; an area beyond DBL_MAX still weighs as the largest double.
+  const double area =
+    detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(frame.Area, -ePos), -ePos);
+  frame.Area = !withArea ? 0.0 : (std::isfinite(area) ? area : DBL_MAX);
+  return frame;
+}
+
 /**
  * Solve E1 = du1 T + dv1 B, E2 = du2 T + dv2 B for one triangle and classify it
- * (detail::FrameFromEdges), with its edges and UV deltas rescaled by exact powers of two when
- * they lie outside the safe range (see the file comment).
+ * (ComputeFrameFromEdges). With `angles`, also its interior angles (ComputeCornerAngles).
  */
 inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec3& p1,
@@ -348,63 +406,55 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   bool withArea = true,
   double* angles = nullptr)
 {
-  if (angles)
-  {
-    angles[0] = angles[1] = angles[2] = 0.0;
-  }
-  glm::dvec3 e1 = p1 - p0;
-  glm::dvec3 e2 = p2 - p0;
-  const double maxE = detail::MaxAbs(e1, e2);
-  if (!(maxE > 0.0) || !std::isfinite(maxE))
-  {
-    return TriangleFrame(); // coincident corners or non-finite positions
-  }
-  const int ePos = detail::RescaleExponent(maxE);
-  e1 = detail::ScaleByPowerOfTwo(e1, ePos);
-  e2 = detail::ScaleByPowerOfTwo(e2, ePos);
-
-  glm::dvec2 d1 = uv1 - uv0;
-  glm::dvec2 d2 = uv2 - uv0;
-  const double maxUV = detail::MaxAbs(d1, d2);
-  // Collapsed or non-finite texture coordinates: no tangent, but the normal and angles.
-  const bool usableUV = maxUV > 0.0 && std::isfinite(maxUV);
-  const int eUV = usableUV ? detail::RescaleExponent(maxUV) : 0;
-  d1 = usableUV ? detail::ScaleByPowerOfTwo(d1, eUV) : glm::dvec2(0.0);
-  d2 = usableUV ? detail::ScaleByPowerOfTwo(d2, eUV) : glm::dvec2(0.0);
-
-  // The largest coordinate, scaled like the edges, for the rounding-noise test.
-  const double maxP =
-    std::max(detail::MaxAbs(p0), std::max(detail::MaxAbs(p1), detail::MaxAbs(p2)));
-  const double scaledMaxP = ePos == 0 ? maxP : detail::ScaleByPowerOfTwo(maxP, ePos);
-  TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, scaledMaxP, tol);
-  if (angles)
-  {
-    detail::FrameCornerAngles(e1, e2, frame, angles);
-  }
-  // Undo the exact scaling; clamp instead of overflowing for huge double input.
-  const double area =
-    detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(frame.Area, -ePos), -ePos);
-  frame.Area = !withArea ? 0.0 : (std::isfinite(area) ? area : DBL_MAX);
-  return frame;
+  return ComputeFrameFromEdges(p1 - p0,
+    p2 - p0,
+    uv1 - uv0,
+    uv2 - uv0,
+    detail::MaxCoordinate(p0, p1, p2),
+    tol,
+    withArea,
+    angles);
 }
 
-/// Triangles in structure-of-arrays form for ComputeTriangleBlock: corner positions and texture
-/// coordinates in, frames and corner angles out.
+/**
+ * The triangles of a block, as separate arrays per component (triangle i at index i), so that
+ * loops over them vectorize: their edges, UV deltas and largest coordinates (SetCorners), and
+ * after ComputeTriangleBlock their frames and corner angles.
+ */
 struct TriangleBlock
 {
   static constexpr int Size = 64;
-  double P[3][3][Size];  ///< corner k, component c of triangle i at P[k][c][i]
-  double UV[3][2][Size]; ///< the same for texture coordinates
+  double E[2][3][Size]; ///< component c of edge p1 - p0 (j = 0) or p2 - p0 (j = 1) at E[j][c][i]
+  double D[2][2][Size]; ///< the same for the UV deltas
+  double MaxCoordinate[Size];
   double Tangent[3][Size];
   double Normal[3][Size];
   double Area[Size];
   double Angle[3][Size];    ///< corner angles, when asked for
   double Orientation[Size]; ///< +1, -1 or 0 (TriangleFrame::Orientation)
   double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
-  /// For SignCornerWeights: the unit shading normal of corner k's point, component c, at
-  /// N[k][c][i] (in), and the corner's weight signed with its handedness (out).
-  double N[3][3][Size];
-  double SignedWeight[3][Size];
+
+  /// Triangle i's input, from its corners.
+  void SetCorners(int i, const glm::dvec3 p[3], const glm::dvec2 uv[3])
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->E[0][c][i] = p[1][c] - p[0][c];
+      this->E[1][c][i] = p[2][c] - p[0][c];
+    }
+    for (int c = 0; c < 2; ++c)
+    {
+      this->D[0][c][i] = uv[1][c] - uv[0][c];
+      this->D[1][c][i] = uv[2][c] - uv[0][c];
+    }
+    this->MaxCoordinate[i] = detail::MaxCoordinate(p[0], p[1], p[2]);
+  }
+
+  glm::dvec3 Edge(int j, int i) const
+  {
+    return glm::dvec3(this->E[j][0][i], this->E[j][1][i], this->E[j][2][i]);
+  }
+  glm::dvec2 Delta(int j, int i) const { return glm::dvec2(this->D[j][0][i], this->D[j][1][i]); }
 
   /// Stores triangle i's frame and corner angles.
   void Set(int i, const TriangleFrame& f, const double angles[3])
@@ -419,7 +469,7 @@ struct TriangleBlock
     this->Orientation[i] = f.Orientation;
   }
 
-  /// Triangle i's frame, as ComputeTriangleFrame gives it.
+  /// Triangle i's frame.
   TriangleFrame Frame(int i) const
   {
     TriangleFrame f;
@@ -433,26 +483,20 @@ struct TriangleBlock
 
 namespace detail
 {
-/// The common case of ComputeTriangleBlock: every triangle as if it needed no rescaling, and
-/// which ones do (Rare). WithAngles is a template argument: a loop-invariant branch inside the
-/// loop would keep it from vectorizing.
+/// The common-case pass of ComputeTriangleBlock; WithAngles a template argument so that the
+/// loop has no branch.
 template<bool WithAngles>
 void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyTolerance& tol)
 {
   for (int i = 0; i < count; ++i)
   {
-    const glm::dvec3 p0(b.P[0][0][i], b.P[0][1][i], b.P[0][2][i]);
-    const glm::dvec2 uv0(b.UV[0][0][i], b.UV[0][1][i]);
-    const glm::dvec2 d1 = glm::dvec2(b.UV[1][0][i], b.UV[1][1][i]) - uv0;
-    const glm::dvec2 d2 = glm::dvec2(b.UV[2][0][i], b.UV[2][1][i]) - uv0;
-    const glm::dvec3 p1(b.P[1][0][i], b.P[1][1][i], b.P[1][2][i]);
-    const glm::dvec3 p2(b.P[2][0][i], b.P[2][1][i], b.P[2][2][i]);
-    const glm::dvec3 e1 = p1 - p0;
-    const glm::dvec3 e2 = p2 - p0;
-    const double maxP = std::max(MaxAbs(p0), std::max(MaxAbs(p1), MaxAbs(p2)));
+    const glm::dvec3 e1 = b.Edge(0, i);
+    const glm::dvec3 e2 = b.Edge(1, i);
+    const glm::dvec2 d1 = b.Delta(0, i);
+    const glm::dvec2 d2 = b.Delta(1, i);
     const bool safe = InSafeRange(MaxAbs(e1, e2)) && InSafeRange(MaxAbs(d1, d2));
     b.Rare[i] = safe ? 0.0 : 1.0;
-    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, maxP, tol);
+    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, b.MaxCoordinate[i], tol);
     double angles[3] = { 0.0, 0.0, 0.0 };
     if (WithAngles)
     {
@@ -467,7 +511,7 @@ void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyToler
  * ComputeTriangleFrame (with the area) for the first `count` triangles of a block, bit for bit,
  * and their corner angles when `withAngles` (else zeros): a plain loop over the common case
  * (edges and UV deltas that need no rescaling) that the compiler vectorizes, then
- * ComputeTriangleFrame again for the triangles that need rescaling or are not finite.
+ * ComputeFrameFromEdges again for the triangles that need rescaling or are not finite.
  */
 inline void ComputeTriangleBlock(TriangleBlock& b,
   int count,
@@ -488,16 +532,15 @@ inline void ComputeTriangleBlock(TriangleBlock& b,
     {
       continue;
     }
-    glm::dvec3 p[3];
-    glm::dvec2 uv[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      p[k] = glm::dvec3(b.P[k][0][i], b.P[k][1][i], b.P[k][2][i]);
-      uv[k] = glm::dvec2(b.UV[k][0][i], b.UV[k][1][i]);
-    }
     double angles[3];
-    const TriangleFrame f =
-      ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles);
+    const TriangleFrame f = ComputeFrameFromEdges(b.Edge(0, i),
+      b.Edge(1, i),
+      b.Delta(0, i),
+      b.Delta(1, i),
+      b.MaxCoordinate[i],
+      tol,
+      true,
+      angles);
     const double none[3] = { 0.0, 0.0, 0.0 };
     b.Set(i, f, withAngles ? angles : none);
   }
@@ -555,47 +598,6 @@ inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const g
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
   return CornerSign(frame.Orientation, frame.Normal, n);
-}
-
-namespace detail
-{
-/// SignCornerWeights for one method, a template argument so that the loop has no branch.
-template<TangentMethod Method>
-void SignCornerWeightsFor(TriangleBlock& b, int count)
-{
-  for (int i = 0; i < count; ++i)
-  {
-    const TriangleFrame f = b.Frame(i);
-    const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
-    for (int k = 0; k < 3; ++k)
-    {
-      const glm::dvec3 n(b.N[k][0][i], b.N[k][1][i], b.N[k][2][i]);
-      b.SignedWeight[k][i] = CornerSign(f, n) * CornerWeight(Method, f, angles, k);
-    }
-  }
-}
-} // namespace detail
-
-/**
- * Per corner of the first `count` triangles of a block whose frames ComputeTriangleBlock gave
- * (with the angles for AngleWeighted), and whose corners' unit shading normals are in N: its
- * weight signed with the handedness the triangle gives it (CornerSign); zero without a frame.
- */
-inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
-{
-  switch (method)
-  {
-    case TangentMethod::AngleWeighted:
-      detail::SignCornerWeightsFor<TangentMethod::AngleWeighted>(b, count);
-      break;
-    case TangentMethod::AreaWeighted:
-      detail::SignCornerWeightsFor<TangentMethod::AreaWeighted>(b, count);
-      break;
-    case TangentMethod::Unweighted:
-    default:
-      detail::SignCornerWeightsFor<TangentMethod::Unweighted>(b, count);
-      break;
-  }
 }
 
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -277,55 +278,48 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
   for (int round = 0; round < 20; ++round)
   {
     const int count = round == 0 ? TriangleBlock::Size : 1 + static_cast<int>(rng() % 64);
+    std::vector<std::array<glm::dvec3, 3>> corners(count);
+    std::vector<std::array<glm::dvec2, 3>> uvs(count);
     for (int i = 0; i < count; ++i)
     {
+      glm::dvec3* p = corners[i].data();
+      glm::dvec2* uv = uvs[i].data();
       for (int k = 0; k < 3; ++k)
       {
-        for (int c = 0; c < 3; ++c)
-        {
-          block.P[k][c][i] = d(rng);
-        }
-        block.UV[k][0][i] = d(rng);
-        block.UV[k][1][i] = d(rng);
+        p[k] = glm::dvec3(d(rng), d(rng), d(rng));
+        uv[k] = glm::dvec2(d(rng), d(rng));
       }
       switch ((i + round) % 8)
       {
         case 1: // needs rescaling: huge positions
           for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c)
-              block.P[k][c][i] *= 1e300;
+            p[k] *= 1e300;
           break;
         case 2: // needs rescaling: tiny UV deltas
           for (int k = 0; k < 3; ++k)
-            block.UV[k][0][i] = 0.5 + 1e-60 * block.UV[k][0][i];
+            uv[k].x = 0.5 + 1e-60 * uv[k].x;
           break;
         case 3: // collinear corners
-          for (int c = 0; c < 3; ++c)
-            block.P[2][c][i] = 2.0 * block.P[1][c][i] - block.P[0][c][i];
+          p[2] = 2.0 * p[1] - p[0];
           break;
         case 4: // collapsed texture coordinates
-          block.UV[1][0][i] = block.UV[0][0][i];
-          block.UV[1][1][i] = block.UV[0][1][i];
+          uv[1] = uv[0];
           break;
         case 5: // not finite
-          block.P[1][0][i] = nan;
+          p[1].x = nan;
           break;
         default:
           break;
       }
+      block.SetCorners(i, p, uv);
     }
     for (bool withAngles : { false, true })
     {
       ComputeTriangleBlock(block, count, tol, withAngles);
       for (int i = 0; i < count; ++i)
       {
-        glm::dvec3 p[3];
-        glm::dvec2 uv[3];
-        for (int k = 0; k < 3; ++k)
-        {
-          p[k] = glm::dvec3(block.P[k][0][i], block.P[k][1][i], block.P[k][2][i]);
-          uv[k] = glm::dvec2(block.UV[k][0][i], block.UV[k][1][i]);
-        }
+        const glm::dvec3* p = corners[i].data();
+        const glm::dvec2* uv = uvs[i].data();
         double angles[3];
         const TriangleFrame ref =
           ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles);
