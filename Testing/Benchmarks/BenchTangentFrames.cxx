@@ -377,9 +377,8 @@ Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int 
 /// two (Bench::RunRounds): the one-thread time / the two-thread time, the speed-up of the second
 /// thread. The thread count is set outside the timed Update, and an untimed Update with that
 /// count comes first: an application sets it once, and the first Update after a change pays for
-/// it (VTK's TBB backend makes a new task arena, which the worker threads join), which was most
-/// of an Update of 10K triangles (0.96x in the benchmark where a driver with the count set once
-/// measured 1.34x).
+/// it (VTK's TBB backend makes a new task arena, which the worker threads join), a cost that
+/// would dominate the Update of a small mesh.
 Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int pairs)
 {
   auto f = Bench::MakeTangentFilter(filter);
