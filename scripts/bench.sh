@@ -5,6 +5,10 @@
 # BUILD/bin (--build, else $BUILD_DIR, else ./build):
 #   BenchTangentAccuracy     filter accuracy (analytic tangents, MikkTSpace reference meshes)
 #   BenchTangentFrames       filter throughput and peak memory (Google Benchmark)
+#   BenchMikkTSpace          MikkTSpace against the original mikktspace.c, paired runs; only when
+#                            the build has the original's source (MIKKTSPACE_REFERENCE_DIR of
+#                            bootstrap.sh, or CMake's NORMALMAPPING_MIKKTSPACE_REFERENCE_DIR), else
+#                            its section says that it was not run and how to run it
 #   BenchNormalMapRendering  frame time, image error and vertex memory of the mappers (llvmpipe)
 #   BenchChart               the speed-versus-accuracy chart (VTK charts)
 # Each writes its section (and a tab-separated table) into a work folder (BUILD/bench, or the --out
@@ -33,7 +37,8 @@ while [ $# -gt 0 ]; do
   shift
 done
 bin="$build/bin"
-for program in BenchTangentAccuracy BenchTangentFrames BenchNormalMapRendering BenchChart; do
+for program in BenchTangentAccuracy BenchTangentFrames BenchMikkTSpace BenchNormalMapRendering \
+  BenchChart; do
   if [ ! -x "$bin/$program" ]; then
     echo "$bin/$program is missing: build first (bash scripts/bootstrap.sh bench does)" >&2
     exit 1
@@ -42,7 +47,7 @@ done
 work="$build/bench"
 [ "${#smoke[@]}" -eq 0 ] || work="$out"
 mkdir -p "$work" "$out"
-rm -f "$work"/{filter,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
+rm -f "$work"/{filter,mikktspace,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
 
 # Debian's VTK renders through X only: a private Xvfb; a VTK without X (OSMesa, EGL) needs none.
 if [ -z "$mode" ]; then
@@ -76,6 +81,7 @@ run() {
 headless="$root/Testing/Rendering/RunHeadless.sh"
 run accuracy "$bin/BenchTangentAccuracy" --out "$work" "${smoke[@]}"
 run filter "$bin/BenchTangentFrames" --out "$work" "${smoke[@]}"
+run mikktspace "$bin/BenchMikkTSpace" --out "$work" "${smoke[@]}"
 run rendering "$headless" "$mode" "$bin/BenchNormalMapRendering" --out "$work" "${smoke[@]}"
 run chart "$headless" "$mode" "$bin/BenchChart" --out "$work"
 load_end="$(cut -d' ' -f1-3 /proc/loadavg)"
@@ -114,7 +120,7 @@ parts="$(printf '%s, ' "${timings[@]}")"
   echo "right (less time). The dashed lines join the points that no other point beats on both"
   echo "(on the right, one line per lighting model: their errors have different references)."
   echo
-  cat "$work/filter.md" "$work/accuracy.md" "$work/rendering.md"
+  cat "$work/filter.md" "$work/mikktspace.md" "$work/accuracy.md" "$work/rendering.md"
 } >"$work/benchmarks.md.new"
 mv "$work/benchmarks.md.new" "$out/benchmarks.md"
 [ "$work/benchmarks.png" -ef "$out/benchmarks.png" ] || cp "$work/benchmarks.png" "$out/benchmarks.png"

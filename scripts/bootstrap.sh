@@ -8,7 +8,10 @@
 #                                    # fuzz run under ASan + UBSan, then every test against an
 #                                    # OSMesa VTK with no X server (what CI runs)
 #   bash scripts/bootstrap.sh bench  # build and run the benchmark set (scripts/bench.sh): writes
-#                                    # docs/benchmarks.md and docs/benchmarks.png
+#                                    # docs/benchmarks.md and docs/benchmarks.png; with
+#                                    # MIKKTSPACE_REFERENCE_DIR=<a clone of
+#                                    # https://github.com/mmikk/MikkTSpace> it also compares
+#                                    # MikkTSpace with the original mikktspace.c
 #   bash scripts/bootstrap.sh osmesa # every test against a VTK 9.1 with OSMesa, built once from
 #                                    # Debian's source into a cache folder, with no X server
 #                                    # (scripts/osmesa.sh; the test job runs it last)
@@ -43,8 +46,15 @@ if [ "${#missing[@]}" -gt 0 ]; then
     "${missing[@]}" >/dev/null
 fi
 
+# The original mikktspace.c is not part of this repository: its folder, when given, is compiled
+# into BenchMikkTSpace (a build configured with it keeps it until configured with another).
+reference=()
+[ -z "${MIKKTSPACE_REFERENCE_DIR:-}" ] ||
+  reference=("-DNORMALMAPPING_MIKKTSPACE_REFERENCE_DIR=$(cd "$MIKKTSPACE_REFERENCE_DIR" && pwd)")
+
 echo "== configuring and building in $build"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >/dev/null
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+  "${reference[@]}" >/dev/null
 cmake --build "$build" -j "$(nproc)" 2>&1 | grep -E "error|warning: |Error" || true
 cmake --build "$build" -j "$(nproc)" >/dev/null
 

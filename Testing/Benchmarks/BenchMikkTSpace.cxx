@@ -1,55 +1,62 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Throughput of the MikkTSpace kernel (vtkMikkTSpaceKernel.h) in triangles per second on three
-// meshes made by others, and of vtkPolyDataTangentFrames with Method MIKKTSPACE on the torus
-// (BM_MikkTSpaceFilter):
-//  - Sphere: vtkTexturedSphereSource, 1024 x 512 (theta x phi resolution);
-//  - Torus: vtkParametricTorus through vtkParametricFunctionSource, 1024 x 512 with texture
-//    coordinates, through vtkTriangleFilter;
-//  - FlightHelmet: the largest model of shared/data/gltf-external, all its primitives in one
-//    mesh, texture coordinates as stored (skipped when the shared data is absent).
-// Each runs with 1 and 2 threads (vtkSMPTools).
+// The MikkTSpace kernel (vtkMikkTSpaceKernel.h) and vtkPolyDataTangentFrames with Method
+// MIKKTSPACE against the original mikktspace.c, in one process, on the meshes of the paired runs
+// (Bench::PairingMeshes): vtkTexturedSphereSource 1024 x 512, vtkParametricTorus 1024 x 512
+// through vtkTriangleFilter, and the largest glTF model of shared/data/gltf-external.
 //
-// The "x_ref" counter is the throughput divided by the reference mikktspace.c's single-thread
-// throughput on the same mesh (thread CPU time), measured side by side on the machine described
-// in docs/mikktspace.md (the reference itself is not part of this repository).
-
+//   BenchMikkTSpace [--out DIR] [--smoke] [--rounds N]
+//   BenchMikkTSpace --throughput [google benchmark flags]
+//
+// Paired runs (the default): the original's genTangSpaceDefault, the kernel (ComputeMikkTSpace,
+// one thread) and the filter (one thread) run in turn on the same input, N rounds (5; --smoke: 1,
+// on 64 x 32 meshes) after one warm-up run each, the first of a round rotating
+// (Bench::RunRounds). Per mesh: the median and quartiles of the original's time / ours, the ratio
+// of the fastest runs, and the face corners whose kernel frame differs from the original's.
+// Printed, and written to DIR/mikktspace.md (a section of docs/benchmarks.md) with --out;
+// scripts/bench.sh runs it. The original is compiled in only when the CMake variable
+// NORMALMAPPING_MIKKTSPACE_REFERENCE_DIR names its source (it is not part of this repository);
+// otherwise the program and the section say that the comparison was not run and how to run it.
+//
+// --throughput: the kernel's and the filter's throughput alone, with 1 and 2 threads (Google
+// Benchmark), on the same meshes; it does not need the original.
+#include "BenchPaired.h"
 #include "MikkTSpaceKernelMesh.h"
-#include "NormalMappingReferenceData.h"
+#include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkPolyDataTangentFrames.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
-#include <vtkGLTFDocumentLoader.h>
 #include <vtkNew.h>
-#include <vtkParametricFunctionSource.h>
-#include <vtkParametricTorus.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
-#include <vtkSMPTools.h>
-#include <vtkSmartPointer.h>
-#include <vtkTexturedSphereSource.h>
-#include <vtkTriangleFilter.h>
 
 #include <benchmark/benchmark.h>
 
+#ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
+#include "mikktspace.h"
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace
 {
 namespace mikk = vtkNormalMapping::mikk;
 
-struct BenchMesh : NormalMappingTesting::KernelMesh
+/// The polygons of pd with its point normals and texture coordinates, as floats, in the kernel's
+/// input layout.
+NormalMappingTesting::KernelMesh ToKernelMesh(vtkPolyData* pd)
 {
-  vtkSmartPointer<vtkPolyData> PolyData; // the source's output (all primitives appended)
-  long long NumberOfTriangles = 0;
-  double ReferenceTrianglesPerSecond = 0; // mikktspace.c on this mesh (docs/mikktspace.md)
-};
-
-// Appends the polygons of pd (with point normals and texture coordinates) to m, as floats.
-void Append(BenchMesh& m, vtkPolyData* pd, vtkDataArray* normals, vtkDataArray* tcoords)
-{
-  const long long base = static_cast<long long>(m.P.size() / 3);
+  NormalMappingTesting::KernelMesh m;
+  vtkDataArray* normals = pd->GetPointData()->GetNormals();
+  vtkDataArray* tcoords = pd->GetPointData()->GetTCoords();
   for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
   {
     double p[3], n[3];
@@ -64,180 +71,335 @@ void Append(BenchMesh& m, vtkPolyData* pd, vtkDataArray* normals, vtkDataArray* 
   vtkCellArray* polys = pd->GetPolys();
   for (polys->InitTraversal(); polys->GetNextCell(npts, ids);)
   {
-    for (vtkIdType k = 0; k < npts; ++k)
-    {
-      m.Conn.push_back(base + ids[k]);
-    }
+    m.Conn.insert(m.Conn.end(), ids, ids + npts);
     m.Offsets.push_back(static_cast<long long>(m.Conn.size()));
-    m.NumberOfTriangles += npts - 2;
   }
-}
-
-BenchMesh FromPolyData(vtkPolyData* pd, double referenceTrianglesPerSecond)
-{
-  BenchMesh m;
-  m.PolyData = pd;
-  m.ReferenceTrianglesPerSecond = referenceTrianglesPerSecond;
-  Append(m, pd, pd->GetPointData()->GetNormals(), pd->GetPointData()->GetTCoords());
   return m;
 }
 
-BenchMesh Sphere()
+/// Wall-clock seconds that f() takes.
+template<typename F>
+double Seconds(F&& f)
 {
-  vtkNew<vtkTexturedSphereSource> sphere;
-  sphere->SetThetaResolution(1024);
-  sphere->SetPhiResolution(512);
-  sphere->Update();
-  return FromPolyData(sphere->GetOutput(), 0.36e6);
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-BenchMesh Torus()
-{
-  vtkNew<vtkParametricTorus> torus;
-  vtkNew<vtkParametricFunctionSource> source;
-  source->SetParametricFunction(torus);
-  source->SetUResolution(1024);
-  source->SetVResolution(512);
-  source->GenerateTextureCoordinatesOn();
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(source->GetOutputPort());
-  triangles->Update();
-  return FromPolyData(triangles->GetOutput(), 0.74e6);
-}
+/// The section's heading, which the smoke test looks for.
+const char* const Heading = "## MikkTSpace against the original `mikktspace.c`";
 
-// Every primitive of FlightHelmet.gltf appended; empty when the shared data is absent. The
-// geometry comes from vtkGLTFDocumentLoader: the copy in the shared data has no texture images,
-// on which vtkGLTFReader fails (the loader reports them and builds the geometry anyway).
-BenchMesh Helmet()
+#ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
+/// The original's genTangSpaceDefault on a kernel input: its frames land in Corners, one per face
+/// corner in the kernel's layout, so that the two compare corner by corner.
+class Reference
 {
-  BenchMesh m;
-  m.ReferenceTrianglesPerSecond = 0.80e6;
-  const std::string dir = NormalMappingTestData::FindSharedData(nullptr);
-  if (dir.empty())
+public:
+  explicit Reference(const mikk::MeshInput& in)
+    : In(in)
+    , Corners(static_cast<size_t>(in.FaceOffsets[in.NumberOfFaces]), mikk::DefaultCornerFrame)
   {
-    return m;
   }
-  vtkNew<vtkGLTFDocumentLoader> loader;
-  const bool warnings = vtkObject::GetGlobalWarningDisplay();
-  vtkObject::GlobalWarningDisplayOff();
-  const bool read =
-    loader->LoadModelMetaDataFromFile(dir + "/gltf-external/FlightHelmet/FlightHelmet.gltf");
-  if (read)
+
+  bool Run()
   {
-    loader->LoadModelData({});
-    loader->BuildModelVTKGeometry();
-  }
-  vtkObject::SetGlobalWarningDisplay(warnings);
-  if (!read)
-  {
-    return m;
-  }
-  for (const auto& mesh : loader->GetInternalModel()->Meshes)
-  {
-    for (const auto& primitive : mesh.Primitives)
+    SMikkTSpaceInterface callbacks{};
+    callbacks.m_getNumFaces = [](const SMikkTSpaceContext* c)
+    { return static_cast<int>(Of(c).In.NumberOfFaces); };
+    callbacks.m_getNumVerticesOfFace = [](const SMikkTSpaceContext* c, int face)
+    { return static_cast<int>(Of(c).In.FaceOffsets[face + 1] - Of(c).In.FaceOffsets[face]); };
+    callbacks.m_getPosition = [](const SMikkTSpaceContext* c, float out[], int face, int vert)
+    { Of(c).Copy(Of(c).In.Positions, 3, out, face, vert); };
+    callbacks.m_getNormal = [](const SMikkTSpaceContext* c, float out[], int face, int vert)
+    { Of(c).Copy(Of(c).In.Normals, 3, out, face, vert); };
+    callbacks.m_getTexCoord = [](const SMikkTSpaceContext* c, float out[], int face, int vert)
+    { Of(c).Copy(Of(c).In.TCoords, 2, out, face, vert); };
+    callbacks.m_setTSpaceBasic =
+      [](const SMikkTSpaceContext* c, const float t[], float sign, int face, int vert)
     {
-      vtkPolyData* pd = primitive.Geometry;
-      vtkPointData* attributes = pd ? pd->GetPointData() : nullptr;
-      if (attributes && attributes->GetArray("NORMAL") && attributes->GetArray("TEXCOORD_0"))
-      {
-        Append(m, pd, attributes->GetArray("NORMAL"), attributes->GetArray("TEXCOORD_0"));
-      }
-    }
+      Reference& self = *static_cast<Reference*>(c->m_pUserData);
+      self.Corners[static_cast<size_t>(self.In.FaceOffsets[face] + vert)] = { { t[0], t[1], t[2] },
+        sign };
+    };
+    SMikkTSpaceContext context{ &callbacks, this };
+    return genTangSpaceDefault(&context) != 0;
   }
-  return m;
-}
 
-const BenchMesh& Mesh(int which)
-{
-  static const BenchMesh sphere = Sphere();
-  static const BenchMesh torus = Torus();
-  static const BenchMesh helmet = Helmet();
-  return which == 0 ? sphere : (which == 1 ? torus : helmet);
-}
+  const mikk::MeshInput& In;
+  std::vector<mikk::CornerFrame> Corners;
 
-void BM_MikkTSpace(benchmark::State& state, int which)
-{
-  const BenchMesh& m = Mesh(which);
-  if (m.NumberOfTriangles == 0)
+private:
+  static const Reference& Of(const SMikkTSpaceContext* c)
   {
-    state.SkipWithError("shared test data not found");
-    return;
+    return *static_cast<const Reference*>(c->m_pUserData);
   }
-  const int threads = static_cast<int>(state.range(0));
-  const mikk::MeshInput in = m.Input();
-  long long degenerate = 0;
-  for (auto _ : state)
+  void Copy(const float* values, int size, float out[], int face, int vert) const
   {
-    mikk::Result r = mikk::ComputeMikkTSpace(in, threads);
-    degenerate = r.NumberOfDegenerateTriangles;
-    benchmark::DoNotOptimize(r.Corners.data());
+    const long long point = this->In.FaceConnectivity[this->In.FaceOffsets[face] + vert];
+    std::memcpy(out, values + size * point, sizeof(float) * static_cast<size_t>(size));
   }
-  state.SetItemsProcessed(state.iterations() * m.NumberOfTriangles);
-  state.counters["degenerate"] = static_cast<double>(degenerate);
-  state.counters["x_ref"] =
-    benchmark::Counter(static_cast<double>(m.NumberOfTriangles) / m.ReferenceTrianglesPerSecond,
-      benchmark::Counter::kIsIterationInvariantRate);
-}
+};
 
-// The torus through vtkPolyDataTangentFrames (Method MIKKTSPACE): kernel plus input conversion,
-// per-point assignment/splitting and output arrays.
-void BM_MikkTSpaceFilter(benchmark::State& state, int which)
+/// One mesh's paired runs and corner comparison.
+struct Comparison
 {
-  const BenchMesh& m = Mesh(which);
-  const int threads = static_cast<int>(state.range(0));
+  std::string Name;
+  long long Triangles = 0;
+  Bench::Paired Kernel; // the original's time / the kernel's
+  Bench::Paired Filter; // the original's time / the filter's
+  long long Corners = 0;
+  long long DifferingBits = 0;   // corners whose frame differs in any bit
+  long long DifferingValues = 0; // of those, corners whose frame differs in value (-0 == +0)
+  bool Ok = false;
+};
+
+Comparison Compare(const Bench::PairingMesh& mesh, int rounds)
+{
+  Comparison result;
+  result.Name = mesh.Name;
+  const NormalMappingTesting::KernelMesh kernelMesh = ToKernelMesh(mesh.Mesh);
+  const mikk::MeshInput in = kernelMesh.Input();
+  Reference reference(in);
+  mikk::Result kernel;
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetMethodToMikkTSpace();
-  filter->SetInputData(m.PolyData);
-  // VTK 9.1's TBB backend ignores a LocalScope whose count equals the previous scope's: enter
-  // one with another count first (as ComputeMikkTSpace does).
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads == 1 ? 2 : 1 },
+  filter->SetInputData(mesh.Mesh);
+  bool referenceOk = true;
+  std::vector<std::vector<double>> seconds;
+  // One thread for the whole measurement: the kernel then runs with the scope's thread count
+  // (numThreads 0), as the filter does, so that neither time includes entering a thread scope
+  // (VTK's TBB backend makes a task arena for each).
+  NormalMappingTesting::WithThreads(1,
     [&]()
     {
-      vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads },
-        [&]()
-        {
-          for (auto _ : state)
+      seconds = Bench::RunRounds(
+        { [&]() { return Seconds([&]() { referenceOk = reference.Run() && referenceOk; }); },
+          [&]()
           {
-            filter->Modified();
-            filter->Update();
-            benchmark::DoNotOptimize(filter->GetOutput()->GetPointData()->GetTangents());
-          }
-        });
+            mikk::Result r;
+            const double s = Seconds([&]() { r = mikk::ComputeMikkTSpace(in); });
+            kernel = std::move(r);
+            return s;
+          },
+          [&]() { return Bench::TimedUpdate(filter); } },
+        rounds);
     });
-  state.SetItemsProcessed(state.iterations() * m.NumberOfTriangles);
-  state.counters["split"] = static_cast<double>(filter->GetNumberOfSplitPoints());
-  state.counters["x_ref"] =
-    benchmark::Counter(static_cast<double>(m.NumberOfTriangles) / m.ReferenceTrianglesPerSecond,
-      benchmark::Counter::kIsIterationInvariantRate);
+  result.Kernel = Bench::PairedRatios(seconds, 0, 1);
+  result.Filter = Bench::PairedRatios(seconds, 0, 2);
+  for (long long f = 0; f < in.NumberOfFaces; ++f)
+  {
+    result.Triangles += in.FaceOffsets[f + 1] - in.FaceOffsets[f] - 2;
+  }
+  result.Corners = static_cast<long long>(reference.Corners.size());
+  for (size_t i = 0; i < reference.Corners.size() && i < kernel.Corners.size(); ++i)
+  {
+    const mikk::CornerFrame& a = reference.Corners[i];
+    const mikk::CornerFrame& b = kernel.Corners[i];
+    if (std::memcmp(&a, &b, sizeof(a)) != 0)
+    {
+      ++result.DifferingBits;
+      const bool equal = a.Tangent[0] == b.Tangent[0] && a.Tangent[1] == b.Tangent[1] &&
+        a.Tangent[2] == b.Tangent[2] && a.Sign == b.Sign;
+      result.DifferingValues += equal ? 0 : 1;
+    }
+  }
+  result.Ok = referenceOk && kernel.Corners.size() == reference.Corners.size() &&
+    filter->GetOutput()->GetPointData()->GetTangents() != nullptr;
+  return result;
 }
-} // namespace
 
-BENCHMARK_CAPTURE(BM_MikkTSpace, Sphere, 0)
-  ->Arg(1)
-  ->Arg(2)
-  ->ArgName("threads")
-  ->UseRealTime()
-  ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MikkTSpace, Torus, 1)
-  ->Arg(1)
-  ->Arg(2)
-  ->ArgName("threads")
-  ->UseRealTime()
-  ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_MikkTSpace, FlightHelmet, 2)
-  ->Arg(1)
-  ->Arg(2)
-  ->ArgName("threads")
-  ->UseRealTime()
-  ->Unit(benchmark::kMillisecond);
-
-BENCHMARK_CAPTURE(BM_MikkTSpaceFilter, Torus, 1)
-  ->Arg(1)
-  ->Arg(2)
-  ->ArgName("threads")
-  ->UseRealTime()
-  ->Unit(benchmark::kMillisecond);
-
-#ifndef BENCH_MIKKTSPACE_NO_MAIN
-BENCHMARK_MAIN();
+/// The paired runs on every mesh; the section's text in `md`. False when a run failed.
+bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
+{
+  std::string note;
+  std::vector<Comparison> comparisons;
+  for (const Bench::PairingMesh& mesh : Bench::PairingMeshes(smoke, note))
+  {
+    comparisons.push_back(Compare(mesh, rounds));
+    const Comparison& c = comparisons.back();
+    std::cout << c.Name << " (" << c.Triangles << " triangles): mikktspace.c "
+              << Bench::Format(c.Kernel.MedianMilliseconds(0)) << " ms, kernel "
+              << Bench::Format(c.Kernel.MedianMilliseconds(1)) << " ms, x mikktspace.c "
+              << c.Kernel.Cells() << "; filter " << Bench::Format(c.Filter.MedianMilliseconds(1))
+              << " ms, x mikktspace.c " << c.Filter.Cells() << "; corners differing from "
+              << "mikktspace.c: " << c.DifferingBits << " in bits, " << c.DifferingValues
+              << " in value, of " << c.Corners << (c.Ok ? "" : " (A RUN FAILED)") << std::endl;
+  }
+  if (!note.empty())
+  {
+    std::cout << note << std::endl;
+  }
+  md << "The original `genTangSpaceDefault` (https://github.com/mmikk/MikkTSpace, compiled as C: "
+    // The compiler, build type and flags, as CMake gave them.
+    NORMALMAPPING_MIKKTSPACE_REFERENCE_BUILD
+        "), our kernel (`vtkNormalMapping::mikk::ComputeMikkTSpace`, one thread) and "
+        "`vtkPolyDataTangentFrames` with `SetMethodToMikkTSpace()` (one thread: the kernel, "
+        "plus reading the polydata, writing and splitting points) on the meshes of the paired "
+        "runs above, the same input for all three (points, normals and texture coordinates as "
+        "floats). The three run in turn, "
+     << rounds << " round" << (rounds > 1 ? "s" : "")
+     << " after one warm-up run each, the first of a round rotating (wall-clock time, the "
+        "original's output and ours reused). Times: medians. Each ratio: the median over the "
+        "rounds of `mikktspace.c`'s time / ours (above 1: faster than the original), with the "
+        "first and third quartiles, and the ratio of the fastest runs. Differing corners: face "
+        "corners whose kernel frame (tangent and sign) differs from the original's in any bit, "
+        "then in value (where -0 equals +0), of all face corners.\n\n"
+     << "| mesh | triangles | `mikktspace.c` | kernel | kernel x `mikktspace.c`: median "
+        "[quartiles] | fastest runs | filter | filter x `mikktspace.c`: median [quartiles] | "
+        "fastest runs | differing corners: bits / value / all |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  bool ok = true;
+  for (const Comparison& c : comparisons)
+  {
+    md << "| " << c.Name << " | " << Bench::Count(c.Triangles) << " | "
+       << Bench::Format(c.Kernel.MedianMilliseconds(0)) << " ms | "
+       << Bench::Format(c.Kernel.MedianMilliseconds(1)) << " ms | " << c.Kernel.Cells() << " | "
+       << Bench::Format(c.Filter.MedianMilliseconds(1)) << " ms | " << c.Filter.Cells() << " | "
+       << Bench::Count(c.DifferingBits) << " / " << Bench::Count(c.DifferingValues) << " / "
+       << Bench::Count(c.Corners) << " |\n";
+    ok = ok && c.Ok;
+  }
+  if (!note.empty())
+  {
+    md << "\n" << note << "\n";
+  }
+  return ok;
+}
 #endif
+
+/// The paired runs against the original when it is compiled in; otherwise a note that says why
+/// they were not run and how to run them. Prints the results, and writes the section to
+/// out/mikktspace.md when `out` is not empty.
+int RunPaired(const std::string& out, bool smoke, int rounds)
+{
+  std::ostringstream md;
+  md << Heading << "\n\n";
+  bool ok = true;
+#ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
+  ok = ComparePaired(smoke, rounds, md);
+#else
+  (void)smoke;
+  (void)rounds;
+  const std::string why =
+    "Not run: the comparison needs the original's source, which is not part of this "
+    "repository: `git clone https://github.com/mmikk/MikkTSpace`, then give its folder to CMake "
+    "(`-DNORMALMAPPING_MIKKTSPACE_REFERENCE_DIR=<folder>`, or "
+    "`MIKKTSPACE_REFERENCE_DIR=<folder> bash scripts/bootstrap.sh bench`).";
+  std::cout << why << std::endl;
+  md << why << "\n";
+#endif
+  md << "\n";
+  if (!out.empty() && !Bench::WriteText(out + "/mikktspace.md", md.str()))
+  {
+    return 1;
+  }
+  if (!ok)
+  {
+    std::cerr << "a run failed: see above" << std::endl;
+  }
+  return ok ? 0 : 1;
+}
+
+/// The kernel's and the filter's throughput (Google Benchmark), 1 and 2 threads.
+int RunThroughput(int argc, char** argv)
+{
+  std::string note;
+  const std::vector<Bench::PairingMesh> meshes = Bench::PairingMeshes(false, note);
+  std::vector<NormalMappingTesting::KernelMesh> kernelMeshes;
+  for (const Bench::PairingMesh& mesh : meshes)
+  {
+    kernelMeshes.push_back(ToKernelMesh(mesh.Mesh));
+  }
+  for (size_t i = 0; i < meshes.size(); ++i)
+  {
+    const vtkIdType triangles = meshes[i].Mesh->GetNumberOfPolys();
+    benchmark::RegisterBenchmark(("MikkTSpaceKernel/" + meshes[i].Name).c_str(),
+      [&, i, triangles](benchmark::State& state)
+      {
+        const mikk::MeshInput in = kernelMeshes[i].Input();
+        long long degenerate = 0;
+        for (auto _ : state)
+        {
+          mikk::Result r = mikk::ComputeMikkTSpace(in, static_cast<int>(state.range(0)));
+          degenerate = r.NumberOfDegenerateTriangles;
+          benchmark::DoNotOptimize(r.Corners.data());
+        }
+        state.SetItemsProcessed(state.iterations() * triangles);
+        state.counters["degenerate"] = static_cast<double>(degenerate);
+      })
+      ->Arg(1)
+      ->Arg(2)
+      ->ArgName("threads")
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("MikkTSpaceFilter/" + meshes[i].Name).c_str(),
+      [&, i, triangles](benchmark::State& state)
+      {
+        vtkNew<vtkPolyDataTangentFrames> filter;
+        filter->SetMethodToMikkTSpace();
+        filter->SetInputData(meshes[i].Mesh);
+        NormalMappingTesting::WithThreads(static_cast<int>(state.range(0)),
+          [&]()
+          {
+            for (auto _ : state)
+            {
+              filter->Modified();
+              filter->Update();
+              benchmark::DoNotOptimize(filter->GetOutput()->GetPointData()->GetTangents());
+            }
+          });
+        state.SetItemsProcessed(state.iterations() * triangles);
+        state.counters["split"] = static_cast<double>(filter->GetNumberOfSplitPoints());
+      })
+      ->Arg(1)
+      ->Arg(2)
+      ->ArgName("threads")
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (!note.empty())
+  {
+    std::cout << note << std::endl;
+  }
+  return 0;
+}
+}
+
+int main(int argc, char** argv)
+{
+  std::string out;
+  bool smoke = false;
+  int rounds = 5;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--throughput")
+    {
+      argv[i] = argv[0];
+      return RunThroughput(argc - i, argv + i);
+    }
+    if (arg == "--out" && i + 1 < argc)
+    {
+      out = argv[++i];
+    }
+    else if (arg == "--smoke")
+    {
+      smoke = true;
+      rounds = 1;
+    }
+    else if (arg == "--rounds" && i + 1 < argc)
+    {
+      rounds = std::max(1, std::atoi(argv[++i]));
+    }
+    else
+    {
+      std::cerr << "usage: " << argv[0] << " [--out DIR] [--smoke] [--rounds N]\n       " << argv[0]
+                << " --throughput [google benchmark flags]" << std::endl;
+      return 2;
+    }
+  }
+  return RunPaired(out, smoke, rounds);
+}

@@ -27,8 +27,7 @@
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
 #include "BenchMemory.h"
-#include "NormalMapGLTF.h"
-#include "NormalMappingReferenceData.h"
+#include "BenchPaired.h"
 #include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
 
@@ -64,6 +63,11 @@
 
 namespace
 {
+using Bench::Paired;
+using Bench::PairingMesh;
+using Bench::PairingMeshes;
+using Bench::TimedUpdate;
+
 /**
  * The floor: one pass over the points that reads their coordinates, normals and texture
  * coordinates and writes `Tangents` (3 components) and `TangentSigns` in the points' precision
@@ -342,75 +346,11 @@ std::string ConfigurationRows(const std::vector<long long>& sizes,
   return rows.str();
 }
 
-/// Ratios of Update times, each from one pair of Updates run back to back: a tangent filter's to
-/// VTK's (MeasurePaired) or a filter's with two threads to its own with one (MeasureScaling).
-struct Paired
-{
-  std::string Name;
-  int Threads = 1;
-  std::vector<double> Ratios;     // the first run's time / the second's, one per pair
-  double FastestRatio = 0.0;      // the first's fastest Update / the second's fastest Update
-  std::vector<double> Seconds[2]; // the first's and the second's times, one per pair
-  double Quantile(double q) const { return Bench::Quantile(this->Ratios, q); }
-  /// The median time of run `which` (0: first, 1: second), in milliseconds.
-  double MedianMilliseconds(int which) const
-  {
-    return 1000.0 * Bench::Quantile(this->Seconds[which], 0.5);
-  }
-  /// The two cells of a table row: "median [first quartile, third quartile] | fastest runs".
-  std::string Cells() const
-  {
-    return Bench::Format(this->Quantile(0.5), 3) + " [" + Bench::Format(this->Quantile(0.25), 3) +
-      ", " + Bench::Format(this->Quantile(0.75), 3) + "] | " + Bench::Format(this->FastestRatio, 3);
-  }
-};
-
-/// Re-executes the filter (Modified, Update) and returns the wall-clock seconds it took.
-double TimedUpdate(vtkPolyDataAlgorithm* f)
-{
-  f->Modified();
-  const auto t0 = std::chrono::steady_clock::now();
-  f->Update();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/**
- * `pairs` pairs of timed runs run[0]() and run[1]() (each returns seconds) back to back, which of
- * the two goes first alternating from pair to pair, after one warm-up run each: the per-pair
- * ratios run[0] / run[1] and the ratio of the fastest runs go into `result`. A pair's two runs
- * are a few tens of milliseconds apart, so a change of the machine's speed (other virtual
- * machines, frequency) mostly hits both: the ratio within a pair is steadier than the ratio of
- * medians over the interleaved repetitions, whose runs are seconds apart.
- */
-template<typename R0, typename R1>
-void AlternatePairs(const R0& run0, const R1& run1, int pairs, Paired& result)
-{
-  const auto run = [&](int which) { return which == 0 ? run0() : run1(); };
-  run(0);
-  run(1);
-  double fastest[2] = { 1e300, 1e300 };
-  for (int i = 0; i < pairs; ++i)
-  {
-    double t[2];
-    const int first = i % 2;
-    t[first] = run(first);
-    t[1 - first] = run(1 - first);
-    result.Ratios.push_back(t[0] / t[1]);
-    result.Seconds[0].push_back(t[0]);
-    result.Seconds[1].push_back(t[1]);
-    fastest[0] = std::min(fastest[0], t[0]);
-    fastest[1] = std::min(fastest[1], t[1]);
-  }
-  result.FastestRatio = fastest[0] / fastest[1];
-}
-
 /// `pairs` pairs of Updates of VTK's filter and `filter` on the same mesh in this process, with
-/// `threads` threads (AlternatePairs): VTK's time / the filter's.
+/// `threads` threads (Bench::RunRounds): VTK's time / the filter's.
 Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int threads, int pairs)
 {
   Paired result;
-  result.Name = filter.Name;
-  result.Threads = threads;
   NormalMappingTesting::WithThreads(threads,
     [&]()
     {
@@ -422,26 +362,25 @@ Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int 
       {
         f->SetInputData(mesh);
       }
-      AlternatePairs([&]() { return TimedUpdate(run[0]); },
-        [&]() { return TimedUpdate(run[1]); },
-        pairs,
-        result);
+      result = Bench::PairedRatios(
+        Bench::RunRounds(
+          { [&]() { return TimedUpdate(run[0]); }, [&]() { return TimedUpdate(run[1]); } }, pairs),
+        0,
+        1);
     });
+  result.Name = filter.Name;
+  result.Threads = threads;
   return result;
 }
 
 /// `pairs` pairs of Updates of one `filter` on the same mesh, one with one thread and one with
-/// two (AlternatePairs): the one-thread time / the two-thread time, the speed-up of the second
+/// two (Bench::RunRounds): the one-thread time / the two-thread time, the speed-up of the second
 /// thread. The thread count is set outside the timed Update, and an untimed Update with that
 /// count comes first: an application sets it once, and the first Update after a change pays for
-/// it (VTK's TBB backend makes a new task arena, which the worker threads join), which was most
-/// of an Update of 10K triangles (0.96x in the benchmark where a driver with the count set once
-/// measured 1.34x).
+/// it (VTK's TBB backend makes a new task arena, which the worker threads join), a cost that
+/// would dominate the Update of a small mesh.
 Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int pairs)
 {
-  Paired result;
-  result.Name = filter.Name;
-  result.Threads = 2;
   auto f = Bench::MakeTangentFilter(filter);
   f->SetInputData(mesh);
   const auto with = [&](int threads)
@@ -455,106 +394,11 @@ Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int
       });
     return seconds;
   };
-  AlternatePairs([&]() { return with(1); }, [&]() { return with(2); }, pairs, result);
+  Paired result = Bench::PairedRatios(
+    Bench::RunRounds({ [&]() { return with(1); }, [&]() { return with(2); } }, pairs), 0, 1);
+  result.Name = filter.Name;
+  result.Threads = 2;
   return result;
-}
-
-/// A mesh of the paired runs.
-struct PairingMesh
-{
-  std::string Name;
-  vtkSmartPointer<vtkPolyData> Mesh;
-};
-
-/// Every triangle primitive of a glTF file as one polydata (points, normals, TEXCOORD_0 as the
-/// active texture coordinates); null when the file cannot be read or has no triangles.
-vtkSmartPointer<vtkPolyData> ReadGLTF(const std::string& path)
-{
-  NormalMapGLTF::Document doc;
-  std::string error;
-  if (!NormalMapGLTF::ReadDocument(path, doc, error))
-  {
-    return nullptr;
-  }
-  vtkNew<vtkAppendPolyData> append;
-  for (const NormalMapGLTF::PrimitiveId id : NormalMapGLTF::TrianglePrimitives(doc))
-  {
-    vtkSmartPointer<vtkPolyData> primitive = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
-    if (primitive && primitive->GetPointData()->GetNormals() &&
-      primitive->GetPointData()->GetTCoords())
-    {
-      append->AddInputData(primitive);
-    }
-  }
-  if (append->GetNumberOfInputConnections(0) == 0)
-  {
-    return nullptr;
-  }
-  append->Update();
-  return append->GetOutput();
-}
-
-/**
- * The meshes of the paired runs: VTK's textured sphere and parametric torus at 1024 x 512 (64 x 32
- * for the smoke run), and the glTF model of `shared/gltf-external` with the most triangles. `note`
- * says why the glTF model is missing, when it is.
- */
-std::vector<PairingMesh> PairingMeshes(bool smoke, std::string& note)
-{
-  const int u = smoke ? 64 : 1024;
-  const int v = smoke ? 32 : 512;
-  const std::string resolution = std::to_string(u) + " x " + std::to_string(v);
-  std::vector<PairingMesh> meshes;
-  vtkNew<vtkTexturedSphereSource> sphere;
-  sphere->SetThetaResolution(u);
-  sphere->SetPhiResolution(v);
-  sphere->Update();
-  meshes.push_back({ "vtkTexturedSphereSource " + resolution, sphere->GetOutput() });
-
-  vtkNew<vtkParametricTorus> torus;
-  vtkNew<vtkParametricFunctionSource> torusSource;
-  torusSource->SetParametricFunction(torus);
-  torusSource->SetUResolution(u);
-  torusSource->SetVResolution(v);
-  torusSource->GenerateTextureCoordinatesOn();
-  vtkNew<vtkTriangleFilter> triangles;
-  triangles->SetInputConnection(torusSource->GetOutputPort());
-  triangles->Update();
-  meshes.push_back(
-    { "vtkParametricTorus " + resolution + ", triangulated", triangles->GetOutput() });
-
-  std::string lookedFor;
-  const std::string shared = NormalMappingTestData::FindSharedData(&lookedFor);
-  const std::filesystem::path folder = std::filesystem::path(shared) / "gltf-external";
-  std::error_code ec;
-  if (shared.empty() || !std::filesystem::is_directory(folder, ec))
-  {
-    note = "Skipped: the glTF models (`shared/data/gltf-external`, beside the project) were not "
-           "found; looked for " +
-      (shared.empty() ? lookedFor : folder.string()) + ".";
-    return meshes;
-  }
-  PairingMesh largest;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder, ec))
-  {
-    if (entry.path().extension() != ".gltf")
-    {
-      continue;
-    }
-    vtkSmartPointer<vtkPolyData> mesh = ReadGLTF(entry.path().string());
-    if (mesh && (!largest.Mesh || mesh->GetNumberOfPolys() > largest.Mesh->GetNumberOfPolys()))
-    {
-      largest = { "glTF " + entry.path().stem().string(), mesh };
-    }
-  }
-  if (!largest.Mesh)
-  {
-    note =
-      "Skipped: no glTF model with normals and texture coordinates in " + folder.string() + ".";
-    return meshes;
-  }
-  meshes.push_back(largest);
-  return meshes;
 }
 
 /// The paired runs alone, `pairs` pairs per mesh and thread count, printed to the console.
