@@ -129,7 +129,18 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
+      // One pass without early exit (it vectorizes), then a search only when something is wrong.
+      bool decreasing = false;
+      vtkIdType notTriangles = 0;
       for (vtkIdType c = 0; c < numCells; ++c)
+      {
+        const auto n = offsets[c + 1] - offsets[c];
+        decreasing |= n < 0;
+        shortCells += n < 3 ? 1 : 0;
+        notTriangles += n != 3 ? 1 : 0;
+      }
+      trianglesOnly = trianglesOnly && notTriangles == 0;
+      for (vtkIdType c = 0; decreasing && c < numCells; ++c)
       {
         if (offsets[c + 1] < offsets[c])
         {
@@ -137,8 +148,6 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
             std::to_string(offsets[c]) + ", then " + std::to_string(offsets[c + 1]) + ")";
           return;
         }
-        shortCells += offsets[c + 1] - offsets[c] < 3 ? 1 : 0;
-        trianglesOnly = trianglesOnly && offsets[c + 1] - offsets[c] == 3;
       }
       if (static_cast<vtkIdType>(offsets[numCells]) != size)
       {
@@ -348,6 +357,23 @@ struct TriangleFrames
     , Area(cellTangents ? new double[n] : nullptr)
   {
   }
+  /// Stores triangle t's frame and signed corner weights.
+  void Set(vtkIdType t, const TriangleFrame& f, const double signedWeights[3])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      this->Tangent[3 * t + k] = f.Tangent[k];
+      this->SignedWeight[3 * t + k] = signedWeights[k];
+    }
+    if (this->Area)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Normal[3 * t + k] = f.Normal[k];
+      }
+      this->Area[t] = f.Area;
+    }
+  }
   dvec3 TangentOf(vtkIdType t) const
   {
     return dvec3(this->Tangent[3 * t], this->Tangent[3 * t + 1], this->Tangent[3 * t + 2]);
@@ -374,10 +400,10 @@ void ComputeFrameBlock(TriangleBlock& block,
 }
 
 /**
- * Calls visit(first, block, count), in parallel, for consecutive blocks of the triangles
- * [begin, end): `block` holds the frames of triangles [first, first + count)
- * (ComputeFrameBlock, with corner angles when `withAngles`), for any point and texture
- * coordinate arrays.
+ * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
+ * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
+ * [first, first + count) (ComputeFrameBlock, with corner angles when `withAngles`), for any
+ * point and texture coordinate arrays.
  */
 struct VisitTriangleBlocks
 {
@@ -389,6 +415,7 @@ struct VisitTriangleBlocks
     vtkIdType end,
     const DegeneracyTolerance& tol,
     bool withAngles,
+    bool serial,
     const Visit& visit) const
   {
     const auto points = vtk::DataArrayTupleRange<3>(pointArray);
@@ -419,7 +446,14 @@ struct VisitTriangleBlocks
         visit(first, static_cast<const TriangleBlock&>(b), count);
       }
     };
-    vtkSMPTools::For(begin, end, visitRange);
+    if (serial)
+    {
+      visitRange(begin, end);
+    }
+    else
+    {
+      vtkSMPTools::For(begin, end, visitRange);
+    }
   }
 };
 
@@ -1028,7 +1062,7 @@ struct vtkPolyDataTangentFrames::Internals
 
   /// visit(first, block, count) for the triangles of [begin, end) (VisitTriangleBlocks).
   template<typename Visit>
-  void VisitFrames(bool withAngles, const Visit& visit, vtkIdType begin, vtkIdType end)
+  void VisitFrames(bool withAngles, bool serial, const Visit& visit, vtkIdType begin, vtkIdType end)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -1040,6 +1074,7 @@ struct vtkPolyDataTangentFrames::Internals
       end,
       tol,
       withAngles,
+      serial,
       visit);
   }
 
@@ -1052,6 +1087,7 @@ struct vtkPolyDataTangentFrames::Internals
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
     this->VisitFrames(
+      false,
       false,
       [&](vtkIdType first, const TriangleBlock& b, int count)
       {
@@ -1090,49 +1126,40 @@ struct vtkPolyDataTangentFrames::Internals
   }
 
   /**
-   * The frames of the triangles [begin, end), stored (triangle t at t - begin): tangents and
-   * corner weights signed with the handedness they give the points' shading normals, and the
-   * corners' handedness (CornerSides). Returns the number of triangles without a frame.
+   * Calls visit(t, frame, signedWeights) for every triangle t of [begin, end), in parallel, or in
+   * triangle order when `serial`: `signedWeights` are its corners' weights for `method` signed
+   * with the handedness the triangle gives their points' shading normals (CornerSign), which
+   * also go to CornerSides. Returns the number of triangles without a frame.
    */
-  vtkIdType ComputeFrames(TangentMethod method,
+  template<typename Visit>
+  vtkIdType VisitSignedFrames(TangentMethod method,
     const ShadingNormals& normals,
     vtkIdType begin,
-    vtkIdType end)
+    vtkIdType end,
+    bool serial,
+    const Visit& visit)
   {
-    TriangleFrames& out = *this->Frames;
     std::atomic<vtkIdType> degenerate{ 0 };
     this->VisitFrames(
       method == TangentMethod::AngleWeighted,
+      serial,
       [&](vtkIdType first, const TriangleBlock& b, int count)
       {
-        // Local pointers: the stores through `sides` (char) may alias any object in memory.
         const vtkIdType* ids = this->Tris.Ids + 3 * first;
         signed char* sides = this->CornerSides.get() + 3 * first;
-        double* tangents = out.Tangent.get() + 3 * (first - begin);
-        double* weights = out.SignedWeight.get() + 3 * (first - begin);
-        double* cellNormals = out.Normal ? out.Normal.get() + 3 * (first - begin) : nullptr;
-        double* areas = out.Area ? out.Area.get() + (first - begin) : nullptr;
         vtkIdType none = 0;
         for (int i = 0; i < count; ++i)
         {
           const TriangleFrame f = b.Frame(i);
           const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
+          double weights[3];
           for (int k = 0; k < 3; ++k)
           {
-            const double w =
+            weights[k] =
               CornerSign(f, normals.Stored(ids[3 * i + k])) * CornerWeight(method, f, angles, k);
-            tangents[3 * i + k] = f.Tangent[k];
-            weights[3 * i + k] = w;
-            sides[3 * i + k] = SideOf(w);
+            sides[3 * i + k] = SideOf(weights[k]);
           }
-          if (areas)
-          {
-            for (int k = 0; k < 3; ++k)
-            {
-              cellNormals[3 * i + k] = f.Normal[k];
-            }
-            areas[i] = f.Area;
-          }
+          visit(first + i, f, weights);
           none += f.Orientation == 0 ? 1 : 0;
         }
         degenerate += none;
@@ -1143,48 +1170,64 @@ struct vtkPolyDataTangentFrames::Internals
   }
 
   /**
-   * Every point's sums. The frames of a chunk of triangles are computed in parallel and stored
-   * (ComputeFrames), then added to the points of their corners in triangle order, chunk after
-   * chunk: each owner of points (ScatteredSums: a power of two of them, up to the usable threads)
-   * goes through the chunk's corners and adds those of its points. Each point adds the same terms
-   * in the same order for any number of threads, so the same bits. A chunk's frames stay in the
-   * cache until they are added; with cell tangents the chunk is every triangle, whose frames
-   * CellTangentArray reads. Counts the triangles without a frame in `degenerate`.
+   * Every point's sums, added in triangle order (ScatteredSums), so that each point adds the same
+   * terms in the same order, hence the same bits, for any number of threads. With one thread,
+   * each block of frames goes to its points as soon as it is computed. With more, the frames of
+   * a chunk of triangles are computed in parallel and stored, then each owner of points goes
+   * through the chunk's corners and adds those of its points; a chunk's frames stay in the cache
+   * until they are added. With cell tangents every frame is stored (one chunk), for
+   * CellTangentArray. Counts the triangles without a frame in `degenerate`.
    */
   ScatteredSums SumFrames(TangentMethod method,
     const ShadingNormals& normals,
     bool cellTangents,
     vtkIdType& degenerate)
   {
-    constexpr vtkIdType ChunkSize = 4096;
     const vtkIdType count = this->Tris.Count;
-    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
-    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
-    const TriangleFrames& frames = *this->Frames;
     const vtkIdType* ids = this->Tris.Ids;
     ScatteredSums sums(this->NumberOfPoints, vtkNormalMapping::detail::UsableThreads());
     const int owners = sums.Owners();
+    if (owners == 1 && !cellTangents)
+    {
+      degenerate += this->VisitSignedFrames(method,
+        normals,
+        0,
+        count,
+        true,
+        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            sums.Add(ids[3 * t + k], weights[k], f.Tangent);
+          }
+        });
+      return sums;
+    }
+
+    constexpr vtkIdType ChunkSize = 4096;
+    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
+    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
+    TriangleFrames& frames = *this->Frames;
     for (vtkIdType begin = 0; begin < count; begin += chunk)
     {
       const vtkIdType end = std::min(begin + chunk, count);
-      degenerate += this->ComputeFrames(method, normals, begin, end);
-      if (owners == 1)
-      {
-        sums.AddCorners(ids, frames, begin, end, 0);
-      }
-      else
-      {
-        vtkSMPTools::For(0,
-          owners,
-          1,
-          [&](vtkIdType firstOwner, vtkIdType lastOwner)
+      degenerate += this->VisitSignedFrames(method,
+        normals,
+        begin,
+        end,
+        false,
+        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
+        { frames.Set(t - begin, f, weights); });
+      vtkSMPTools::For(0,
+        owners,
+        1,
+        [&](vtkIdType firstOwner, vtkIdType lastOwner)
+        {
+          for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
           {
-            for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
-            {
-              sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
-            }
-          });
-      }
+            sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
+          }
+        });
     }
     return sums;
   }

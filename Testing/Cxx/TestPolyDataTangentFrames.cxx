@@ -1264,8 +1264,9 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // One thread adds every triangle to its points in triangle order; several threads split that
-  // adding among owners of blocks of points: both must give the same bits. Two mirrored
+  // One thread adds every block of triangles to its points as soon as their frames are
+  // computed; several threads store a chunk of frames, then split the adding among owners of
+  // blocks of points: both must give the same bits. Two mirrored
   // tori of different sizes, and the first again with its quads written as quads, strips and
   // triangle pairs in turn, so that cells that are not all triangles take both paths too.
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
