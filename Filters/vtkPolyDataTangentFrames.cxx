@@ -852,29 +852,32 @@ void CellTangentArray(const Triangles& tris,
 }
 
 /**
- * Point p's frame from its sums, written to `out`: the frame of its one handedness, or on a
- * mirror seam (Conflict) the +1 frame with splitting, else the heavier side's. A point with no
- * usable triangle is only marked (Fallback).
+ * What a point's sums make of it, and the handedness (0: +1, 1: -1) whose frame it takes: its one
+ * handedness, or on a mirror seam (Conflict) the +1 side with splitting, else the heavier side.
+ * A point with no usable triangle (Fallback) takes its neighbours' frames later.
  */
-template<typename OutT>
-PointKind WriteFrame(const PointSums& s,
-  vtkIdType p,
-  const dvec3& n,
-  bool splitting,
-  const FrameArrays<OutT>& out)
+PointKind KindOf(const PointSums& s, bool splitting, int& side)
 {
-  if (!s.Has(0) && !s.Has(1))
-  {
-    return PointKind::Fallback;
-  }
   const bool conflict = s.Has(0) && s.Has(1);
-  const int side =
-    conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
-  out.Write(p, n, PerpendicularTangent(n, s.Tangent[side]), side == 0 ? 1.0 : -1.0);
-  return conflict ? PointKind::Conflict : PointKind::Framed;
+  side = conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
+  return conflict ? PointKind::Conflict : (s.Has(side) ? PointKind::Framed : PointKind::Fallback);
 }
 
-/// Every point's frame (WriteFrame), with `sumsOf(p)` giving its sums.
+/**
+ * ComputePointBlock, compiled also for the wider vector units of x86-64 CPUs, as
+ * ComputeFrameBlock is.
+ */
+VTK_NORMALMAPPING_TARGET_CLONES
+void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool normalize)
+{
+  vtkNormalMapping::ComputePointBlock(block, count, normalize);
+}
+
+/**
+ * Every point's frame, with `sumsOf(p)` giving its sums (KindOf): the tangent of its side made
+ * perpendicular to its unit normal, a block of points at a time (ComputeUnitFrames). Fallback
+ * points are only marked in `kinds`.
+ */
 template<typename OutT, typename SumsOf>
 void WriteFrames(vtkIdType numPoints,
   const SumsOf& sumsOf,
@@ -883,13 +886,32 @@ void WriteFrames(vtkIdType numPoints,
   const FrameArrays<OutT>& out,
   PointKind* kinds)
 {
+  using vtkNormalMapping::PointBlock;
   vtkSMPTools::For(0,
     numPoints,
     [&](vtkIdType begin, vtkIdType end)
     {
-      for (vtkIdType p = begin; p < end; ++p)
+      PointBlock b; // not initialized: each point's entries are written before use
+      double signs[PointBlock::Size];
+      for (vtkIdType first = begin; first < end; first += PointBlock::Size)
       {
-        kinds[p] = WriteFrame(sumsOf(p), p, normals.UnitOf(p), splitting, out);
+        const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
+        for (int i = 0; i < count; ++i)
+        {
+          const PointSums s = sumsOf(first + i);
+          int side = 0;
+          kinds[first + i] = KindOf(s, splitting, side);
+          b.Set(i, normals.Stored(first + i), s.Tangent[side]);
+          signs[i] = side == 0 ? 1.0 : -1.0;
+        }
+        ComputeUnitFrames(b, count, !normals.Unit);
+        for (int i = 0; i < count; ++i)
+        {
+          if (kinds[first + i] != PointKind::Fallback)
+          {
+            out.Write(first + i, b.Normal(i), b.Tangent(i), signs[i]);
+          }
+        }
       }
     });
 }

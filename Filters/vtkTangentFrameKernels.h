@@ -676,6 +676,105 @@ inline glm::dvec3 PerpendicularTangent(const glm::dvec3& n, const glm::dvec3& t)
   return OrthonormalizeTangent(n, t, out) ? out : FallbackTangent(n);
 }
 
+/**
+ * Points as separate arrays per component (point i at index i), so that loops over them
+ * vectorize: each point's shading normal and tangent sum, and after ComputePointBlock its unit
+ * normal and unit tangent perpendicular to it.
+ */
+struct PointBlock
+{
+  static constexpr int Size = 64;
+  double N[3][Size];     ///< shading normal
+  double T[3][Size];     ///< tangent direction (any length)
+  double UnitN[3][Size]; ///< SafeNormalize(N), or N when it is unit already
+  double UnitT[3][Size]; ///< PerpendicularTangent(UnitN, T)
+  double Rare[Size];     ///< 1 where the plain loop does not apply
+
+  void Set(int i, const glm::dvec3& n, const glm::dvec3& t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->N[c][i] = n[c];
+      this->T[c][i] = t[c];
+    }
+  }
+  glm::dvec3 Normal(int i) const
+  {
+    return glm::dvec3(this->UnitN[0][i], this->UnitN[1][i], this->UnitN[2][i]);
+  }
+  glm::dvec3 Tangent(int i) const
+  {
+    return glm::dvec3(this->UnitT[0][i], this->UnitT[1][i], this->UnitT[2][i]);
+  }
+};
+
+namespace detail
+{
+/// Whether v is finite and its largest component needs no rescaling (NormalizeExponent 0).
+inline bool InNormalizeRange(const glm::dvec3& v)
+{
+  const glm::dvec3 a = glm::abs(v);
+  return (a.x <= 0x1p400) & (a.y <= 0x1p400) & (a.z <= 0x1p400) &
+    ((a.x >= 0x1p-400) | (a.y >= 0x1p-400) | (a.z >= 0x1p-400));
+}
+
+/// The common-case pass of ComputePointBlock; Normalize a template argument so that the loop
+/// has no branch.
+template<bool Normalize>
+void ComputeCommonPointBlock(PointBlock& b, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const glm::dvec3 stored(b.N[0][i], b.N[1][i], b.N[2][i]);
+    const glm::dvec3 t(b.T[0][i], b.T[1][i], b.T[2][i]);
+    const glm::dvec3 n = Normalize ? stored / glm::length(stored) : stored;
+    const glm::dvec3 perp = t - glm::dot(n, t) * n;
+    const double len2 = glm::dot(perp, perp);
+    const bool usable = InNormalizeRange(t) & (len2 > 1e-18 * glm::dot(t, t));
+    const glm::dvec3 unit = perp / std::sqrt(len2);
+    b.Rare[i] = ((Normalize & !InNormalizeRange(stored)) | !usable) ? 1.0 : 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      b.UnitN[c][i] = n[c];
+      b.UnitT[c][i] = unit[c];
+    }
+  }
+}
+} // namespace detail
+
+/**
+ * For the first `count` points of a block: the unit normal (SafeNormalize when `normalize`, else
+ * N as it is) and PerpendicularTangent of T against it, bit for bit: a plain loop over the common
+ * case (finite vectors whose largest components need no rescaling, tangents not parallel to the
+ * normal) that the compiler vectorizes, then the functions themselves for the other points.
+ */
+inline void ComputePointBlock(PointBlock& b, int count, bool normalize)
+{
+  if (normalize)
+  {
+    detail::ComputeCommonPointBlock<true>(b, count);
+  }
+  else
+  {
+    detail::ComputeCommonPointBlock<false>(b, count);
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    if (b.Rare[i] == 0.0)
+    {
+      continue;
+    }
+    const glm::dvec3 stored(b.N[0][i], b.N[1][i], b.N[2][i]);
+    const glm::dvec3 n = normalize ? SafeNormalize(stored) : stored;
+    const glm::dvec3 t = PerpendicularTangent(n, glm::dvec3(b.T[0][i], b.T[1][i], b.T[2][i]));
+    for (int c = 0; c < 3; ++c)
+    {
+      b.UnitN[c][i] = n[c];
+      b.UnitT[c][i] = t[c];
+    }
+  }
+}
+
 } // namespace vtkNormalMapping
 
 #endif

@@ -336,3 +336,70 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
     }
   }
 }
+
+TEST(TangentFrameKernels, PointBlockGivesTheBitsOfSafeNormalizeAndPerpendicularTangent)
+{
+  // ComputePointBlock computes the common case in a vectorized loop and sends the rest to
+  // SafeNormalize and PerpendicularTangent: every point must come out with their bits (exact
+  // comparison). The block mixes ordinary points with normals and tangents that need rescaling,
+  // are zero or not finite, and tangents parallel to the normal, at every position.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  PointBlock block;
+  for (int round = 0; round < 20; ++round)
+  {
+    const int count = round == 0 ? PointBlock::Size : 1 + static_cast<int>(rng() % 64);
+    std::vector<glm::dvec3> normals(count), tangents(count);
+    for (int i = 0; i < count; ++i)
+    {
+      glm::dvec3 n(d(rng), d(rng), d(rng));
+      glm::dvec3 t(d(rng), d(rng), d(rng));
+      switch ((i + round) % 9)
+      {
+        case 1: // needs rescaling: tiny normal
+          n *= 1e-200;
+          break;
+        case 2: // needs rescaling: huge tangent
+          t *= 1e200;
+          break;
+        case 3: // no tangent
+          t = glm::dvec3(0.0);
+          break;
+        case 4: // tangent along the normal
+          t = -3.0 * n;
+          break;
+        case 5: // not finite
+          n.y = nan;
+          break;
+        case 6: // not finite
+          t.z = std::numeric_limits<double>::infinity();
+          break;
+        case 7: // zero normal
+          n = glm::dvec3(0.0);
+          break;
+        default:
+          break;
+      }
+      normals[i] = n;
+      tangents[i] = t;
+      block.Set(i, n, t);
+    }
+    for (bool normalize : { true, false })
+    {
+      ComputePointBlock(block, count, normalize);
+      for (int i = 0; i < count; ++i)
+      {
+        const glm::dvec3 n = normalize ? SafeNormalize(normals[i]) : normals[i];
+        const glm::dvec3 t = PerpendicularTangent(n, tangents[i]);
+        // Bitwise: NaN never equals itself, so compare the bytes.
+        const glm::dvec3 gotN = block.Normal(i);
+        const glm::dvec3 gotT = block.Tangent(i);
+        EXPECT_EQ(std::memcmp(&gotN, &n, sizeof(n)), 0)
+          << "point " << i << " of round " << round << ", normalize " << normalize;
+        EXPECT_EQ(std::memcmp(&gotT, &t, sizeof(t)), 0)
+          << "point " << i << " of round " << round << ", normalize " << normalize;
+      }
+    }
+  }
+}
