@@ -1169,19 +1169,27 @@ struct vtkPolyDataTangentFrames::Internals
       {
         const vtkIdType* ids = this->Tris.Ids + 3 * first;
         signed char* sides = this->CornerSides.get() + 3 * first;
-        vtkIdType none = 0;
+        // The whole block's corners first: their normals load independently of one another.
+        double weights[3 * TriangleBlock::Size];
         for (int i = 0; i < count; ++i)
         {
           const TriangleFrame f = b.Frame(i);
           const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
-          double weights[3];
           for (int k = 0; k < 3; ++k)
           {
-            weights[k] =
+            weights[3 * i + k] =
               CornerSign(f, normals.Stored(ids[3 * i + k])) * CornerWeight(method, f, angles, k);
-            sides[3 * i + k] = SideOf(weights[k]);
           }
-          visit(first + i, f, weights);
+        }
+        vtkIdType none = 0;
+        for (int i = 0; i < count; ++i)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            sides[3 * i + k] = SideOf(weights[3 * i + k]);
+          }
+          const TriangleFrame f = b.Frame(i);
+          visit(first + i, f, weights + 3 * i);
           none += f.Orientation == 0 ? 1 : 0;
         }
         degenerate += none;
