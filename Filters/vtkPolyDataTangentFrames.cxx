@@ -35,7 +35,7 @@
 #include <vector>
 
 /*
- * How the weighted methods run (everything in double, each pass a vtkSMPTools::For):
+ * How the weighted methods run (everything in double, the passes on vtkSMPTools::For):
  * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
  *    normals are computed, every point gets the list of its triangle corners in that order (the
  *    links).
@@ -46,11 +46,12 @@
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
  * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
- *    the frames of a chunk of triangles are computed in parallel, then added to their points,
- *    chunk after chunk, each thread adding to the points it owns. Each point adds the same terms
- *    in the same order, so the output is bit-identical for any number of threads. A point then
- *    takes the frame of its one handedness, or on a mirror seam the +1 frame (the -1 frame goes to
- *    the point's copy) or the heavier side.
+ *    one thread adds each block of frames as it is computed; several compute the frames of a
+ *    chunk of triangles in parallel, then add them to their points, chunk after chunk, each
+ *    thread adding to the points it owns. Each point adds the same terms in the same order, so
+ *    the output is bit-identical for any number of threads. A point then takes the frame of its
+ *    one handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1
+ *    frame goes to the point's copy) or the heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -169,7 +170,7 @@ struct Triangles
   /// Three point ids per triangle: the polygons' own connectivity when every polygon is a
   /// triangle stored with vtkIdType ids and there are no strips, else Storage.
   const vtkIdType* Ids = nullptr;
-  std::vector<vtkIdType> Storage;
+  Buffer<vtkIdType> Storage;
   /// Per polygon, then per strip, its first triangle, and one more entry for the end; empty
   /// when triangle t is polygon t.
   std::vector<vtkIdType> CellStart;
@@ -242,11 +243,26 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
       return false;
     }
   }
-  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0 && polys->IsStorage64Bit() &&
-    std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
+  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0)
   {
     out.Count = polys->GetNumberOfCells();
-    out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
+    if (polys->IsStorage64Bit() &&
+      std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
+    {
+      out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
+      return true;
+    }
+    // Triangles with ids of another type: the same ids as vtkIdType.
+    out.Storage.reset(new vtkIdType[3 * out.Count]);
+    out.Ids = out.Storage.get();
+    WithCellStorage(polys,
+      [&](const auto*, const auto* conn)
+      {
+        vtkSMPTools::For(0,
+          3 * out.Count,
+          [&](vtkIdType begin, vtkIdType end)
+          { std::copy(conn + begin, conn + end, out.Storage.get() + begin); });
+      });
     return true;
   }
 
@@ -268,8 +284,8 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
   }
   out.CellStart[out.NumberOfCells] = next;
   out.Count = next;
-  out.Storage.resize(static_cast<size_t>(3 * next));
-  out.Ids = out.Storage.data();
+  out.Storage.reset(new vtkIdType[3 * next]);
+  out.Ids = out.Storage.get();
 
   vtkIdType firstCell = 0;
   for (int kind = 0; kind < 2; ++kind)
@@ -285,7 +301,7 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
             for (vtkIdType c = begin; c < end; ++c)
             {
               const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
-              vtkIdType* tri = out.Storage.data() + 3 * out.CellStart[firstCell + c];
+              vtkIdType* tri = out.Storage.get() + 3 * out.CellStart[firstCell + c];
               for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
               {
                 CellTriangle(conn + offsets[c], j, kind == 1, tri);
@@ -1234,7 +1250,7 @@ struct vtkPolyDataTangentFrames::Internals
       return sums;
     }
 
-    constexpr vtkIdType ChunkSize = 4096;
+    constexpr vtkIdType ChunkSize = 16384;
     const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
     this->Frames.reset(new TriangleFrames(chunk, cellTangents));
     TriangleFrames& frames = *this->Frames;

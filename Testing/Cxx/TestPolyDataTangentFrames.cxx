@@ -1352,6 +1352,80 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     }
 }
 
+TEST(PolyDataTangentFrames, ThirtyTwoBitConnectivityGivesTheSameFrames)
+{
+  // Triangles whose ids are stored in 32 bits are converted to vtkIdType first, a path of their
+  // own: a mirrored torus (split points re-point cells) must give the same bits in every output
+  // with either width, for every method, with cell tangents; an out-of-range id is still an error.
+  vtkNormalMapping::TorusOptions options;
+  options.U = 48;
+  options.V = 24;
+  options.MirrorU = true;
+  auto wide = vtkNormalMapping::MakeTorus(options);
+  auto narrow = vtkSmartPointer<vtkPolyData>::New();
+  narrow->DeepCopy(wide);
+  ASSERT_TRUE(narrow->GetPolys()->ConvertTo32BitStorage());
+  ASSERT_FALSE(narrow->GetPolys()->IsStorage64Bit());
+  const auto run = [](vtkPolyData* mesh, int method)
+  {
+    return RunFrames(mesh,
+      [&](vtkPolyDataTangentFrames* f)
+      {
+        f->SetMethod(method);
+        f->ComputeBitangentsOn();
+        f->ComputeCellTangentsOn();
+      });
+  };
+  for (int method : EveryMethod)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    auto a = run(wide, method);
+    auto b = run(narrow, method);
+    ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+    EXPECT_GT(a->GetNumberOfPoints(), wide->GetNumberOfPoints()); // the seams are split
+    for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(a->GetPointData()),
+           static_cast<vtkDataSetAttributes*>(a->GetCellData()) })
+    {
+      vtkDataSetAttributes* other = data == a->GetPointData()
+        ? static_cast<vtkDataSetAttributes*>(b->GetPointData())
+        : static_cast<vtkDataSetAttributes*>(b->GetCellData());
+      for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+      {
+        auto* x = vtkFloatArray::SafeDownCast(data->GetArray(name));
+        auto* y = vtkFloatArray::SafeDownCast(other->GetArray(name));
+        if (!x)
+        {
+          EXPECT_EQ(y, nullptr) << name;
+          continue;
+        }
+        ASSERT_NE(y, nullptr) << name;
+        ASSERT_EQ(x->GetDataSize(), y->GetDataSize()) << name;
+        EXPECT_EQ(0, std::memcmp(x->GetPointer(0), y->GetPointer(0), 4 * x->GetDataSize())) << name;
+      }
+    }
+    vtkNew<vtkIdList> pa, pb;
+    for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
+    {
+      a->GetCellPoints(c, pa);
+      b->GetCellPoints(c, pb);
+      ASSERT_EQ(pa->GetNumberOfIds(), pb->GetNumberOfIds());
+      for (vtkIdType k = 0; k < pa->GetNumberOfIds(); ++k)
+      {
+        ASSERT_EQ(pa->GetId(k), pb->GetId(k)) << "cell " << c;
+      }
+    }
+  }
+  const vtkIdType bad[3] = { 0, 1, narrow->GetNumberOfPoints() };
+  narrow->GetPolys()->InsertNextCell(3, bad);
+  ASSERT_FALSE(narrow->GetPolys()->IsStorage64Bit());
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  Messages messages(filter);
+  filter->SetInputData(narrow);
+  filter->Update();
+  EXPECT_TRUE(messages.Has(messages.Errors, "point id outside"));
+  EXPECT_EQ(filter->GetOutput()->GetPointData()->GetTangents(), nullptr);
+}
+
 TEST(PolyDataTangentFrames, OutputPrecision)
 {
   vtkNormalMapping::TorusOptions options;
