@@ -19,10 +19,34 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   vtkIdType size,
   vtkIdType maxId)
 {
-  auto copy = vtkSmartPointer<vtkCellArray>::New();
-  copy->DeepCopy(cells);
-  if (!copy->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
+  const bool moves = std::any_of(repoint.begin(),
+    repoint.end(),
+    [&](const std::pair<vtkIdType, vtkIdType>& r)
+    { return r.first >= base && r.first < base + size; });
+  if (!moves)
   {
+    return cells;
+  }
+  // A new connectivity array; the offsets do not change and are shared.
+  auto copy = vtkSmartPointer<vtkCellArray>::New();
+  const auto copyConnectivity = [&](auto* offsets, auto* connectivity)
+  {
+    using Array = std::remove_pointer_t<decltype(connectivity)>;
+    auto ids = vtkSmartPointer<Array>::New();
+    ids->DeepCopy(connectivity);
+    copy->SetData(offsets, ids);
+  };
+  if (cells->IsStorage64Bit())
+  {
+    copyConnectivity(cells->GetOffsetsArray64(), cells->GetConnectivityArray64());
+  }
+  else if (maxId <= VTK_TYPE_INT32_MAX)
+  {
+    copyConnectivity(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+  }
+  else
+  {
+    copy->DeepCopy(cells);
     copy->ConvertTo64BitStorage();
   }
   WithCellStorage(copy,

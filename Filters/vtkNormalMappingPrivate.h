@@ -136,7 +136,8 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
 /**
  * A copy of `cells` whose connectivity positions [base, base + size) listed in `repoint`
  * (position, new point id) refer to the new ids: the corners of split points that move to the
- * points' copies. 64-bit storage when maxId does not fit in 32 bits.
+ * points' copies. 64-bit storage when maxId does not fit in 32 bits. The copy shares the
+ * offsets; `cells` itself is returned when none of its positions moves.
  */
 vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
   const std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
