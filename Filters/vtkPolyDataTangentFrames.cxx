@@ -642,6 +642,17 @@ struct ScatteredSums
   }
 
   int Owners() const { return this->OwnerMask + 1; }
+
+  /// The number of points with both handednesses (mirror seams).
+  vtkIdType SeamPoints() const
+  {
+    size_t count = 0;
+    for (const auto& other : this->Other)
+    {
+      count += other.size();
+    }
+    return static_cast<vtkIdType>(count);
+  }
   int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight.
@@ -1414,12 +1425,18 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  auto tangents = NewArray<OutT>(TangentsArrayName(), 3, numPoints);
-  auto signs = NewArray<OutT>(SignsArrayName(), 1, numPoints);
+  this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
+  const ScatteredSums sums =
+    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+
+  // Room for the split points' frames too: one per mirror-seam point when splitting.
+  const vtkIdType withSplits = numPoints + (self->Splitting ? sums.SeamPoints() : 0);
+  auto tangents = NewArray<OutT>(TangentsArrayName(), 3, withSplits);
+  auto signs = NewArray<OutT>(SignsArrayName(), 1, withSplits);
   vtkSmartPointer<OutArray<OutT>> bitangents;
   if (self->ComputeBitangents)
   {
-    bitangents = NewArray<OutT>(BitangentsArrayName(), 3, numPoints);
+    bitangents = NewArray<OutT>(BitangentsArrayName(), 3, withSplits);
   }
   const auto frameArrays = [&]()
   {
@@ -1427,10 +1444,6 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
       signs->GetPointer(0),
       bitangents ? bitangents->GetPointer(0) : nullptr };
   };
-
-  this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
-  const ScatteredSums sums =
-    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
   const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
@@ -1464,20 +1477,19 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   std::transform(
     splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
   vtkNormalMapping::detail::CopyWithAppendedPoints(input, output, splitSource);
+  for (OutArray<OutT>* array : { tangents.Get(), signs.Get(), bitangents.Get() })
+  {
+    if (array)
+    {
+      array->SetNumberOfTuples(numPoints + static_cast<vtkIdType>(splits.size()));
+    }
+  }
   if (!splits.empty())
   {
     if (computedNormals)
     {
       computedNormals = OutArray<OutT>::SafeDownCast(
         vtkNormalMapping::detail::ExtendPointArray(computedNormals, numPoints, splitSource));
-    }
-    for (OutArray<OutT>* array : { tangents.Get(), signs.Get(), bitangents.Get() })
-    {
-      if (array)
-      {
-        array->Resize(numPoints + static_cast<vtkIdType>(splits.size()));
-        array->SetNumberOfTuples(numPoints + static_cast<vtkIdType>(splits.size()));
-      }
     }
     this->AppendSplitFrames(splits, frameArrays());
   }
