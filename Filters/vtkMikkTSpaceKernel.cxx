@@ -151,14 +151,15 @@ CornerFrame ToCornerFrame(const V3& tangent, uint8_t orient)
 struct Member
 {
   Idx Corner;     // 3 t + i
+  Idx Slot;       // its face corner
   Idx Next, Prev; // welded ids of the triangle's next and previous corner
   Idx Link[2];    // member across the edge vertex->Next, across Prev->vertex; -1: none
   Idx Group;      // same-orientation edge-connected component
   uint8_t Flags;  // of the triangle
-  // The triangle's directions (its Frame; CornerMath projects them on the vertex's tangent
-  // plane), the edges to Prev and Next on that plane (normalised), and the corner angle (0 for
-  // GWA members, which never contribute).
-  V3 S, T, E1, E2;
+  // The triangle's directions projected on the vertex's tangent plane and normalised
+  // (CornerMath), its magnitudes, and the corner angle (0 for GWA members, which never
+  // contribute).
+  V3 S, T;
   float MagS, MagT, Angle;
 };
 
@@ -692,11 +693,10 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     const Idx c = fan[j], i = c % 3;
     const Triangle& tri = Tris[size_t(c / 3)];
     m[j].Corner = c;
+    m[j].Slot = tri.Slot[i];
     m[j].Next = tri.Weld[(i + 1) % 3];
     m[j].Prev = tri.Weld[(i + 2) % 3];
     m[j].Flags = tri.Flags;
-    m[j].S = tri.Dir.S;
-    m[j].T = tri.Dir.T;
     m[j].MagS = tri.Dir.MagS;
     m[j].MagT = tri.Dir.MagT;
   }
@@ -797,10 +797,11 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   const Idx pv = PointOfWeld(v);
   const V3 n = Nrm(pv), p = Pos(pv);
   const size_t k = s.M.size();
-  // rows [0, k): S of each member, [k, 2k): T, then one edge per run
-  s.X.resize(2 * k);
-  s.Y.resize(2 * k);
-  s.Z.resize(2 * k);
+  // rows [0, k): S of each member, [k, 2k): T, [2k, 3k): the edge to Next, then the edges to
+  // Prev of members whose in-edge is unpaired (a paired one is its partner's edge to Next)
+  s.X.resize(4 * k);
+  s.Y.resize(4 * k);
+  s.Z.resize(4 * k);
   const auto set = [&s](size_t row, const V3& w)
   {
     s.X[row] = w.x;
@@ -808,49 +809,33 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
     s.Z[row] = w.z;
   };
   const auto get = [&s](size_t row) { return V3{ s.X[row], s.Y[row], s.Z[row] }; };
+  size_t rows = 3 * k;
   for (size_t j = 0; j < k; ++j)
   {
-    set(j, s.M[j].S);
-    set(k + j, s.M[j].T);
-  }
-  // rows [2k, 3k): the edge to Next of each member, then the edges to Prev of members whose
-  // in-edge is unpaired (a paired one is its partner's edge to Next)
-  for (size_t j = 0; j < k; ++j)
-  {
-    const V3 e = Sub(Pos(PointOfWeld(s.M[j].Next)), p);
-    s.X.push_back(e.x);
-    s.Y.push_back(e.y);
-    s.Z.push_back(e.z);
-  }
-  for (const Member& a : s.M)
-  {
+    const Member& a = s.M[j];
+    const Frame& dir = Tris[size_t(a.Corner / 3)].Dir;
+    set(j, dir.S);
+    set(k + j, dir.T);
+    set(2 * k + j, Sub(Pos(PointOfWeld(a.Next)), p));
     if (a.Link[1] < 0)
     {
-      const V3 e = Sub(Pos(PointOfWeld(a.Prev)), p);
-      s.X.push_back(e.x);
-      s.Y.push_back(e.y);
-      s.Z.push_back(e.z);
+      set(rows++, Sub(Pos(PointOfWeld(a.Prev)), p));
     }
   }
-  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), s.X.size(), n);
+  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), rows, n);
+  // the cosines of all members first, then the acos calls
   for (size_t j = 0, extra = 3 * k; j < k; ++j)
   {
     Member& a = s.M[j];
-    a.E2 = get(2 * k + j);
-    a.E1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
+    a.S = get(j);
+    a.T = get(k + j);
+    const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
+    const float c = Dot(e1, get(2 * k + j));
+    a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
   }
-  // the cosines of all members first, then the acos calls
-  for (size_t j = 0; j < k; ++j)
+  for (Member& a : s.M)
   {
-    Member& m = s.M[j];
-    m.S = get(j);
-    m.T = get(k + j);
-    const float c = Dot(m.E1, m.E2);
-    m.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
-  }
-  for (Member& m : s.M)
-  {
-    m.Angle = (m.Flags & kGWA) ? 0.0f : float(std::acos(double(m.Angle)));
+    a.Angle = (a.Flags & kGWA) ? 0.0f : float(std::acos(double(a.Angle)));
   }
 }
 
@@ -1034,7 +1019,7 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx key)
   }
   else
   {
-    Out[size_t(SlotOf(m.Corner))] = ToCornerFrame(f.S, orient);
+    Out[size_t(m.Slot)] = ToCornerFrame(f.S, orient);
   }
 }
 
