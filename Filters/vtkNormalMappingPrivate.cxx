@@ -20,10 +20,18 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   vtkIdType maxId)
 {
   auto copy = vtkSmartPointer<vtkCellArray>::New();
-  copy->DeepCopy(cells);
-  if (!copy->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
+  if (!cells->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
   {
+    copy->DeepCopy(cells);
     copy->ConvertTo64BitStorage();
+  }
+  else
+  {
+    // The offsets do not change: the copy shares them and holds a new connectivity array.
+    vtkDataArray* connectivity = cells->GetConnectivityArray();
+    auto newConnectivity = vtk::TakeSmartPointer(connectivity->NewInstance());
+    newConnectivity->DeepCopy(connectivity);
+    copy->SetData(cells->GetOffsetsArray(), newConnectivity);
   }
   WithCellStorage(copy,
     [&](auto*, auto* conn)

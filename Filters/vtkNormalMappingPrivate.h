@@ -134,9 +134,10 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
 }
 
 /**
- * A copy of `cells` whose connectivity positions [base, base + size) listed in `repoint`
- * (position, new point id) refer to the new ids: the corners of split points that move to the
- * points' copies. 64-bit storage when maxId does not fit in 32 bits.
+ * The cells of `cells` with a copy of its connectivity whose positions [base, base + size) listed
+ * in `repoint` (position, new point id) refer to the new ids: the corners of split points that
+ * move to the points' copies. The offsets array is shared with `cells`, unless maxId does not fit
+ * in 32-bit storage (then everything is copied into 64-bit storage).
  */
 vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
   const std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
