@@ -61,7 +61,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -347,34 +346,6 @@ vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
   return count.load();
 }
 
-/// Output tuple i (< numIn: tuple i; else tuple source[i - numIn]) of a 3-component array.
-template<typename OutT>
-struct GatherTriples
-{
-  template<typename ArrayT>
-  void operator()(ArrayT* array,
-    vtkIdType numIn,
-    const std::vector<vtkIdType>& source,
-    OutT* out) const
-  {
-    const auto tuples = vtk::DataArrayTupleRange<3>(array);
-    const vtkIdType n = numIn + static_cast<vtkIdType>(source.size());
-    vtkSMPTools::For(0,
-      n,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType i = b; i < e; ++i)
-        {
-          const auto tuple = tuples[i < numIn ? i : source[static_cast<size_t>(i - numIn)]];
-          for (int k = 0; k < 3; ++k)
-          {
-            out[3 * i + k] = static_cast<OutT>(tuple[k]);
-          }
-        }
-      });
-  }
-};
-
 /// The kernel's faces built from the polygons and strips, and the map from output corners
 /// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
 struct Surface
@@ -636,79 +607,6 @@ const CornerFrame& FrameOf(const Surface& s, const std::vector<CornerFrame>& fra
   return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
 }
 
-/// Steps 1 and 2 of Assign on several threads: the first corner of every point (atomic
-/// minimum: independent of the scheduling), then the corners whose frame differs from their
-/// point's first corner, in corner order (each fixed-size chunk collects its own list).
-void FirstCornersAndDifferences(const Surface& s,
-  const std::vector<CornerFrame>& frames,
-  vtkIdType numPoints,
-  Assignment& a,
-  std::vector<std::vector<long long>>& differing)
-{
-  const long long numCorners = s.NumCorners();
-  const vtkIdType numChunks = static_cast<vtkIdType>(differing.size());
-  const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
-  {
-    std::unique_ptr<std::atomic<long long>[]> first(
-      new std::atomic<long long>[static_cast<size_t>(numPoints)]);
-    vtkSMPTools::For(0,
-      numPoints,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType p = b; p < e; ++p)
-        {
-          first[p].store(kNoCorner, std::memory_order_relaxed);
-        }
-      });
-    vtkSMPTools::For(0,
-      numCorners,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType c = b; c < e; ++c)
-        {
-          if (s.SlotOf(c) < 0)
-          {
-            continue;
-          }
-          std::atomic<long long>& f = first[s.PointOf(c)];
-          long long cur = f.load(std::memory_order_relaxed);
-          while (c < cur && !f.compare_exchange_weak(cur, c, std::memory_order_relaxed))
-          {
-          }
-        }
-      });
-    a.FirstCorner.resize(static_cast<size_t>(numPoints));
-    vtkSMPTools::For(0,
-      numPoints,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType p = b; p < e; ++p)
-        {
-          a.FirstCorner[p] = first[p].load(std::memory_order_relaxed);
-        }
-      });
-  }
-
-  vtkSMPTools::For(0,
-    numChunks,
-    1,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      for (vtkIdType chunk = b; chunk < e; ++chunk)
-      {
-        const long long end = std::min<long long>(numCorners, (chunk + 1) * kChunk);
-        for (long long c = chunk * kChunk; c < end; ++c)
-        {
-          const long long first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
-          if (first != c && s.SlotOf(c) >= 0 && !SameFrame(frameOf(c), frameOf(first)))
-          {
-            differing[chunk].push_back(c);
-          }
-        }
-      }
-    });
-}
-
 void Assign(const Surface& s,
   const std::vector<CornerFrame>& frames,
   vtkIdType numPoints,
@@ -718,62 +616,28 @@ void Assign(const Surface& s,
   const long long numCorners = s.NumCorners();
   const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
 
-  // 1. The first corner of every point and 2. the corners whose frame differs from their
-  // point's first corner, in corner order (lists concatenated in order).
-  const vtkIdType numChunks = vtkNormalMapping::detail::ChunkCount(numCorners, kChunk);
-  std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
-  if (vtkNormalMapping::detail::UsableThreads() <= 1)
+  // 1. One ascending pass: the first corner with a frame of every point, and the corners whose
+  // frame differs from their point's first corner, in corner order.
+  a.FirstCorner.assign(static_cast<size_t>(numPoints), kNoCorner);
+  std::vector<long long> differing;
+  for (long long c = 0; c < numCorners; ++c)
   {
-    // One ascending pass (the same result, without atomics): a point's first corner is the
-    // first corner with a frame seen; the later ones are compared with it.
-    a.FirstCorner.assign(static_cast<size_t>(numPoints), kNoCorner);
-    std::vector<long long>* list = numChunks > 0 ? &differing[0] : nullptr;
-    if (s.StripCorners == 0 && s.PolyFrameless.empty())
+    if (s.SlotOf(c) < 0)
     {
-      // only polygons, all with a frame: output corner c is kernel corner c, of point conn[c]
-      long long* firstCorner = a.FirstCorner.data();
-      const long long* conn = s.FaceConnectivity;
-      const CornerFrame* frame = frames.data();
-      for (long long c = 0; c < numCorners; ++c)
-      {
-        long long& first = firstCorner[conn[c]];
-        if (first == kNoCorner)
-        {
-          first = c;
-        }
-        else if (!SameFrame(frame[c], frame[first]))
-        {
-          list->push_back(c);
-        }
-      }
+      continue;
     }
-    else
+    long long& first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
+    if (first == kNoCorner)
     {
-      for (long long c = 0; c < numCorners; ++c)
-      {
-        const long long slot = s.SlotOf(c);
-        if (slot < 0)
-        {
-          continue;
-        }
-        long long& first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
-        if (first == kNoCorner)
-        {
-          first = c;
-        }
-        else if (!SameFrame(frames[static_cast<size_t>(slot)], frameOf(first)))
-        {
-          list->push_back(c);
-        }
-      }
+      first = c;
     }
-  }
-  else
-  {
-    FirstCornersAndDifferences(s, frames, numPoints, a, differing);
+    else if (!SameFrame(frameOf(c), frameOf(first)))
+    {
+      differing.push_back(c);
+    }
   }
 
-  // 3. Strip corners whose strip triangles disagree.
+  // 2. Strip corners whose strip triangles disagree.
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
   std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
   vtkSMPTools::For(0,
@@ -806,7 +670,7 @@ void Assign(const Surface& s,
       }
     });
 
-  // 4. Sequential, in corner order: conflicts and new points.
+  // 3. Sequential, in corner order: conflicts and new points.
   std::vector<unsigned char> conflict;
   const auto markConflict = [&](long long p)
   {
@@ -829,36 +693,33 @@ void Assign(const Surface& s,
     }
   }
   std::unordered_map<long long, std::vector<vtkIdType>> extra; // point -> its new points
-  for (const auto& list : differing)
+  for (long long c : differing)
   {
-    for (long long c : list)
+    const long long p = s.PointOf(c);
+    markConflict(p);
+    if (!splitting)
     {
-      const long long p = s.PointOf(c);
-      markConflict(p);
-      if (!splitting)
-      {
-        continue;
-      }
-      const CornerFrame& f = frameOf(c);
-      std::vector<vtkIdType>& mine = extra[p];
-      vtkIdType id = -1;
-      for (vtkIdType candidate : mine)
-      {
-        if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
-        {
-          id = candidate;
-          break;
-        }
-      }
-      if (id < 0)
-      {
-        id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
-        a.SplitSource.push_back(static_cast<vtkIdType>(p));
-        a.SplitFrame.push_back(f);
-        mine.push_back(id);
-      }
-      a.Repoint.emplace_back(c, id);
+      continue;
     }
+    const CornerFrame& f = frameOf(c);
+    std::vector<vtkIdType>& mine = extra[p];
+    vtkIdType id = -1;
+    for (vtkIdType candidate : mine)
+    {
+      if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
+      {
+        id = candidate;
+        break;
+      }
+    }
+    if (id < 0)
+    {
+      id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
+      a.SplitSource.push_back(static_cast<vtkIdType>(p));
+      a.SplitFrame.push_back(f);
+      mine.push_back(id);
+    }
+    a.Repoint.emplace_back(c, id);
   }
 }
 
@@ -962,18 +823,10 @@ void WriteOutput(const MikkTSpaceRequest& request,
 
   if (request.ComputedNormals)
   {
-    vtkNew<OutArray> outNormals;
-    outNormals->SetName("Normals");
-    outNormals->SetNumberOfComponents(3);
-    outNormals->SetNumberOfTuples(numOut);
-    GatherTriples<OutT> worker;
-    std::vector<vtkIdType> source(a.SplitSource);
-    if (!vtkArrayDispatch::Dispatch::Execute(
-          request.Normals, worker, numIn, source, outNormals->GetPointer(0)))
-    {
-      worker(request.Normals, numIn, source, outNormals->GetPointer(0));
-    }
-    outPD->SetNormals(outNormals);
+    // the filter's computed array (named "Normals", of the output type), extended like the
+    // point data
+    outPD->SetNormals(vtkDataArray::SafeDownCast(
+      numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
   }
   outPD->SetTangents(tangents);
   outPD->AddArray(signs);
