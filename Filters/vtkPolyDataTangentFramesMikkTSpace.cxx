@@ -60,7 +60,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <limits>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -78,7 +77,6 @@ using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
-constexpr long long kNoCorner = std::numeric_limits<long long>::max();
 constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
 
 /// Bitwise equality, as two 64-bit compares (this runs once per corner).
@@ -364,7 +362,6 @@ struct Surface
   std::vector<long long> StripCornerStart;   // per strip + 1: first strip corner
   std::vector<unsigned char> PolyFrameless;  // per polygon corner, only if some polygon has < 3
 
-  long long NumCorners() const { return PolyCorners + StripCorners; }
   long long PointOf(long long c) const
   {
     return c < PolyCorners ? FaceConnectivity[c] : StripPoint[static_cast<size_t>(c - PolyCorners)];
@@ -592,7 +589,7 @@ bool BuildSurface(vtkCellArray* polys,
 /// Which point each output corner uses and which frame each output point gets.
 struct Assignment
 {
-  std::vector<long long> FirstCorner;  // per input point: its first corner, or kNoCorner
+  std::vector<long long> FirstSlot;    // per input point: kernel corner of its first corner, or -1
   std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
@@ -613,27 +610,38 @@ void Assign(const Surface& s,
   bool splitting,
   Assignment& a)
 {
-  const long long numCorners = s.NumCorners();
   const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
 
-  // 1. One ascending pass: the first corner with a frame of every point, and the corners whose
-  // frame differs from their point's first corner, in corner order.
-  a.FirstCorner.assign(static_cast<size_t>(numPoints), kNoCorner);
+  // 1. One ascending pass, polygon corners then strip corners: the first corner with a frame of
+  // every point, and the corners whose frame differs from their point's first corner.
+  a.FirstSlot.assign(static_cast<size_t>(numPoints), -1);
   std::vector<long long> differing;
-  for (long long c = 0; c < numCorners; ++c)
+  const auto visit = [&](long long c, long long point, long long slot)
   {
-    if (s.SlotOf(c) < 0)
+    long long& first = a.FirstSlot[static_cast<size_t>(point)];
+    if (first < 0)
     {
-      continue;
+      first = slot;
     }
-    long long& first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
-    if (first == kNoCorner)
-    {
-      first = c;
-    }
-    else if (!SameFrame(frameOf(c), frameOf(first)))
+    else if (!SameFrame(frames[static_cast<size_t>(slot)], frames[static_cast<size_t>(first)]))
     {
       differing.push_back(c);
+    }
+  };
+  for (long long c = 0; c < s.PolyCorners; ++c)
+  {
+    if (s.PolyFrameless.empty() || !s.PolyFrameless[static_cast<size_t>(c)])
+    {
+      visit(c, s.FaceConnectivity[c], c);
+    }
+  }
+  for (long long i = 0; i < s.StripCorners; ++i)
+  {
+    if (s.StripSlot[static_cast<size_t>(i)] >= 0)
+    {
+      visit(s.PolyCorners + i,
+        s.StripPoint[static_cast<size_t>(i)],
+        s.StripSlot[static_cast<size_t>(i)]);
     }
   }
 
@@ -764,8 +772,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
     {
       return a.SplitFrame[static_cast<size_t>(p - numIn)];
     }
-    const long long c = a.FirstCorner[static_cast<size_t>(p)];
-    const long long slot = c == kNoCorner ? -1 : s.SlotOf(c);
+    const long long slot = a.FirstSlot[static_cast<size_t>(p)];
     if (slot >= 0)
     {
       return frames[static_cast<size_t>(slot)];
