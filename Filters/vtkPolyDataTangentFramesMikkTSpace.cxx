@@ -41,7 +41,6 @@
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkTangentFrameKernels.h"
 
-#include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArrayRange.h"
@@ -73,7 +72,6 @@ namespace detail
 namespace
 {
 using mikk::CornerFrame;
-using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
@@ -179,18 +177,6 @@ struct ConvertTuples
   }
 };
 
-template<typename OutT>
-std::vector<OutT> Convert(vtkDataArray* array, vtkIdType n, int outComps)
-{
-  std::vector<OutT> out(static_cast<size_t>(n) * outComps);
-  ConvertTuples<OutT> worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, out.data()))
-  {
-    worker(array, n, outComps, out.data());
-  }
-  return out;
-}
-
 /// The first n tuples of `array` as `outComps` floats each: the array's own storage when it is a
 /// float array with exactly that many components (no copy), else a converted copy kept in
 /// `storage`.
@@ -202,11 +188,7 @@ const float* FloatData(vtkDataArray* array, vtkIdType n, int outComps, std::vect
     return floats->GetPointer(0);
   }
   storage.resize(static_cast<size_t>(n) * outComps);
-  ConvertTuples<float> worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, storage.data()))
-  {
-    worker(array, n, outComps, storage.data());
-  }
+  DispatchArray(array, ConvertTuples<float>(), n, outComps, storage.data());
   return storage.data();
 }
 
@@ -290,12 +272,8 @@ const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>&
     return FloatData(array, n, 3, storage);
   }
   storage.resize(static_cast<size_t>(n) * 3);
-  ConvertPositions worker;
   const double scale = ScaleByPowerOfTwo(1.0, k);
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, centre, scale, storage.data()))
-  {
-    worker(array, n, centre, scale, storage.data());
-  }
+  DispatchArray(array, ConvertPositions(), n, centre, scale, storage.data());
   return storage.data();
 }
 
@@ -315,7 +293,8 @@ struct ContractNormals
     }
     else
     {
-      this->Wide = Convert<double>(normals, n, 3);
+      this->Wide.resize(static_cast<size_t>(n) * 3);
+      DispatchArray(normals, ConvertTuples<double>(), n, 3, this->Wide.data());
     }
   }
   glm::dvec3 operator[](vtkIdType p) const
@@ -447,54 +426,18 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(polys,
       [&](auto* off, auto* conn)
       {
-        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
-        if (!ok)
-        {
-          return;
-        }
         // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
         // points (rare) are noted: their corners get no frame.
-        std::atomic<bool> small(false), decreasing(false);
-        vtkSMPTools::For(0,
-          s.NumPolys,
-          [&](vtkIdType b, vtkIdType e)
-          {
-            bool anySmall = false, anyDecreasing = false;
-            for (vtkIdType k = b; k < e; ++k)
-            {
-              const auto n = off[k + 1] - off[k];
-              anySmall = anySmall || n < 3;
-              anyDecreasing = anyDecreasing || n < 0;
-            }
-            if (anySmall)
-            {
-              small.store(true, std::memory_order_relaxed);
-            }
-            if (anyDecreasing)
-            {
-              decreasing.store(true, std::memory_order_relaxed);
-            }
-          });
-        if (decreasing.load())
-        {
-          ok = false;
-          return;
-        }
-        if (!small.load())
-        {
-          return;
-        }
-        s.PolyFrameless.assign(static_cast<size_t>(s.PolyCorners), 0);
-        for (vtkIdType k = 0; k < s.NumPolys; ++k)
+        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
+        for (vtkIdType k = 0; ok && k < s.NumPolys; ++k)
         {
           const long long b = off[k], e = off[k + 1];
-          if (e - b < 3)
+          ok = e >= b && e <= s.PolyCorners;
+          if (ok && e - b < 3)
           {
             inRange &= IdsInRange(conn, b, e, numPoints);
-            for (long long c = std::max(0LL, b); c < std::min<long long>(e, s.PolyCorners); ++c)
-            {
-              s.PolyFrameless[static_cast<size_t>(c)] = 1;
-            }
+            s.PolyFrameless.resize(static_cast<size_t>(s.PolyCorners), 0);
+            std::fill(s.PolyFrameless.begin() + b, s.PolyFrameless.begin() + e, 1);
           }
         }
       });
