@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <tuple>
 
@@ -264,7 +265,9 @@ struct Kernel
     Frame Dir;   // sign(det) Os/|Os|, sign(det) Ot/|Ot|, |Os|/|det|, |Ot|/|det|
     uint8_t Flags;
   };
-  std::vector<Triangle> Tris; // one record per triangle: the vertex phase reads all of it
+  // One record per triangle: the vertex phase reads all of it. Not value-initialised: the
+  // triangle pass writes every record.
+  std::unique_ptr<Triangle[]> Tris;
   long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
 
   // fans: corners of non-degenerate triangles grouped by welded id, ascending
@@ -578,7 +581,7 @@ void Kernel::BuildTriangles()
     AnyMulti = AnyMulti || chunkMulti[size_t(c)];
   }
   NumTris = ChunkTriBase[size_t(NumFaceChunks)];
-  Tris.resize(size_t(NumTris));
+  Tris.reset(new Triangle[size_t(NumTris)]);
 
   struct Counts
   {
@@ -1089,7 +1092,7 @@ void Kernel::CopyDegenerates()
         {
           const long long n = e - b;
           const Idx nTri = Idx(n - 2);
-          const Triangle* tri = Tris.data() + t;
+          const Triangle* tri = Tris.get() + t;
           if ((tri[0].Flags & kDead) ||
             std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
           {
