@@ -164,6 +164,30 @@ struct Member
   float MagS, MagT, Angle;
 };
 
+// Per-thread scratch of the triangle phase: the unnormalised directions (the reference's vOs,
+// vOt) and UV determinant of each triangle of a chunk, in separate arrays so that their
+// normalisation (Kernel::FinishDirections) vectorises.
+struct TriangleRows
+{
+  std::vector<float> Sx, Sy, Sz, Tx, Ty, Tz, Det, MagS, MagT;
+  void Resize(size_t n)
+  {
+    for (std::vector<float>* v : { &Sx, &Sy, &Sz, &Tx, &Ty, &Tz, &Det, &MagS, &MagT })
+    {
+      v->resize(n);
+    }
+  }
+  void SetDirections(size_t j, const V3& s, const V3& t)
+  {
+    Sx[j] = s.x;
+    Sy[j] = s.y;
+    Sz[j] = s.z;
+    Tx[j] = t.x;
+    Ty[j] = t.y;
+    Tz[j] = t.z;
+  }
+};
+
 // Per-thread scratch of the vertex phase.
 struct Scratch
 {
@@ -333,8 +357,10 @@ struct Kernel
 
   void Weld();
   void BuildTriangles();
-  float SetupTriangle(Idx t, const Idx slots[3]);
-  void SetupQuad(Idx t, Idx base);
+  void SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row);
+  void SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row);
+  void FinishDirections(Idx t0, TriangleRows& rows);
+  void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
   void AdoptGroupWithAnyOrientation();
@@ -451,9 +477,10 @@ void Kernel::Weld()
 }
 
 //------------------------------------------------------------------------------
-// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo). Returns
-// its UV determinant.
-float Kernel::SetupTriangle(Idx t, const Idx slots[3])
+// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo): its
+// corners and degeneracy, and its unnormalised directions and UV determinant in `row` of `rows`
+// (FinishDirections completes them).
+void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row)
 {
   Triangle& tri = Tris[size_t(t)];
   Idx pts[3];
@@ -464,49 +491,70 @@ float Kernel::SetupTriangle(Idx t, const Idx slots[3])
     tri.Weld[i] = Rep[size_t(pts[i])] >= 0 ? Rep[size_t(pts[i])] : NumPoints + slots[i];
   }
   const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
-  Frame& dir = tri.Dir;
-  dir = Frame{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
-  if (Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2))
-  {
-    tri.Flags = kDegenerate;
-    return 0;
-  }
+  tri.Flags = Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2) ? kDegenerate : 0;
   const float* U = In.TCoords;
   const float u0 = U[2 * size_t(pts[0])], v0 = U[2 * size_t(pts[0]) + 1];
   const float t21x = U[2 * size_t(pts[1])] - u0, t21y = U[2 * size_t(pts[1]) + 1] - v0;
   const float t31x = U[2 * size_t(pts[2])] - u0, t31y = U[2 * size_t(pts[2]) + 1] - v0;
   const V3 d1 = Sub(p1, p0), d2 = Sub(p2, p0);
-  const float det = t21x * t31y - t21y * t31x;
-  const V3 os = Sub(Scale(d1, t31y), Scale(d2, t21y));
-  const V3 ot = Add(Scale(d1, -t31x), Scale(d2, t21x));
-  uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
-  if (NotZero(det))
+  rows.Det[row] = t21x * t31y - t21y * t31x;
+  rows.SetDirections(
+    row, Sub(Scale(d1, t31y), Scale(d2, t21y)), Add(Scale(d1, -t31x), Scale(d2, t21x)));
+}
+
+// One direction of the reference's InitTriInfo for count triangles: (x[j], y[j], z[j]) made
+// unit and signed by the UV determinant det[j] (zero when its length is numerically zero), and
+// mag[j] = its length / |det[j]|. Branch-free over separate arrays, so that compilers vectorise
+// it; square root and division are correctly rounded either way.
+void SignedDirections(float* x, float* y, float* z, const float* det, float* mag, size_t count)
+{
+  for (size_t j = 0; j < count; ++j)
   {
-    const float absDet = std::fabs(det);
-    const float lenS = std::sqrt(Dot(os, os)), lenT = std::sqrt(Dot(ot, ot));
-    const float sign = det > 0 ? 1.0f : -1.0f;
-    if (NotZero(lenS))
-    {
-      dir.S = Scale(os, sign / lenS);
-    }
-    if (NotZero(lenT))
-    {
-      dir.T = Scale(ot, sign / lenT);
-    }
-    dir.MagS = lenS / absDet;
-    dir.MagT = lenT / absDet;
-    if (NotZero(dir.MagS) && NotZero(dir.MagT))
-    {
-      flags = uint8_t(flags & ~kGWA);
-    }
+    const V3 v{ x[j], y[j], z[j] };
+    const float len = std::sqrt(Dot(v, v));
+    const float sign = det[j] > 0 ? 1.0f : -1.0f;
+    const V3 r = NotZero(len) ? Scale(v, sign / len) : V3{ 0, 0, 0 };
+    x[j] = r.x;
+    y[j] = r.y;
+    z[j] = r.z;
+    mag[j] = len / std::fabs(det[j]);
   }
-  tri.Flags = flags;
-  return det;
+}
+
+// Completes the directions of the triangles t0, t0 + 1, ... of `rows` with their magnitudes,
+// orientation and GWA flags (reference: InitTriInfo); degenerate and dead triangles get none.
+void Kernel::FinishDirections(Idx t0, TriangleRows& r)
+{
+  const size_t n = r.Det.size();
+  SignedDirections(r.Sx.data(), r.Sy.data(), r.Sz.data(), r.Det.data(), r.MagS.data(), n);
+  SignedDirections(r.Tx.data(), r.Ty.data(), r.Tz.data(), r.Det.data(), r.MagT.data(), n);
+  for (size_t j = 0; j < n; ++j)
+  {
+    Triangle& tri = Tris[size_t(t0) + j];
+    tri.Dir = Frame{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
+    if (tri.Flags & kExcluded)
+    {
+      continue;
+    }
+    const float det = r.Det[j];
+    uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
+    if (NotZero(det))
+    {
+      tri.Dir =
+        Frame{ { r.Sx[j], r.Sy[j], r.Sz[j] }, { r.Tx[j], r.Ty[j], r.Tz[j] }, r.MagS[j], r.MagT[j] };
+      if (NotZero(r.MagS[j]) && NotZero(r.MagT[j]))
+      {
+        flags = uint8_t(flags & ~kGWA);
+      }
+    }
+    tri.Flags |= flags;
+  }
 }
 
 // The two triangles t, t+1 of the quad with face corners base..base+3: split on the shorter UV
-// diagonal (the position diagonal on an exact tie), then the reference's quad rules.
-void Kernel::SetupQuad(Idx t, Idx base)
+// diagonal (the position diagonal on an exact tie); QuadOrientation applies the reference's quad
+// rules once the directions are complete.
+void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
 {
   const float* U = In.TCoords;
   Idx q[4];
@@ -529,7 +577,21 @@ void Kernel::SetupQuad(Idx t, Idx base)
   }
   const Idx sa[3] = { base, base + 1, base + (diag02 ? 2 : 3) };
   const Idx sb[3] = { base + (diag02 ? 0 : 1), base + 2, base + 3 };
-  const float detA = SetupTriangle(t, sa), detB = SetupTriangle(t + 1, sb);
+  SetupTriangle(t, sa, rows, row);
+  SetupTriangle(t + 1, sb, rows, row + 1);
+  // the diagonal's face corners are written by both triangles:
+  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
+  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
+  Tris[size_t(t)].Flags |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
+  Tris[size_t(t) + 1].Flags |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
+}
+
+// The reference's rules for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
+// their directions are complete: a quad with one degenerate triangle is marked, and two good
+// triangles of different orientation take the one of the larger UV area (a GWA second
+// triangle always takes the first's).
+void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
+{
   uint8_t& fa = Tris[size_t(t)].Flags;
   uint8_t& fb = Tris[size_t(t) + 1].Flags;
   const bool degA = (fa & kDegenerate) != 0, degB = (fb & kDegenerate) != 0;
@@ -540,17 +602,11 @@ void Kernel::SetupQuad(Idx t, Idx base)
   }
   else if (!degA && ((fa ^ fb) & kOrient))
   {
-    // both triangles of the quad take one orientation
-    const bool firstWins = (fb & kGWA) || std::fabs(detA) >= std::fabs(detB);
+    const bool firstWins = (fb & kGWA) || std::fabs(rows.Det[row]) >= std::fabs(rows.Det[row + 1]);
     uint8_t& dst = firstWins ? fb : fa;
     const uint8_t src = firstWins ? fa : fb;
     dst = uint8_t((dst & ~kOrient) | (src & kOrient));
   }
-  // the diagonal's face corners are written by both triangles:
-  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
-  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
-  fa |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
-  fb |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
 }
 
 void Kernel::BuildTriangles()
@@ -588,12 +644,16 @@ void Kernel::BuildTriangles()
     long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
   };
   std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
+  vtkSMPThreadLocal<TriangleRows> scratch;
   ForEachFaceChunk(
     [&](long long c)
     {
       Counts& n = counts[size_t(c)];
+      const Idx t0 = ChunkTriBase[size_t(c)];
+      TriangleRows& rows = scratch.Local();
+      rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
       const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-      Idx t = ChunkTriBase[size_t(c)];
+      Idx t = t0;
       for (long long f = c * kFaceChunk; f < fe; ++f)
       {
         const long long b = Off[f], e = Off[f + 1];
@@ -603,6 +663,7 @@ void Kernel::BuildTriangles()
           continue;
         }
         const Idx base = Idx(b), nTri = Idx(e - b - 2);
+        const size_t row = size_t(t - t0);
         const bool valid = std::all_of(
           Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; });
         if (!valid)
@@ -616,11 +677,11 @@ void Kernel::BuildTriangles()
         else if (nTri == 1)
         {
           const Idx slots[3] = { base, base + 1, base + 2 };
-          SetupTriangle(t, slots);
+          SetupTriangle(t, slots, rows, row);
         }
         else if (nTri == 2)
         {
-          SetupQuad(t, base);
+          SetupQuad(t, base, rows, row);
         }
         else
         {
@@ -628,18 +689,27 @@ void Kernel::BuildTriangles()
           for (Idx k = 0; k < nTri; ++k)
           {
             const Idx slots[3] = { base, base + k + 1, base + k + 2 };
-            SetupTriangle(t + k, slots);
+            SetupTriangle(t + k, slots, rows, row + size_t(k));
             Tris[size_t(t + k)].Flags |=
               uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
           }
         }
-        for (Idx u = t; u < t + nTri; ++u)
-        {
-          const uint8_t fl = Tris[size_t(u)].Flags;
-          n.Degenerate += (fl & kDegenerate) ? 1 : 0;
-          n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
-        }
         t += nTri;
+      }
+      FinishDirections(t0, rows);
+      ForEachTriangulatedFace(c,
+        [&](long long b, long long e, Idx u)
+        {
+          if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
+          {
+            QuadOrientation(u, rows, size_t(u - t0));
+          }
+        });
+      for (Idx u = t0; u < t; ++u)
+      {
+        const uint8_t fl = Tris[size_t(u)].Flags;
+        n.Degenerate += (fl & kDegenerate) ? 1 : 0;
+        n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
       }
     });
   for (const Counts& n : counts)
