@@ -209,53 +209,62 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
 {
   constexpr size_t kScanLimit = 32;
   const Idx k = Idx(m.size());
+  for (Member& a : m)
+  {
+    a.Link[0] = a.Link[1] = -1;
+  }
+  if (m.size() <= kScanLimit)
+  {
+    // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
+    for (Idx j = 0; j < k; ++j)
+    {
+      Member& a = m[size_t(j)];
+      for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
+      {
+        Member& b = m[size_t(q)];
+        if (b.Prev == a.Next && b.Link[1] < 0)
+        {
+          a.Link[0] = q;
+          b.Link[1] = j;
+        }
+      }
+      for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
+      {
+        Member& b = m[size_t(q)];
+        if (b.Next == a.Prev && b.Link[0] < 0)
+        {
+          a.Link[1] = q;
+          b.Link[0] = j;
+        }
+      }
+    }
+    return;
+  }
   index.clear();
   for (Idx j = 0; j < k; ++j)
   {
-    Member& a = m[size_t(j)];
-    a.Link[0] = a.Link[1] = -1;
-    if (m.size() > kScanLimit)
-    {
-      index.push_back(uint64_t(a.Next) << 32 | uint64_t(j) << 1);
-      index.push_back(uint64_t(a.Prev) << 32 | uint64_t(j) << 1 | 1);
-    }
+    index.push_back(uint64_t(m[size_t(j)].Next) << 32 | uint64_t(j) << 1);
+    index.push_back(uint64_t(m[size_t(j)].Prev) << 32 | uint64_t(j) << 1 | 1);
   }
   std::sort(index.begin(), index.end());
-  // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
-  const auto pair = [&](Idx j, int side)
-  {
-    const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
-    const auto tryLink = [&](Idx q)
-    {
-      Member& b = m[size_t(q)];
-      if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
-      {
-        m[size_t(j)].Link[side] = q;
-        b.Link[1 - side] = j;
-      }
-      return m[size_t(j)].Link[side] >= 0;
-    };
-    if (index.empty())
-    {
-      for (Idx q = j + 1; q < k && !tryLink(q); ++q)
-      {
-      }
-      return;
-    }
-    const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
-    for (auto e = std::lower_bound(index.begin(), index.end(), key);
-         e != index.end() && Idx(*e >> 32) == x && !tryLink(Idx(uint32_t(*e) >> 1));
-         ++e)
-    {
-    }
-  };
   for (Idx j = 0; j < k; ++j)
   {
     for (int side = 0; side < 2; ++side)
     {
-      if (m[size_t(j)].Link[side] < 0)
+      // the first later member with the opposite half-edge to x, not yet paired on that side
+      const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
+      const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
+      for (auto e = std::lower_bound(index.begin(), index.end(), key);
+           m[size_t(j)].Link[side] < 0 && e != index.end() && Idx(*e >> 32) == x;
+           ++e)
       {
-        pair(j, side);
+        const Idx q = Idx(uint32_t(*e) >> 1);
+        Member& b = m[size_t(q)];
+        if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
+        {
+          m[size_t(j)].Link[side] = q;
+          b.Link[1 - side] = j;
+        }
       }
     }
   }
