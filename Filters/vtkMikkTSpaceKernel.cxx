@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <tuple>
 
@@ -151,15 +152,40 @@ CornerFrame ToCornerFrame(const V3& tangent, uint8_t orient)
 struct Member
 {
   Idx Corner;     // 3 t + i
+  Idx Slot;       // its face corner
   Idx Next, Prev; // welded ids of the triangle's next and previous corner
   Idx Link[2];    // member across the edge vertex->Next, across Prev->vertex; -1: none
   Idx Group;      // same-orientation edge-connected component
   uint8_t Flags;  // of the triangle
-  // The triangle's directions (its Frame; CornerMath projects them on the vertex's tangent
-  // plane), the edges to Prev and Next on that plane (normalised), and the corner angle (0 for
-  // GWA members, which never contribute).
-  V3 S, T, E1, E2;
+  // The triangle's directions projected on the vertex's tangent plane and normalised
+  // (CornerMath), its magnitudes, and the corner angle (0 for GWA members, which never
+  // contribute).
+  V3 S, T;
   float MagS, MagT, Angle;
+};
+
+// Per-thread scratch of the triangle phase: the unnormalised directions (the reference's vOs,
+// vOt) and UV determinant of each triangle of a chunk, in separate arrays so that their
+// normalisation (Kernel::FinishDirections) vectorises.
+struct TriangleRows
+{
+  std::vector<float> Sx, Sy, Sz, Tx, Ty, Tz, Det, MagS, MagT;
+  void Resize(size_t n)
+  {
+    for (std::vector<float>* v : { &Sx, &Sy, &Sz, &Tx, &Ty, &Tz, &Det, &MagS, &MagT })
+    {
+      v->resize(n);
+    }
+  }
+  void SetDirections(size_t j, const V3& s, const V3& t)
+  {
+    Sx[j] = s.x;
+    Sy[j] = s.y;
+    Sz[j] = s.z;
+    Tx[j] = t.x;
+    Ty[j] = t.y;
+    Tz[j] = t.z;
+  }
 };
 
 // Per-thread scratch of the vertex phase.
@@ -183,53 +209,62 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
 {
   constexpr size_t kScanLimit = 32;
   const Idx k = Idx(m.size());
+  for (Member& a : m)
+  {
+    a.Link[0] = a.Link[1] = -1;
+  }
+  if (m.size() <= kScanLimit)
+  {
+    // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
+    for (Idx j = 0; j < k; ++j)
+    {
+      Member& a = m[size_t(j)];
+      for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
+      {
+        Member& b = m[size_t(q)];
+        if (b.Prev == a.Next && b.Link[1] < 0)
+        {
+          a.Link[0] = q;
+          b.Link[1] = j;
+        }
+      }
+      for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
+      {
+        Member& b = m[size_t(q)];
+        if (b.Next == a.Prev && b.Link[0] < 0)
+        {
+          a.Link[1] = q;
+          b.Link[0] = j;
+        }
+      }
+    }
+    return;
+  }
   index.clear();
   for (Idx j = 0; j < k; ++j)
   {
-    Member& a = m[size_t(j)];
-    a.Link[0] = a.Link[1] = -1;
-    if (m.size() > kScanLimit)
-    {
-      index.push_back(uint64_t(a.Next) << 32 | uint64_t(j) << 1);
-      index.push_back(uint64_t(a.Prev) << 32 | uint64_t(j) << 1 | 1);
-    }
+    index.push_back(uint64_t(m[size_t(j)].Next) << 32 | uint64_t(j) << 1);
+    index.push_back(uint64_t(m[size_t(j)].Prev) << 32 | uint64_t(j) << 1 | 1);
   }
   std::sort(index.begin(), index.end());
-  // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
-  const auto pair = [&](Idx j, int side)
-  {
-    const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
-    const auto tryLink = [&](Idx q)
-    {
-      Member& b = m[size_t(q)];
-      if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
-      {
-        m[size_t(j)].Link[side] = q;
-        b.Link[1 - side] = j;
-      }
-      return m[size_t(j)].Link[side] >= 0;
-    };
-    if (index.empty())
-    {
-      for (Idx q = j + 1; q < k && !tryLink(q); ++q)
-      {
-      }
-      return;
-    }
-    const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
-    for (auto e = std::lower_bound(index.begin(), index.end(), key);
-         e != index.end() && Idx(*e >> 32) == x && !tryLink(Idx(uint32_t(*e) >> 1));
-         ++e)
-    {
-    }
-  };
   for (Idx j = 0; j < k; ++j)
   {
     for (int side = 0; side < 2; ++side)
     {
-      if (m[size_t(j)].Link[side] < 0)
+      // the first later member with the opposite half-edge to x, not yet paired on that side
+      const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
+      const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
+      for (auto e = std::lower_bound(index.begin(), index.end(), key);
+           m[size_t(j)].Link[side] < 0 && e != index.end() && Idx(*e >> 32) == x;
+           ++e)
       {
-        pair(j, side);
+        const Idx q = Idx(uint32_t(*e) >> 1);
+        Member& b = m[size_t(q)];
+        if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
+        {
+          m[size_t(j)].Link[side] = q;
+          b.Link[1 - side] = j;
+        }
       }
     }
   }
@@ -263,7 +298,9 @@ struct Kernel
     Frame Dir;   // sign(det) Os/|Os|, sign(det) Ot/|Ot|, |Os|/|det|, |Ot|/|det|
     uint8_t Flags;
   };
-  std::vector<Triangle> Tris; // one record per triangle: the vertex phase reads all of it
+  // One record per triangle: the vertex phase reads all of it. Not value-initialised: the
+  // triangle pass writes every record.
+  std::unique_ptr<Triangle[]> Tris;
   long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
 
   // fans: corners of non-degenerate triangles grouped by welded id, ascending
@@ -329,8 +366,10 @@ struct Kernel
 
   void Weld();
   void BuildTriangles();
-  float SetupTriangle(Idx t, const Idx slots[3]);
-  void SetupQuad(Idx t, Idx base);
+  void SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row);
+  void SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row);
+  void FinishDirections(Idx t0, TriangleRows& rows);
+  void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
   void AdoptGroupWithAnyOrientation();
@@ -447,9 +486,10 @@ void Kernel::Weld()
 }
 
 //------------------------------------------------------------------------------
-// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo). Returns
-// its UV determinant.
-float Kernel::SetupTriangle(Idx t, const Idx slots[3])
+// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo): its
+// corners and degeneracy, and its unnormalised directions and UV determinant in `row` of `rows`
+// (FinishDirections completes them).
+void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row)
 {
   Triangle& tri = Tris[size_t(t)];
   Idx pts[3];
@@ -460,49 +500,70 @@ float Kernel::SetupTriangle(Idx t, const Idx slots[3])
     tri.Weld[i] = Rep[size_t(pts[i])] >= 0 ? Rep[size_t(pts[i])] : NumPoints + slots[i];
   }
   const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
-  Frame& dir = tri.Dir;
-  dir = Frame{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
-  if (Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2))
-  {
-    tri.Flags = kDegenerate;
-    return 0;
-  }
+  tri.Flags = Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2) ? kDegenerate : 0;
   const float* U = In.TCoords;
   const float u0 = U[2 * size_t(pts[0])], v0 = U[2 * size_t(pts[0]) + 1];
   const float t21x = U[2 * size_t(pts[1])] - u0, t21y = U[2 * size_t(pts[1]) + 1] - v0;
   const float t31x = U[2 * size_t(pts[2])] - u0, t31y = U[2 * size_t(pts[2]) + 1] - v0;
   const V3 d1 = Sub(p1, p0), d2 = Sub(p2, p0);
-  const float det = t21x * t31y - t21y * t31x;
-  const V3 os = Sub(Scale(d1, t31y), Scale(d2, t21y));
-  const V3 ot = Add(Scale(d1, -t31x), Scale(d2, t21x));
-  uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
-  if (NotZero(det))
+  rows.Det[row] = t21x * t31y - t21y * t31x;
+  rows.SetDirections(
+    row, Sub(Scale(d1, t31y), Scale(d2, t21y)), Add(Scale(d1, -t31x), Scale(d2, t21x)));
+}
+
+// One direction of the reference's InitTriInfo for count triangles: (x[j], y[j], z[j]) made
+// unit and signed by the UV determinant det[j] (zero when its length is numerically zero), and
+// mag[j] = its length / |det[j]|. Branch-free over separate arrays, so that compilers vectorise
+// it; square root and division are correctly rounded either way.
+void SignedDirections(float* x, float* y, float* z, const float* det, float* mag, size_t count)
+{
+  for (size_t j = 0; j < count; ++j)
   {
-    const float absDet = std::fabs(det);
-    const float lenS = std::sqrt(Dot(os, os)), lenT = std::sqrt(Dot(ot, ot));
-    const float sign = det > 0 ? 1.0f : -1.0f;
-    if (NotZero(lenS))
-    {
-      dir.S = Scale(os, sign / lenS);
-    }
-    if (NotZero(lenT))
-    {
-      dir.T = Scale(ot, sign / lenT);
-    }
-    dir.MagS = lenS / absDet;
-    dir.MagT = lenT / absDet;
-    if (NotZero(dir.MagS) && NotZero(dir.MagT))
-    {
-      flags = uint8_t(flags & ~kGWA);
-    }
+    const V3 v{ x[j], y[j], z[j] };
+    const float len = std::sqrt(Dot(v, v));
+    const float sign = det[j] > 0 ? 1.0f : -1.0f;
+    const V3 r = NotZero(len) ? Scale(v, sign / len) : V3{ 0, 0, 0 };
+    x[j] = r.x;
+    y[j] = r.y;
+    z[j] = r.z;
+    mag[j] = len / std::fabs(det[j]);
   }
-  tri.Flags = flags;
-  return det;
+}
+
+// Completes the directions of the triangles t0, t0 + 1, ... of `rows` with their magnitudes,
+// orientation and GWA flags (reference: InitTriInfo); degenerate and dead triangles get none.
+void Kernel::FinishDirections(Idx t0, TriangleRows& r)
+{
+  const size_t n = r.Det.size();
+  SignedDirections(r.Sx.data(), r.Sy.data(), r.Sz.data(), r.Det.data(), r.MagS.data(), n);
+  SignedDirections(r.Tx.data(), r.Ty.data(), r.Tz.data(), r.Det.data(), r.MagT.data(), n);
+  for (size_t j = 0; j < n; ++j)
+  {
+    Triangle& tri = Tris[size_t(t0) + j];
+    tri.Dir = Frame{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
+    if (tri.Flags & kExcluded)
+    {
+      continue;
+    }
+    const float det = r.Det[j];
+    uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
+    if (NotZero(det))
+    {
+      tri.Dir =
+        Frame{ { r.Sx[j], r.Sy[j], r.Sz[j] }, { r.Tx[j], r.Ty[j], r.Tz[j] }, r.MagS[j], r.MagT[j] };
+      if (NotZero(r.MagS[j]) && NotZero(r.MagT[j]))
+      {
+        flags = uint8_t(flags & ~kGWA);
+      }
+    }
+    tri.Flags |= flags;
+  }
 }
 
 // The two triangles t, t+1 of the quad with face corners base..base+3: split on the shorter UV
-// diagonal (the position diagonal on an exact tie), then the reference's quad rules.
-void Kernel::SetupQuad(Idx t, Idx base)
+// diagonal (the position diagonal on an exact tie); QuadOrientation applies the reference's quad
+// rules once the directions are complete.
+void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
 {
   const float* U = In.TCoords;
   Idx q[4];
@@ -525,7 +586,21 @@ void Kernel::SetupQuad(Idx t, Idx base)
   }
   const Idx sa[3] = { base, base + 1, base + (diag02 ? 2 : 3) };
   const Idx sb[3] = { base + (diag02 ? 0 : 1), base + 2, base + 3 };
-  const float detA = SetupTriangle(t, sa), detB = SetupTriangle(t + 1, sb);
+  SetupTriangle(t, sa, rows, row);
+  SetupTriangle(t + 1, sb, rows, row + 1);
+  // the diagonal's face corners are written by both triangles:
+  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
+  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
+  Tris[size_t(t)].Flags |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
+  Tris[size_t(t) + 1].Flags |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
+}
+
+// The reference's rules for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
+// their directions are complete: a quad with one degenerate triangle is marked, and two good
+// triangles of different orientation take the one of the larger UV area (a GWA second
+// triangle always takes the first's).
+void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
+{
   uint8_t& fa = Tris[size_t(t)].Flags;
   uint8_t& fb = Tris[size_t(t) + 1].Flags;
   const bool degA = (fa & kDegenerate) != 0, degB = (fb & kDegenerate) != 0;
@@ -536,17 +611,11 @@ void Kernel::SetupQuad(Idx t, Idx base)
   }
   else if (!degA && ((fa ^ fb) & kOrient))
   {
-    // both triangles of the quad take one orientation
-    const bool firstWins = (fb & kGWA) || std::fabs(detA) >= std::fabs(detB);
+    const bool firstWins = (fb & kGWA) || std::fabs(rows.Det[row]) >= std::fabs(rows.Det[row + 1]);
     uint8_t& dst = firstWins ? fb : fa;
     const uint8_t src = firstWins ? fa : fb;
     dst = uint8_t((dst & ~kOrient) | (src & kOrient));
   }
-  // the diagonal's face corners are written by both triangles:
-  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
-  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
-  fa |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
-  fb |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
 }
 
 void Kernel::BuildTriangles()
@@ -577,19 +646,23 @@ void Kernel::BuildTriangles()
     AnyMulti = AnyMulti || chunkMulti[size_t(c)];
   }
   NumTris = ChunkTriBase[size_t(NumFaceChunks)];
-  Tris.resize(size_t(NumTris));
+  Tris.reset(new Triangle[size_t(NumTris)]);
 
   struct Counts
   {
     long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
   };
   std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
+  vtkSMPThreadLocal<TriangleRows> scratch;
   ForEachFaceChunk(
     [&](long long c)
     {
       Counts& n = counts[size_t(c)];
+      const Idx t0 = ChunkTriBase[size_t(c)];
+      TriangleRows& rows = scratch.Local();
+      rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
       const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-      Idx t = ChunkTriBase[size_t(c)];
+      Idx t = t0;
       for (long long f = c * kFaceChunk; f < fe; ++f)
       {
         const long long b = Off[f], e = Off[f + 1];
@@ -599,6 +672,7 @@ void Kernel::BuildTriangles()
           continue;
         }
         const Idx base = Idx(b), nTri = Idx(e - b - 2);
+        const size_t row = size_t(t - t0);
         const bool valid = std::all_of(
           Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; });
         if (!valid)
@@ -612,11 +686,11 @@ void Kernel::BuildTriangles()
         else if (nTri == 1)
         {
           const Idx slots[3] = { base, base + 1, base + 2 };
-          SetupTriangle(t, slots);
+          SetupTriangle(t, slots, rows, row);
         }
         else if (nTri == 2)
         {
-          SetupQuad(t, base);
+          SetupQuad(t, base, rows, row);
         }
         else
         {
@@ -624,18 +698,27 @@ void Kernel::BuildTriangles()
           for (Idx k = 0; k < nTri; ++k)
           {
             const Idx slots[3] = { base, base + k + 1, base + k + 2 };
-            SetupTriangle(t + k, slots);
+            SetupTriangle(t + k, slots, rows, row + size_t(k));
             Tris[size_t(t + k)].Flags |=
               uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
           }
         }
-        for (Idx u = t; u < t + nTri; ++u)
-        {
-          const uint8_t fl = Tris[size_t(u)].Flags;
-          n.Degenerate += (fl & kDegenerate) ? 1 : 0;
-          n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
-        }
         t += nTri;
+      }
+      FinishDirections(t0, rows);
+      ForEachTriangulatedFace(c,
+        [&](long long b, long long e, Idx u)
+        {
+          if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
+          {
+            QuadOrientation(u, rows, size_t(u - t0));
+          }
+        });
+      for (Idx u = t0; u < t; ++u)
+      {
+        const uint8_t fl = Tris[size_t(u)].Flags;
+        n.Degenerate += (fl & kDegenerate) ? 1 : 0;
+        n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
       }
     });
   for (const Counts& n : counts)
@@ -692,11 +775,10 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     const Idx c = fan[j], i = c % 3;
     const Triangle& tri = Tris[size_t(c / 3)];
     m[j].Corner = c;
+    m[j].Slot = tri.Slot[i];
     m[j].Next = tri.Weld[(i + 1) % 3];
     m[j].Prev = tri.Weld[(i + 2) % 3];
     m[j].Flags = tri.Flags;
-    m[j].S = tri.Dir.S;
-    m[j].T = tri.Dir.T;
     m[j].MagS = tri.Dir.MagS;
     m[j].MagT = tri.Dir.MagT;
   }
@@ -797,10 +879,11 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   const Idx pv = PointOfWeld(v);
   const V3 n = Nrm(pv), p = Pos(pv);
   const size_t k = s.M.size();
-  // rows [0, k): S of each member, [k, 2k): T, then one edge per run
-  s.X.resize(2 * k);
-  s.Y.resize(2 * k);
-  s.Z.resize(2 * k);
+  // rows [0, k): S of each member, [k, 2k): T, [2k, 3k): the edge to Next, then the edges to
+  // Prev of members whose in-edge is unpaired (a paired one is its partner's edge to Next)
+  s.X.resize(4 * k);
+  s.Y.resize(4 * k);
+  s.Z.resize(4 * k);
   const auto set = [&s](size_t row, const V3& w)
   {
     s.X[row] = w.x;
@@ -808,49 +891,33 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
     s.Z[row] = w.z;
   };
   const auto get = [&s](size_t row) { return V3{ s.X[row], s.Y[row], s.Z[row] }; };
+  size_t rows = 3 * k;
   for (size_t j = 0; j < k; ++j)
   {
-    set(j, s.M[j].S);
-    set(k + j, s.M[j].T);
-  }
-  // rows [2k, 3k): the edge to Next of each member, then the edges to Prev of members whose
-  // in-edge is unpaired (a paired one is its partner's edge to Next)
-  for (size_t j = 0; j < k; ++j)
-  {
-    const V3 e = Sub(Pos(PointOfWeld(s.M[j].Next)), p);
-    s.X.push_back(e.x);
-    s.Y.push_back(e.y);
-    s.Z.push_back(e.z);
-  }
-  for (const Member& a : s.M)
-  {
+    const Member& a = s.M[j];
+    const Frame& dir = Tris[size_t(a.Corner / 3)].Dir;
+    set(j, dir.S);
+    set(k + j, dir.T);
+    set(2 * k + j, Sub(Pos(PointOfWeld(a.Next)), p));
     if (a.Link[1] < 0)
     {
-      const V3 e = Sub(Pos(PointOfWeld(a.Prev)), p);
-      s.X.push_back(e.x);
-      s.Y.push_back(e.y);
-      s.Z.push_back(e.z);
+      set(rows++, Sub(Pos(PointOfWeld(a.Prev)), p));
     }
   }
-  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), s.X.size(), n);
+  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), rows, n);
+  // the cosines of all members first, then the acos calls
   for (size_t j = 0, extra = 3 * k; j < k; ++j)
   {
     Member& a = s.M[j];
-    a.E2 = get(2 * k + j);
-    a.E1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
+    a.S = get(j);
+    a.T = get(k + j);
+    const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
+    const float c = Dot(e1, get(2 * k + j));
+    a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
   }
-  // the cosines of all members first, then the acos calls
-  for (size_t j = 0; j < k; ++j)
+  for (Member& a : s.M)
   {
-    Member& m = s.M[j];
-    m.S = get(j);
-    m.T = get(k + j);
-    const float c = Dot(m.E1, m.E2);
-    m.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
-  }
-  for (Member& m : s.M)
-  {
-    m.Angle = (m.Flags & kGWA) ? 0.0f : float(std::acos(double(m.Angle)));
+    a.Angle = (a.Flags & kGWA) ? 0.0f : float(std::acos(double(a.Angle)));
   }
 }
 
@@ -1034,7 +1101,7 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx key)
   }
   else
   {
-    Out[size_t(SlotOf(m.Corner))] = ToCornerFrame(f.S, orient);
+    Out[size_t(m.Slot)] = ToCornerFrame(f.S, orient);
   }
 }
 
@@ -1104,7 +1171,7 @@ void Kernel::CopyDegenerates()
         {
           const long long n = e - b;
           const Idx nTri = Idx(n - 2);
-          const Triangle* tri = Tris.data() + t;
+          const Triangle* tri = Tris.get() + t;
           if ((tri[0].Flags & kDead) ||
             std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
           {

@@ -27,27 +27,19 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   {
     return cells;
   }
-  // A new connectivity array; the offsets do not change and are shared.
   auto copy = vtkSmartPointer<vtkCellArray>::New();
-  const auto copyConnectivity = [&](auto* offsets, auto* connectivity)
-  {
-    using Array = std::remove_pointer_t<decltype(connectivity)>;
-    auto ids = vtkSmartPointer<Array>::New();
-    ids->DeepCopy(connectivity);
-    copy->SetData(offsets, ids);
-  };
-  if (cells->IsStorage64Bit())
-  {
-    copyConnectivity(cells->GetOffsetsArray64(), cells->GetConnectivityArray64());
-  }
-  else if (maxId <= VTK_TYPE_INT32_MAX)
-  {
-    copyConnectivity(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
-  }
-  else
+  if (!cells->IsStorage64Bit() && maxId > VTK_TYPE_INT32_MAX)
   {
     copy->DeepCopy(cells);
     copy->ConvertTo64BitStorage();
+  }
+  else
+  {
+    // The offsets do not change: the copy shares them and holds a new connectivity array.
+    vtkDataArray* connectivity = cells->GetConnectivityArray();
+    auto newConnectivity = vtk::TakeSmartPointer(connectivity->NewInstance());
+    newConnectivity->DeepCopy(connectivity);
+    copy->SetData(cells->GetOffsetsArray(), newConnectivity);
   }
   WithCellStorage(copy,
     [&](auto*, auto* conn)

@@ -6,6 +6,7 @@
 #define vtkNormalMappingPrivate_h
 
 #include "vtkAbstractArray.h"
+#include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -53,6 +54,18 @@ inline vtkIdType ChunkCount(vtkIdType n, vtkIdType size)
  * thread), else vtkSMPTools' estimate.
  */
 int UsableThreads();
+
+/// Calls worker(typed array, args...) through vtkArrayDispatch for the arrays whose value type is
+/// in ValueTypes (every type by default), else worker(array, args...) with the generic
+/// vtkDataArray API.
+template<typename ValueTypes = vtkArrayDispatch::AllTypes, typename Worker, typename... Args>
+void DispatchArray(vtkDataArray* array, Worker&& worker, Args&&... args)
+{
+  if (!vtkArrayDispatch::DispatchByValueType<ValueTypes>::Execute(array, worker, args...))
+  {
+    worker(array, args...);
+  }
+}
 
 /// Returns f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit),
 /// so that cells are read without a virtual call per cell.

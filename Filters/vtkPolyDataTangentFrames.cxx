@@ -71,6 +71,7 @@ using vtkNormalMapping::SafeNormalize;
 using vtkNormalMapping::TangentMethod;
 using vtkNormalMapping::TriangleBlock;
 using vtkNormalMapping::TriangleFrame;
+using vtkNormalMapping::detail::DispatchArray;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Checks a numeric point array: exists, numeric, long enough.
@@ -483,17 +484,6 @@ void DispatchReals2(vtkDataArray* a, vtkDataArray* b, Worker&& worker, Args&&...
   if (!Dispatcher::Execute(a, b, worker, args...))
   {
     worker(a, b, args...);
-  }
-}
-
-/// Calls worker(a, args...) with a as its concrete float or double array type, or as plain
-/// vtkDataArray (virtual access) for any other type.
-template<typename Worker, typename... Args>
-void DispatchReals(vtkDataArray* a, Worker&& worker, Args&&... args)
-{
-  if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(a, worker, args...))
-  {
-    worker(a, args...);
   }
 }
 
@@ -1305,7 +1295,7 @@ struct vtkPolyDataTangentFrames::Internals
       return normals;
     }
     unit.reset(new dvec3[this->NumberOfPoints]);
-    DispatchReals(array, UnitNormals(), unit.get(), this->NumberOfPoints);
+    DispatchArray<vtkArrayDispatch::Reals>(array, UnitNormals(), unit.get(), this->NumberOfPoints);
     if (unusable > 0)
     {
       const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
@@ -1365,7 +1355,8 @@ int vtkPolyDataTangentFrames::Internals::Run()
   vtkIdType unusable = 0;
   if (this->Normals)
   {
-    DispatchReals(this->Normals, CountUnusableNormals(), this->NumberOfPoints, unusable);
+    DispatchArray<vtkArrayDispatch::Reals>(
+      this->Normals, CountUnusableNormals(), this->NumberOfPoints, unusable);
     self->NumberOfInvalidNormals += unusable;
   }
   if (!mikkTSpace || !this->Normals)

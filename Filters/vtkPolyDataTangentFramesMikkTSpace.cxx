@@ -41,7 +41,6 @@
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkTangentFrameKernels.h"
 
-#include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArrayRange.h"
@@ -60,8 +59,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <limits>
-#include <memory>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -75,11 +72,9 @@ namespace detail
 namespace
 {
 using mikk::CornerFrame;
-using vtkNormalMapping::detail::RepointCells;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
-constexpr long long kNoCorner = std::numeric_limits<long long>::max();
 constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
 
 /// Bitwise equality, as two 64-bit compares (this runs once per corner).
@@ -182,18 +177,6 @@ struct ConvertTuples
   }
 };
 
-template<typename OutT>
-std::vector<OutT> Convert(vtkDataArray* array, vtkIdType n, int outComps)
-{
-  std::vector<OutT> out(static_cast<size_t>(n) * outComps);
-  ConvertTuples<OutT> worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, out.data()))
-  {
-    worker(array, n, outComps, out.data());
-  }
-  return out;
-}
-
 /// The first n tuples of `array` as `outComps` floats each: the array's own storage when it is a
 /// float array with exactly that many components (no copy), else a converted copy kept in
 /// `storage`.
@@ -205,11 +188,7 @@ const float* FloatData(vtkDataArray* array, vtkIdType n, int outComps, std::vect
     return floats->GetPointer(0);
   }
   storage.resize(static_cast<size_t>(n) * outComps);
-  ConvertTuples<float> worker;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, outComps, storage.data()))
-  {
-    worker(array, n, outComps, storage.data());
-  }
+  DispatchArray(array, ConvertTuples<float>(), n, outComps, storage.data());
   return storage.data();
 }
 
@@ -293,12 +272,8 @@ const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>&
     return FloatData(array, n, 3, storage);
   }
   storage.resize(static_cast<size_t>(n) * 3);
-  ConvertPositions worker;
   const double scale = ScaleByPowerOfTwo(1.0, k);
-  if (!vtkArrayDispatch::Dispatch::Execute(array, worker, n, centre, scale, storage.data()))
-  {
-    worker(array, n, centre, scale, storage.data());
-  }
+  DispatchArray(array, ConvertPositions(), n, centre, scale, storage.data());
   return storage.data();
 }
 
@@ -318,7 +293,8 @@ struct ContractNormals
     }
     else
     {
-      this->Wide = Convert<double>(normals, n, 3);
+      this->Wide.resize(static_cast<size_t>(n) * 3);
+      DispatchArray(normals, ConvertTuples<double>(), n, 3, this->Wide.data());
     }
   }
   glm::dvec3 operator[](vtkIdType p) const
@@ -347,34 +323,6 @@ vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
   return count.load();
 }
 
-/// Output tuple i (< numIn: tuple i; else tuple source[i - numIn]) of a 3-component array.
-template<typename OutT>
-struct GatherTriples
-{
-  template<typename ArrayT>
-  void operator()(ArrayT* array,
-    vtkIdType numIn,
-    const std::vector<vtkIdType>& source,
-    OutT* out) const
-  {
-    const auto tuples = vtk::DataArrayTupleRange<3>(array);
-    const vtkIdType n = numIn + static_cast<vtkIdType>(source.size());
-    vtkSMPTools::For(0,
-      n,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType i = b; i < e; ++i)
-        {
-          const auto tuple = tuples[i < numIn ? i : source[static_cast<size_t>(i - numIn)]];
-          for (int k = 0; k < 3; ++k)
-          {
-            out[3 * i + k] = static_cast<OutT>(tuple[k]);
-          }
-        }
-      });
-  }
-};
-
 /// The kernel's faces built from the polygons and strips, and the map from output corners
 /// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
 struct Surface
@@ -393,7 +341,6 @@ struct Surface
   std::vector<long long> StripCornerStart;   // per strip + 1: first strip corner
   std::vector<unsigned char> PolyFrameless;  // per polygon corner, only if some polygon has < 3
 
-  long long NumCorners() const { return PolyCorners + StripCorners; }
   long long PointOf(long long c) const
   {
     return c < PolyCorners ? FaceConnectivity[c] : StripPoint[static_cast<size_t>(c - PolyCorners)];
@@ -479,54 +426,18 @@ bool BuildSurface(vtkCellArray* polys,
     WithCellStorage(polys,
       [&](auto* off, auto* conn)
       {
-        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
-        if (!ok)
-        {
-          return;
-        }
         // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
         // points (rare) are noted: their corners get no frame.
-        std::atomic<bool> small(false), decreasing(false);
-        vtkSMPTools::For(0,
-          s.NumPolys,
-          [&](vtkIdType b, vtkIdType e)
-          {
-            bool anySmall = false, anyDecreasing = false;
-            for (vtkIdType k = b; k < e; ++k)
-            {
-              const auto n = off[k + 1] - off[k];
-              anySmall = anySmall || n < 3;
-              anyDecreasing = anyDecreasing || n < 0;
-            }
-            if (anySmall)
-            {
-              small.store(true, std::memory_order_relaxed);
-            }
-            if (anyDecreasing)
-            {
-              decreasing.store(true, std::memory_order_relaxed);
-            }
-          });
-        if (decreasing.load())
-        {
-          ok = false;
-          return;
-        }
-        if (!small.load())
-        {
-          return;
-        }
-        s.PolyFrameless.assign(static_cast<size_t>(s.PolyCorners), 0);
-        for (vtkIdType k = 0; k < s.NumPolys; ++k)
+        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
+        for (vtkIdType k = 0; ok && k < s.NumPolys; ++k)
         {
           const long long b = off[k], e = off[k + 1];
-          if (e - b < 3)
+          ok = e >= b && e <= s.PolyCorners;
+          if (ok && e - b < 3)
           {
             inRange &= IdsInRange(conn, b, e, numPoints);
-            for (long long c = std::max(0LL, b); c < std::min<long long>(e, s.PolyCorners); ++c)
-            {
-              s.PolyFrameless[static_cast<size_t>(c)] = 1;
-            }
+            s.PolyFrameless.resize(static_cast<size_t>(s.PolyCorners), 0);
+            std::fill(s.PolyFrameless.begin() + b, s.PolyFrameless.begin() + e, 1);
           }
         }
       });
@@ -621,7 +532,7 @@ bool BuildSurface(vtkCellArray* polys,
 /// Which point each output corner uses and which frame each output point gets.
 struct Assignment
 {
-  std::vector<long long> FirstCorner;  // per input point: its first corner, or kNoCorner
+  std::vector<long long> FirstSlot;    // per input point: kernel corner of its first corner, or -1
   std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
@@ -636,144 +547,48 @@ const CornerFrame& FrameOf(const Surface& s, const std::vector<CornerFrame>& fra
   return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
 }
 
-/// Steps 1 and 2 of Assign on several threads: the first corner of every point (atomic
-/// minimum: independent of the scheduling), then the corners whose frame differs from their
-/// point's first corner, in corner order (each fixed-size chunk collects its own list).
-void FirstCornersAndDifferences(const Surface& s,
-  const std::vector<CornerFrame>& frames,
-  vtkIdType numPoints,
-  Assignment& a,
-  std::vector<std::vector<long long>>& differing)
-{
-  const long long numCorners = s.NumCorners();
-  const vtkIdType numChunks = static_cast<vtkIdType>(differing.size());
-  const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
-  {
-    std::unique_ptr<std::atomic<long long>[]> first(
-      new std::atomic<long long>[static_cast<size_t>(numPoints)]);
-    vtkSMPTools::For(0,
-      numPoints,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType p = b; p < e; ++p)
-        {
-          first[p].store(kNoCorner, std::memory_order_relaxed);
-        }
-      });
-    vtkSMPTools::For(0,
-      numCorners,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType c = b; c < e; ++c)
-        {
-          if (s.SlotOf(c) < 0)
-          {
-            continue;
-          }
-          std::atomic<long long>& f = first[s.PointOf(c)];
-          long long cur = f.load(std::memory_order_relaxed);
-          while (c < cur && !f.compare_exchange_weak(cur, c, std::memory_order_relaxed))
-          {
-          }
-        }
-      });
-    a.FirstCorner.resize(static_cast<size_t>(numPoints));
-    vtkSMPTools::For(0,
-      numPoints,
-      [&](vtkIdType b, vtkIdType e)
-      {
-        for (vtkIdType p = b; p < e; ++p)
-        {
-          a.FirstCorner[p] = first[p].load(std::memory_order_relaxed);
-        }
-      });
-  }
-
-  vtkSMPTools::For(0,
-    numChunks,
-    1,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      for (vtkIdType chunk = b; chunk < e; ++chunk)
-      {
-        const long long end = std::min<long long>(numCorners, (chunk + 1) * kChunk);
-        for (long long c = chunk * kChunk; c < end; ++c)
-        {
-          const long long first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
-          if (first != c && s.SlotOf(c) >= 0 && !SameFrame(frameOf(c), frameOf(first)))
-          {
-            differing[chunk].push_back(c);
-          }
-        }
-      }
-    });
-}
-
 void Assign(const Surface& s,
   const std::vector<CornerFrame>& frames,
   vtkIdType numPoints,
   bool splitting,
   Assignment& a)
 {
-  const long long numCorners = s.NumCorners();
   const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
 
-  // 1. The first corner of every point and 2. the corners whose frame differs from their
-  // point's first corner, in corner order (lists concatenated in order).
-  const vtkIdType numChunks = vtkNormalMapping::detail::ChunkCount(numCorners, kChunk);
-  std::vector<std::vector<long long>> differing(static_cast<size_t>(numChunks));
-  if (vtkNormalMapping::detail::UsableThreads() <= 1)
+  // 1. One ascending pass, polygon corners then strip corners: the first corner with a frame of
+  // every point, and the corners whose frame differs from their point's first corner.
+  a.FirstSlot.assign(static_cast<size_t>(numPoints), -1);
+  std::vector<long long> differing;
+  const auto visit = [&](long long c, long long point, long long slot)
   {
-    // One ascending pass (the same result, without atomics): a point's first corner is the
-    // first corner with a frame seen; the later ones are compared with it.
-    a.FirstCorner.assign(static_cast<size_t>(numPoints), kNoCorner);
-    std::vector<long long>* list = numChunks > 0 ? &differing[0] : nullptr;
-    if (s.StripCorners == 0 && s.PolyFrameless.empty())
+    long long& first = a.FirstSlot[static_cast<size_t>(point)];
+    if (first < 0)
     {
-      // only polygons, all with a frame: output corner c is kernel corner c, of point conn[c]
-      long long* firstCorner = a.FirstCorner.data();
-      const long long* conn = s.FaceConnectivity;
-      const CornerFrame* frame = frames.data();
-      for (long long c = 0; c < numCorners; ++c)
-      {
-        long long& first = firstCorner[conn[c]];
-        if (first == kNoCorner)
-        {
-          first = c;
-        }
-        else if (!SameFrame(frame[c], frame[first]))
-        {
-          list->push_back(c);
-        }
-      }
+      first = slot;
     }
-    else
+    else if (!SameFrame(frames[static_cast<size_t>(slot)], frames[static_cast<size_t>(first)]))
     {
-      for (long long c = 0; c < numCorners; ++c)
-      {
-        const long long slot = s.SlotOf(c);
-        if (slot < 0)
-        {
-          continue;
-        }
-        long long& first = a.FirstCorner[static_cast<size_t>(s.PointOf(c))];
-        if (first == kNoCorner)
-        {
-          first = c;
-        }
-        else if (!SameFrame(frames[static_cast<size_t>(slot)], frameOf(first)))
-        {
-          list->push_back(c);
-        }
-      }
+      differing.push_back(c);
+    }
+  };
+  for (long long c = 0; c < s.PolyCorners; ++c)
+  {
+    if (s.PolyFrameless.empty() || !s.PolyFrameless[static_cast<size_t>(c)])
+    {
+      visit(c, s.FaceConnectivity[c], c);
     }
   }
-  else
+  for (long long i = 0; i < s.StripCorners; ++i)
   {
-    FirstCornersAndDifferences(s, frames, numPoints, a, differing);
+    if (s.StripSlot[static_cast<size_t>(i)] >= 0)
+    {
+      visit(s.PolyCorners + i,
+        s.StripPoint[static_cast<size_t>(i)],
+        s.StripSlot[static_cast<size_t>(i)]);
+    }
   }
 
-  // 3. Strip corners whose strip triangles disagree.
+  // 2. Strip corners whose strip triangles disagree.
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
   std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
   vtkSMPTools::For(0,
@@ -806,7 +621,7 @@ void Assign(const Surface& s,
       }
     });
 
-  // 4. Sequential, in corner order: conflicts and new points.
+  // 3. Sequential, in corner order: conflicts and new points.
   std::vector<unsigned char> conflict;
   const auto markConflict = [&](long long p)
   {
@@ -829,36 +644,33 @@ void Assign(const Surface& s,
     }
   }
   std::unordered_map<long long, std::vector<vtkIdType>> extra; // point -> its new points
-  for (const auto& list : differing)
+  for (long long c : differing)
   {
-    for (long long c : list)
+    const long long p = s.PointOf(c);
+    markConflict(p);
+    if (!splitting)
     {
-      const long long p = s.PointOf(c);
-      markConflict(p);
-      if (!splitting)
-      {
-        continue;
-      }
-      const CornerFrame& f = frameOf(c);
-      std::vector<vtkIdType>& mine = extra[p];
-      vtkIdType id = -1;
-      for (vtkIdType candidate : mine)
-      {
-        if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
-        {
-          id = candidate;
-          break;
-        }
-      }
-      if (id < 0)
-      {
-        id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
-        a.SplitSource.push_back(static_cast<vtkIdType>(p));
-        a.SplitFrame.push_back(f);
-        mine.push_back(id);
-      }
-      a.Repoint.emplace_back(c, id);
+      continue;
     }
+    const CornerFrame& f = frameOf(c);
+    std::vector<vtkIdType>& mine = extra[p];
+    vtkIdType id = -1;
+    for (vtkIdType candidate : mine)
+    {
+      if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
+      {
+        id = candidate;
+        break;
+      }
+    }
+    if (id < 0)
+    {
+      id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
+      a.SplitSource.push_back(static_cast<vtkIdType>(p));
+      a.SplitFrame.push_back(f);
+      mine.push_back(id);
+    }
+    a.Repoint.emplace_back(c, id);
   }
 }
 
@@ -903,8 +715,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
     {
       return a.SplitFrame[static_cast<size_t>(p - numIn)];
     }
-    const long long c = a.FirstCorner[static_cast<size_t>(p)];
-    const long long slot = c == kNoCorner ? -1 : s.SlotOf(c);
+    const long long slot = a.FirstSlot[static_cast<size_t>(p)];
     if (slot >= 0)
     {
       return frames[static_cast<size_t>(slot)];
@@ -962,18 +773,10 @@ void WriteOutput(const MikkTSpaceRequest& request,
 
   if (request.ComputedNormals)
   {
-    vtkNew<OutArray> outNormals;
-    outNormals->SetName("Normals");
-    outNormals->SetNumberOfComponents(3);
-    outNormals->SetNumberOfTuples(numOut);
-    GatherTriples<OutT> worker;
-    std::vector<vtkIdType> source(a.SplitSource);
-    if (!vtkArrayDispatch::Dispatch::Execute(
-          request.Normals, worker, numIn, source, outNormals->GetPointer(0)))
-    {
-      worker(request.Normals, numIn, source, outNormals->GetPointer(0));
-    }
-    outPD->SetNormals(outNormals);
+    // the filter's computed array (named "Normals", of the output type), extended like the
+    // point data
+    outPD->SetNormals(vtkDataArray::SafeDownCast(
+      numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
   }
   outPD->SetTangents(tangents);
   outPD->AddArray(signs);
