@@ -1218,21 +1218,24 @@ struct vtkPolyDataTangentFrames::Internals
 
   /**
    * Every point's sums, added in triangle order (ScatteredSums), so that each point adds the same
-   * terms in the same order, hence the same bits, for any number of threads. With one thread,
-   * each block of frames goes to its points as soon as it is computed. With more, the frames of
-   * a chunk of triangles are computed in parallel and stored, then each owner of points goes
-   * through the chunk's corners and adds those of its points; a chunk's frames stay in the cache
-   * until they are added. With cell tangents every frame is stored (one chunk), for
-   * CellTangentArray. Counts the triangles without a frame in `degenerate`.
+   * terms in the same order, hence the same bits, for any number of threads. With one thread (or
+   * one chunk of triangles or less), each block of frames goes to its points as soon as it is
+   * computed. With more, the frames of a chunk are computed in parallel and stored, then each
+   * owner of points goes through the chunk's corners and adds those of its points; a chunk's
+   * frames stay in the cache until they are added. With cell tangents every frame is stored (one
+   * chunk), for CellTangentArray. Counts the triangles without a frame in `degenerate`.
    */
   ScatteredSums SumFrames(TangentMethod method,
     const ShadingNormals& normals,
     bool cellTangents,
     vtkIdType& degenerate)
   {
+    constexpr vtkIdType ChunkSize = 16384;
     const vtkIdType count = this->Tris.Count;
     const vtkIdType* ids = this->Tris.Ids;
-    ScatteredSums sums(this->NumberOfPoints, vtkNormalMapping::detail::UsableThreads());
+    // One chunk or less is not worth the threads' two synchronizations: one thread adds it.
+    const int threads = count > ChunkSize ? vtkNormalMapping::detail::UsableThreads() : 1;
+    ScatteredSums sums(this->NumberOfPoints, threads);
     const int owners = sums.Owners();
     if (owners == 1 && !cellTangents)
     {
@@ -1251,7 +1254,6 @@ struct vtkPolyDataTangentFrames::Internals
       return sums;
     }
 
-    constexpr vtkIdType ChunkSize = 16384;
     const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
     this->Frames.reset(new TriangleFrames(chunk, cellTangents));
     TriangleFrames& frames = *this->Frames;
