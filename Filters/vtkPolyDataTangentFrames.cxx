@@ -1041,17 +1041,9 @@ vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkId
 } // namespace
 
 /// One execution on one polydata, with what it needs from the filter.
-struct vtkPolyDataTangentFrames::Internals
+struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInput
 {
   vtkPolyDataTangentFrames* Self;
-  vtkPolyData* Input;
-  vtkPolyData* Output;
-  vtkDataArray* UVs;
-  vtkDataArray* Normals;     // valid point normals, or null
-  vtkDataArray* CellNormals; // averaged to points when Normals is null, or null
-  bool PolysAreTriangles;
-  double ProgressBegin;
-  double ProgressEnd;
 
   vtkIdType NumberOfPoints = 0;
   vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
@@ -1749,29 +1741,18 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
     }
   }
 
-  if (this->SuppliedTangents != RECOMPUTE)
-  {
-    return this->ExecuteSupplied(
-      input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd);
-  }
-  return this->ComputeBlock(
-    input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd);
+  const BlockInput block{
+    input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd
+  };
+  return this->SuppliedTangents != RECOMPUTE ? this->ExecuteSupplied(block)
+                                             : this->ComputeBlock(block);
 }
 
-int vtkPolyDataTangentFrames::ComputeBlock(vtkPolyData* input,
-  vtkPolyData* output,
-  vtkDataArray* uvs,
-  vtkDataArray* normals,
-  vtkDataArray* cellNormals,
-  bool polysAreTriangles,
-  double progressBegin,
-  double progressEnd)
+int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
 {
-  Internals run{
-    this, input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
-  };
+  Internals run{ block, this };
   const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
-  const int result = this->DoubleOutput(input) ? run.Run<double>() : run.Run<float>();
+  const int result = this->DoubleOutput(block.Input) ? run.Run<double>() : run.Run<float>();
   const vtkIdType triangles = run.Tris.Count;
   if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
   {

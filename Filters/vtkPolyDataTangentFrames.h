@@ -276,26 +276,25 @@ private:
     double progressBegin,
     double progressEnd);
 
+  /// One polydata's inputs as ExecuteBlock checked them, and its share of the progress.
+  struct BlockInput
+  {
+    vtkPolyData* Input;
+    vtkPolyData* Output;
+    vtkDataArray* UVs;
+    vtkDataArray* Normals;     ///< usable point normals, or null
+    vtkDataArray* CellNormals; ///< averaged to points when Normals is null, or null
+    bool PolysAreTriangles;
+    double ProgressBegin;
+    double ProgressEnd;
+  };
+
   /// The frames of one polydata whose inputs ExecuteBlock has checked.
-  int ComputeBlock(vtkPolyData* input,
-    vtkPolyData* output,
-    vtkDataArray* uvs,
-    vtkDataArray* normals,
-    vtkDataArray* cellNormals,
-    bool polysAreTriangles,
-    double progressBegin,
-    double progressEnd);
+  int ComputeBlock(const BlockInput& block);
 
   /// KEEP and KEEP_VALID (vtkPolyDataTangentFramesSupplied.cxx): the supplied frames, and
   /// ComputeBlock's for the points that need it.
-  int ExecuteSupplied(vtkPolyData* input,
-    vtkPolyData* output,
-    vtkDataArray* uvs,
-    vtkDataArray* normals,
-    vtkDataArray* cellNormals,
-    bool polysAreTriangles,
-    double progressBegin,
-    double progressEnd);
+  int ExecuteSupplied(const BlockInput& block);
 
   /// Whether the output arrays are double (OutputPrecision and the input points decide).
   bool DoubleOutput(vtkPolyData* input) const;

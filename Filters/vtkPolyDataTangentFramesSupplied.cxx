@@ -101,19 +101,16 @@ void vtkPolyDataTangentFrames::SetSuppliedTangentsArrayName(const std::string& n
   }
 }
 
-int vtkPolyDataTangentFrames::ExecuteSupplied(vtkPolyData* input,
-  vtkPolyData* output,
-  vtkDataArray* uvs,
-  vtkDataArray* normals,
-  vtkDataArray* cellNormals,
-  bool polysAreTriangles,
-  double progressBegin,
-  double progressEnd)
+int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
 {
+  vtkPolyData* input = block.Input;
+  vtkPolyData* output = block.Output;
+  vtkDataArray* normals = block.Normals;
   const auto compute = [&](vtkPolyData* mesh)
   {
-    return this->ComputeBlock(
-      mesh, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd);
+    BlockInput withMesh = block;
+    withMesh.Input = mesh;
+    return this->ComputeBlock(withMesh);
   };
   std::string problem;
   const vtkNormalMapping::SuppliedFrameArrays supplied =
@@ -131,7 +128,7 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(vtkPolyData* input,
   // Which points keep their frames.
   const bool keepValid = this->SuppliedTangents == KEEP_VALID;
   const vtkNormalMapping::FrameCheck check = vtkNormalMapping::CheckSuppliedFrames(
-    input, normals, keepValid ? uvs : nullptr, supplied, this->GLTFSignConvention);
+    input, normals, keepValid ? block.UVs : nullptr, supplied, this->GLTFSignConvention);
   const vtkNormalMapping::FrameCheckCounts& counts = check.Counts;
   this->NumberOfNonFiniteTangents += counts.NonFinite;
   this->NumberOfNonUnitTangents += counts.NotUnit;
@@ -227,6 +224,6 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(vtkPolyData* input,
         }
       }
     });
-  this->UpdateProgress(progressEnd);
+  this->UpdateProgress(block.ProgressEnd);
   return 1;
 }
