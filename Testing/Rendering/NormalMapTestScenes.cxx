@@ -685,6 +685,20 @@ vtkSmartPointer<vtkPolyData> MakeDisplacedQuad(int resolution)
 }
 
 //------------------------------------------------------------------------------
+std::vector<bool> InnerPixels(int width, int height, int margin)
+{
+  std::vector<bool> inner(static_cast<size_t>(width) * height, false);
+  for (int y = margin; y < height - margin; ++y)
+  {
+    for (int x = margin; x < width - margin; ++x)
+    {
+      inner[static_cast<size_t>(y) * width + x] = true;
+    }
+  }
+  return inner;
+}
+
+//------------------------------------------------------------------------------
 Difference Compare(const std::vector<unsigned char>& a,
   const std::vector<unsigned char>& b,
   const std::vector<bool>& mask,

@@ -129,6 +129,9 @@ Difference Compare(const std::vector<unsigned char>& a,
   const std::vector<bool>& mask,
   int bound);
 
+/// A mask (for Compare) of the pixels of a width x height image at least `margin` from its edges.
+std::vector<bool> InnerPixels(int width, int height, int margin);
+
 /**
  * Mirror symmetry of an image about its middle column, over the pixels covered on both sides
  * and at least 3 pixels from uncovered ones and from the middle seam (where the rasterizer's

@@ -31,14 +31,7 @@ int TestNormalMapGeometryTruth(int, char*[])
 
   // Pixels well inside the quad (the displaced silhouette differs from the flat one at the
   // border by up to 2 * 0.03 world units of relief).
-  std::vector<bool> inner(geometry.size() / 3, false);
-  for (int y = 30; y < setup.Height - 30; ++y)
-  {
-    for (int x = 30; x < setup.Width - 30; ++x)
-    {
-      inner[y * setup.Width + x] = true;
-    }
-  }
+  const std::vector<bool> inner = nmtest::InnerPixels(setup.Width, setup.Height, 30);
   // What still differs, by design: the 8-bit map and its bilinear filtering (about 1 level,
   // as in TestNormalMapCPUReference); the interpolation of vertex normals across 384 quads
   // (1/128 of a period each: ~0.03% of the slope); the view vector, which VTK takes from the

@@ -185,14 +185,7 @@ int TestNormalMapLightingReference(int, char*[])
     geometry.Mesh = displaced;
     geometry.Interpolation = VTK_PBR;
     const auto truth = nmtest::RenderFlat(parallel, { geometry });
-    std::vector<bool> inner(truth.size() / 3, false);
-    for (int y = 30; y < parallel.Height - 30; ++y)
-    {
-      for (int x = 30; x < parallel.Width - 30; ++x)
-      {
-        inner[y * parallel.Width + x] = true;
-      }
-    }
+    const std::vector<bool> inner = nmtest::InnerPixels(parallel.Width, parallel.Height, 30);
     const int pbrBound = 4;
     for (int frame : { Mapper::POINT_TANGENTS, Mapper::SCREEN_DERIVATIVES })
     {
