@@ -600,6 +600,30 @@ inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
   return CornerSign(frame.Orientation, frame.Normal, n);
 }
 
+namespace detail
+{
+/// v / |v|, for a v whose largest component needs no rescaling (NormalizeExponent 0).
+inline glm::dvec3 Unit(const glm::dvec3& v)
+{
+  return v / glm::length(v);
+}
+
+/**
+ * The unit component of t perpendicular to the unit normal n, for a t whose largest component
+ * needs no rescaling; `usable` tells whether that component is long enough to carry a direction
+ * (|perp| > 1e-9 |t|, squared: with t's largest component in [2^-400, 2^400] no square
+ * overflows, and none that passes, above 2^-860, underflows). Not usable: the result is
+ * meaningless.
+ */
+inline glm::dvec3 UnitPerpendicular(const glm::dvec3& n, const glm::dvec3& t, bool& usable)
+{
+  const glm::dvec3 perp = t - glm::dot(n, t) * n;
+  const double len2 = glm::dot(perp, perp);
+  usable = len2 > 1e-18 * glm::dot(t, t);
+  return perp / std::sqrt(len2);
+}
+} // namespace detail
+
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.
 inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
 {
@@ -613,8 +637,7 @@ inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
     return glm::dvec3(0.0);
   }
   const int k = detail::NormalizeExponent(m);
-  const glm::dvec3 s = k == 0 ? n : detail::ScaleByPowerOfTwo(n, k);
-  return s / glm::length(s);
+  return detail::Unit(k == 0 ? n : detail::ScaleByPowerOfTwo(n, k));
 }
 
 /// Whether SafeNormalize(n) is non-zero, i.e. n is finite and not the zero vector (without
@@ -654,18 +677,14 @@ inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm:
     return false;
   }
   const int k = detail::NormalizeExponent(tMax);
-  const glm::dvec3 ts = k == 0 ? t : detail::ScaleByPowerOfTwo(t, k);
-  const glm::dvec3 perp = ts - glm::dot(n, ts) * n;
-  // |perp| > 1e-9 |ts|, squared: ts's largest component is in [2^-400, 2^400] (NormalizeExponent),
-  // so no square overflows, and none that passes (above 2^-860) underflows.
-  const double len2 = glm::dot(perp, perp);
-  if (!(len2 > 1e-18 * glm::dot(ts, ts)))
+  bool usable = false;
+  const glm::dvec3 unit =
+    detail::UnitPerpendicular(n, k == 0 ? t : detail::ScaleByPowerOfTwo(t, k), usable);
+  if (usable)
   {
-    return false;
+    out = unit;
   }
-  const double len = std::sqrt(len2);
-  out = perp / len;
-  return true;
+  return usable;
 }
 
 /// The unit tangent perpendicular to n that t points along, or FallbackTangent(n) where t has
@@ -727,12 +746,11 @@ void ComputeCommonPointBlock(PointBlock& b, int count)
   {
     const glm::dvec3 stored(b.N[0][i], b.N[1][i], b.N[2][i]);
     const glm::dvec3 t(b.T[0][i], b.T[1][i], b.T[2][i]);
-    const glm::dvec3 n = Normalize ? stored / glm::length(stored) : stored;
-    const glm::dvec3 perp = t - glm::dot(n, t) * n;
-    const double len2 = glm::dot(perp, perp);
-    const bool usable = InNormalizeRange(t) & (len2 > 1e-18 * glm::dot(t, t));
-    const glm::dvec3 unit = perp / std::sqrt(len2);
-    b.Rare[i] = ((Normalize & !InNormalizeRange(stored)) | !usable) ? 1.0 : 0.0;
+    const glm::dvec3 n = Normalize ? Unit(stored) : stored;
+    bool usable = false;
+    const glm::dvec3 unit = UnitPerpendicular(n, t, usable);
+    b.Rare[i] =
+      ((Normalize & !InNormalizeRange(stored)) | !usable | !InNormalizeRange(t)) ? 1.0 : 0.0;
     for (int c = 0; c < 3; ++c)
     {
       b.UnitN[c][i] = n[c];
