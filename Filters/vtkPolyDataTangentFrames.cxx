@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cfloat>
+#include <cstring>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -964,13 +965,18 @@ void FillFallbacks(const Triangles& tris,
 {
   std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
   std::vector<int> votes(fallbacks.size(), 0);
-  for (vtkIdType c = 0; c < 3 * tris.Count; ++c)
+  // Only corners without handedness can be a fallback point's: memchr finds the next one.
+  const signed char* const end = sides + 3 * tris.Count;
+  const auto nextWithout = [end](const signed char* from)
+  { return static_cast<const signed char*>(std::memchr(from, 0, end - from)); };
+  for (const signed char* side = nextWithout(sides); side; side = nextWithout(side + 1))
   {
-    if (sides[c] != 0 || kinds[tris.Ids[c]] != PointKind::Fallback)
+    const vtkIdType c = side - sides;
+    const vtkIdType p = tris.Ids[c];
+    if (kinds[p] != PointKind::Fallback)
     {
       continue;
     }
-    const vtkIdType p = tris.Ids[c];
     const size_t i = std::lower_bound(fallbacks.begin(), fallbacks.end(), p) - fallbacks.begin();
     const vtkIdType* triangle = tris.Ids + 3 * (c / 3);
     for (int m = 0; m < 3; ++m)
