@@ -13,6 +13,9 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
+#include "vtkInformation.h"
+#include "vtkIntArray.h"
+#include "vtkLookupTable.h"
 #include "vtkParametricFunctionSource.h"
 #include "vtkParametricTorus.h"
 #include "vtkPlaneSource.h"
@@ -433,15 +436,76 @@ void CheckMirroredTorus(int u, int v)
 TEST(PolyDataTangentFrames, MirroredTorusSplitsSeamsAndSignsMirroredHalf)
 {
   CheckMirroredTorus(64, 16);
-  // 267,537 points: their 8.6 MB of sums take the huge-page allocation on Linux.
+  // 267,537 points: several chunks of triangles, so that two threads share the sums.
   CheckMirroredTorus(1040, 256);
+}
+
+TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
+{
+  // Extra point data of two kinds (numeric with component names, an information key, a lookup
+  // table and the scalars attribute; strings) on a mesh whose mirror seams split: the input
+  // points keep their tuples, and each appended point copies those of the point it splits from.
+  auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
+  const vtkIdType numIn = mesh->GetNumberOfPoints();
+  vtkNew<vtkIntArray> tag; // (source id, -source id)
+  tag->SetName("Tag");
+  tag->SetNumberOfComponents(2);
+  tag->SetComponentName(0, "id");
+  tag->SetComponentName(1, "minus id");
+  tag->GetInformation()->Set(vtkAbstractArray::GUI_HIDE(), 1);
+  vtkNew<vtkLookupTable> table;
+  tag->SetLookupTable(table);
+  vtkNew<vtkStringArray> label;
+  label->SetName("Label");
+  for (vtkIdType p = 0; p < numIn; ++p)
+  {
+    tag->InsertNextTuple2(static_cast<double>(p), -static_cast<double>(p));
+    label->InsertNextValue("point " + std::to_string(p));
+  }
+  mesh->GetPointData()->SetScalars(tag);
+  mesh->GetPointData()->AddArray(label);
+
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->Update();
+    vtkPolyData* out = filter->GetOutput();
+    ASSERT_GT(out->GetNumberOfPoints(), numIn); // the seams split
+    auto* outTag = vtkIntArray::SafeDownCast(out->GetPointData()->GetScalars());
+    auto* outLabel = vtkStringArray::SafeDownCast(out->GetPointData()->GetAbstractArray("Label"));
+    ASSERT_NE(outTag, nullptr);
+    ASSERT_NE(outLabel, nullptr);
+    EXPECT_STREQ(outTag->GetName(), "Tag");
+    EXPECT_STREQ(outTag->GetComponentName(1), "minus id");
+    EXPECT_TRUE(
+      outTag->HasInformation() && outTag->GetInformation()->Has(vtkAbstractArray::GUI_HIDE()));
+    EXPECT_NE(outTag->GetLookupTable(), nullptr);
+    EXPECT_EQ(outTag->GetNumberOfTuples(), out->GetNumberOfPoints());
+    EXPECT_EQ(outLabel->GetNumberOfValues(), out->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
+    {
+      const vtkIdType source = outTag->GetValue(2 * p);
+      ASSERT_EQ(source, p < numIn ? p : source) << "point " << p;
+      ASSERT_TRUE(source >= 0 && source < numIn) << "point " << p;
+      EXPECT_EQ(outTag->GetValue(2 * p + 1), -source) << "point " << p;
+      EXPECT_EQ(outLabel->GetValue(p), "point " + std::to_string(source)) << "point " << p;
+      Vec x, y;
+      out->GetPoint(p, x.data());
+      mesh->GetPoint(source, y.data());
+      EXPECT_EQ(x, y) << "point " << p;
+    }
+  }
 }
 
 TEST(PolyDataTangentFrames, RepeatedUpdatesGiveTheSameBits)
 {
   // Re-executing reuses memory the previous execution freed (glibc hands the per-point sums'
   // block back from the second or third execution on): every execution must start from zero
-  // sums and give the first one's bits. 267,537 points, so the sums take the huge-page path.
+  // sums and give the first one's bits.
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(vtkNormalMapping::MakeTorus(MirroredTorusOptions(1040, 256)));
   std::vector<float> first;
