@@ -28,6 +28,7 @@
 #include "vtkShortArray.h"
 #include "vtkSphereSource.h"
 #include "vtkStringArray.h"
+#include "vtkStripper.h"
 #include "vtkTextureMapToCylinder.h"
 #include "vtkTextureMapToPlane.h"
 #include "vtkTextureMapToSphere.h"
@@ -438,6 +439,111 @@ TEST(PolyDataTangentFrames, MirroredTorusSplitsSeamsAndSignsMirroredHalf)
   CheckMirroredTorus(64, 16);
   // 267,537 points: several chunks of triangles, so that two threads share the sums.
   CheckMirroredTorus(1040, 256);
+}
+
+/// Calls f(a, b, c) for every triangle of the polygons (fans from corner 0) and strips (every
+/// odd triangle reversed) of `mesh`, with its point ids.
+void ForEachTriangle(vtkPolyData* mesh,
+  const std::function<void(vtkIdType, vtkIdType, vtkIdType)>& f)
+{
+  vtkIdType n;
+  const vtkIdType* pts;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, pts);)
+  {
+    for (vtkIdType j = 1; j + 1 < n; ++j)
+    {
+      f(pts[0], pts[j], pts[j + 1]);
+    }
+  }
+  vtkCellArray* strips = mesh->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, pts);)
+  {
+    for (vtkIdType j = 0; j + 2 < n; ++j)
+    {
+      if (j % 2 == 0)
+      {
+        f(pts[j], pts[j + 1], pts[j + 2]);
+      }
+      else
+      {
+        f(pts[j + 1], pts[j], pts[j + 2]);
+      }
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, SplitCornersOfPolygonsAndStripsSeeTheirOwnFrame)
+{
+  // A plane over [-0.5, 0.5]^2 whose texture is mirrored at x = 0 (u = |2x|): u grows towards -x
+  // on the left half and towards +x on the right one. Stored as quads, as triangles and as strips,
+  // every triangle must find at each of its corners its own frame: the tangent along its dP/du and
+  // the sign of its UV winding, also at the seam points, whose copies take the right half; with
+  // the weighted methods and with MikkTSpace, which share the re-pointing of split corners.
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetResolution(8, 4);
+  plane->Update();
+  vtkNew<vtkPolyData> quads;
+  quads->DeepCopy(plane->GetOutput());
+  vtkDataArray* uv = quads->GetPointData()->GetTCoords();
+  for (vtkIdType p = 0; p < quads->GetNumberOfPoints(); ++p)
+  {
+    uv->SetComponent(p, 0, std::abs(2.0 * quads->GetPoint(p)[0]));
+  }
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(quads);
+  vtkNew<vtkStripper> strips;
+  strips->SetInputConnection(triangles->GetOutputPort());
+  strips->Update();
+  ASSERT_GT(strips->GetOutput()->GetNumberOfStrips(), 0);
+  ASSERT_EQ(strips->GetOutput()->GetNumberOfPolys(), 0);
+
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+    for (vtkPolyData* mesh :
+      { static_cast<vtkPolyData*>(quads), triangles->GetOutput(), strips->GetOutput() })
+    {
+      SCOPED_TRACE(mesh->GetNumberOfStrips() > 0
+          ? "strips"
+          : (mesh->GetPolys()->IsHomogeneous() == 4 ? "quads" : "triangles"));
+      SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      filter->SetInputData(mesh);
+      filter->SetMethod(method);
+      filter->Update();
+      vtkPolyData* out = filter->GetOutput();
+      EXPECT_EQ(filter->GetNumberOfSplitPoints(), 5); // the seam column
+      vtkDataArray* t = out->GetPointData()->GetTangents();
+      vtkDataArray* sign = out->GetPointData()->GetArray("TangentSigns");
+      vtkDataArray* tc = out->GetPointData()->GetTCoords();
+      int triangleCount = 0;
+      ForEachTriangle(out,
+        [&](vtkIdType a, vtkIdType b, vtkIdType c)
+        {
+          ++triangleCount;
+          Vec pa, pb, pc;
+          out->GetPoint(a, pa.data());
+          out->GetPoint(b, pb.data());
+          out->GetPoint(c, pc.data());
+          const Vec e1{ pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+          const Vec e2{ pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
+          const double du1 = tc->GetComponent(b, 0) - tc->GetComponent(a, 0);
+          const double dv1 = tc->GetComponent(b, 1) - tc->GetComponent(a, 1);
+          const double du2 = tc->GetComponent(c, 0) - tc->GetComponent(a, 0);
+          const double dv2 = tc->GetComponent(c, 1) - tc->GetComponent(a, 1);
+          const double det = du1 * dv2 - du2 * dv1;
+          // dP/du = (dv2 e1 - dv1 e2) / det; the winding normal is +z.
+          const Vec dPdu{ (dv2 * e1[0] - dv1 * e2[0]) / det, (dv2 * e1[1] - dv1 * e2[1]) / det, 0 };
+          const double winding = Cross(e1, e2)[2] > 0 ? 1.0 : -1.0;
+          for (vtkIdType p : { a, b, c })
+          {
+            // The plane's frames are exact up to float rounding of the output.
+            EXPECT_LT(AngleDeg(Get3(t, p), dPdu), 1e-4) << "point " << p;
+            EXPECT_EQ(sign->GetComponent(p, 0), det * winding > 0 ? 1.0 : -1.0) << "point " << p;
+          }
+        });
+      EXPECT_EQ(triangleCount, 64);
+    }
 }
 
 TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
