@@ -63,8 +63,6 @@ namespace
 {
 using glm::dvec2;
 using glm::dvec3;
-using vtkNormalMapping::CornerSign;
-using vtkNormalMapping::CornerWeight;
 using vtkNormalMapping::DegeneracyTolerance;
 using vtkNormalMapping::IsUsableNormal;
 using vtkNormalMapping::PerpendicularTangent;
@@ -403,25 +401,56 @@ struct TriangleFrames
 };
 
 /**
- * ComputeTriangleBlock, compiled also for the wider vector units of x86-64 CPUs and picked at
- * load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose loops are
- * worth it. Every clone performs the same IEEE operations (no contraction into fused
+ * The shading normal of every point, as 3-tuples of floats or doubles: either unit vectors
+ * (Unit), or a float normal array whose every normal is usable, normalized where a unit vector
+ * is needed. Corner signs need only the direction, so they read the stored vector: a float
+ * normal's dot product with a triangle normal neither overflows nor underflows in double.
+ */
+struct ShadingNormals
+{
+  const float* Float = nullptr;
+  const double* Double = nullptr;
+  bool Unit = true;
+
+  dvec3 Stored(vtkIdType p) const
+  {
+    return this->Float
+      ? dvec3(this->Float[3 * p], this->Float[3 * p + 1], this->Float[3 * p + 2])
+      : dvec3(this->Double[3 * p], this->Double[3 * p + 1], this->Double[3 * p + 2]);
+  }
+  dvec3 UnitOf(vtkIdType p) const
+  {
+    return this->Unit ? this->Stored(p) : SafeNormalize(this->Stored(p));
+  }
+};
+
+/**
+ * ComputeTriangleBlock and, with `signedWeights`, SignCornerWeights for `method` (corner angles
+ * only then, for AngleWeighted), compiled also for the wider vector units of x86-64 CPUs and
+ * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose
+ * loops are worth it. Every clone performs the same IEEE operations (no contraction into fused
  * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
 VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeFrameBlock(TriangleBlock& block,
   int count,
   const DegeneracyTolerance& tol,
-  bool withAngles)
+  bool signedWeights,
+  TangentMethod method)
 {
-  vtkNormalMapping::ComputeTriangleBlock(block, count, tol, withAngles);
+  vtkNormalMapping::ComputeTriangleBlock(
+    block, count, tol, signedWeights && method == TangentMethod::AngleWeighted);
+  if (signedWeights)
+  {
+    vtkNormalMapping::SignCornerWeights(block, count, method);
+  }
 }
 
 /**
  * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
  * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
- * [first, first + count) (ComputeFrameBlock, with corner angles when `withAngles`), for any
- * point and texture coordinate arrays.
+ * [first, first + count) (ComputeFrameBlock), with `normals` also their corners' weights for
+ * `method` signed with their handedness, for any point and texture coordinate arrays.
  */
 struct VisitTriangleBlocks
 {
@@ -432,7 +461,8 @@ struct VisitTriangleBlocks
     vtkIdType begin,
     vtkIdType end,
     const DegeneracyTolerance& tol,
-    bool withAngles,
+    const ShadingNormals* normals,
+    TangentMethod method,
     bool serial,
     const Visit& visit) const
   {
@@ -457,10 +487,14 @@ struct VisitTriangleBlocks
             const auto texture = uvs[id];
             p[k] = dvec3(point[0], point[1], point[2]);
             uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+            if (normals)
+            {
+              b.SetCornerNormal(k, i, normals->Stored(id));
+            }
           }
           b.SetCorners(i, p, uv);
         }
-        ComputeFrameBlock(b, count, tol, withAngles);
+        ComputeFrameBlock(b, count, tol, normals != nullptr, method);
         visit(first, static_cast<const TriangleBlock&>(b), count);
       }
     };
@@ -529,30 +563,6 @@ struct CountUnusableNormals
         count += here;
       });
     unusable = count;
-  }
-};
-
-/**
- * The shading normal of every point, as 3-tuples of floats or doubles: either unit vectors
- * (Unit), or a float normal array whose every normal is usable, normalized where a unit vector
- * is needed. Corner signs need only the direction, so they read the stored vector: a float
- * normal's dot product with a triangle normal neither overflows nor underflows in double.
- */
-struct ShadingNormals
-{
-  const float* Float = nullptr;
-  const double* Double = nullptr;
-  bool Unit = true;
-
-  dvec3 Stored(vtkIdType p) const
-  {
-    return this->Float
-      ? dvec3(this->Float[3 * p], this->Float[3 * p + 1], this->Float[3 * p + 2])
-      : dvec3(this->Double[3 * p], this->Double[3 * p + 1], this->Double[3 * p + 2]);
-  }
-  dvec3 UnitOf(vtkIdType p) const
-  {
-    return this->Unit ? this->Stored(p) : SafeNormalize(this->Stored(p));
   }
 };
 
@@ -1097,9 +1107,15 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     return *this->PointLinks;
   }
 
-  /// visit(first, block, count) for the triangles of [begin, end) (VisitTriangleBlocks).
+  /// visit(first, block, count) for the triangles of [begin, end), with `normals` also their
+  /// signed corner weights for `method` (VisitTriangleBlocks).
   template<typename Visit>
-  void VisitFrames(bool withAngles, bool serial, const Visit& visit, vtkIdType begin, vtkIdType end)
+  void VisitFrames(bool serial,
+    const Visit& visit,
+    vtkIdType begin,
+    vtkIdType end,
+    const ShadingNormals* normals = nullptr,
+    TangentMethod method = TangentMethod::Unweighted)
   {
     const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
       Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
@@ -1110,7 +1126,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       begin,
       end,
       tol,
-      withAngles,
+      normals,
+      method,
       serial,
       visit);
   }
@@ -1124,7 +1141,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
     this->VisitFrames(
-      false,
       false,
       [&](vtkIdType first, const TriangleBlock& b, int count)
       {
@@ -1178,39 +1194,30 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   {
     std::atomic<vtkIdType> degenerate{ 0 };
     this->VisitFrames(
-      method == TangentMethod::AngleWeighted,
       serial,
       [&](vtkIdType first, const TriangleBlock& b, int count)
       {
-        const vtkIdType* ids = this->Tris.Ids + 3 * first;
         signed char* sides = this->CornerSides.get() + 3 * first;
-        // The whole block's corners first: their normals load independently of one another.
-        double weights[3 * TriangleBlock::Size];
-        for (int i = 0; i < count; ++i)
-        {
-          const TriangleFrame f = b.Frame(i);
-          const double angles[3] = { b.Angle[0][i], b.Angle[1][i], b.Angle[2][i] };
-          for (int k = 0; k < 3; ++k)
-          {
-            weights[3 * i + k] =
-              CornerSign(f, normals.Stored(ids[3 * i + k])) * CornerWeight(method, f, angles, k);
-          }
-        }
         vtkIdType none = 0;
         for (int i = 0; i < count; ++i)
         {
+          const double weights[3] = {
+            b.SignedWeight[0][i], b.SignedWeight[1][i], b.SignedWeight[2][i]
+          };
           for (int k = 0; k < 3; ++k)
           {
-            sides[3 * i + k] = SideOf(weights[3 * i + k]);
+            sides[3 * i + k] = SideOf(weights[k]);
           }
           const TriangleFrame f = b.Frame(i);
-          visit(first + i, f, weights + 3 * i);
+          visit(first + i, f, weights);
           none += f.Orientation == 0 ? 1 : 0;
         }
         degenerate += none;
       },
       begin,
-      end);
+      end,
+      &normals,
+      method);
     return degenerate;
   }
 

@@ -419,7 +419,8 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
 /**
  * The triangles of a block, as separate arrays per component (triangle i at index i), so that
  * loops over them vectorize: their edges, UV deltas and largest coordinates (SetCorners), and
- * after ComputeTriangleBlock their frames and corner angles.
+ * after ComputeTriangleBlock their frames and corner angles; with their corners' shading normals
+ * (SetCornerNormal), after SignCornerWeights their signed corner weights.
  */
 struct TriangleBlock
 {
@@ -433,6 +434,9 @@ struct TriangleBlock
   double Angle[3][Size];    ///< corner angles, when asked for
   double Orientation[Size]; ///< +1, -1 or 0 (TriangleFrame::Orientation)
   double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
+  /// For SignCornerWeights: component c of the shading normal at corner k at CornerNormal[k][c][i]
+  double CornerNormal[3][3][Size];
+  double SignedWeight[3][Size]; ///< after SignCornerWeights: corner k's signed weight
 
   /// Triangle i's input, from its corners.
   void SetCorners(int i, const glm::dvec3 p[3], const glm::dvec2 uv[3])
@@ -448,6 +452,15 @@ struct TriangleBlock
       this->D[1][c][i] = uv[2][c] - uv[0][c];
     }
     this->MaxCoordinate[i] = detail::MaxCoordinate(p[0], p[1], p[2]);
+  }
+
+  /// The shading normal at corner k of triangle i.
+  void SetCornerNormal(int k, int i, const glm::dvec3& n)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->CornerNormal[k][c][i] = n[c];
+    }
   }
 
   glm::dvec3 Edge(int j, int i) const
@@ -570,34 +583,46 @@ inline void ComputeCornerAngles(const glm::dvec3& p0,
   detail::CornerAnglesFromEdges(e01, e02, e12, glm::length(glm::cross(e01, e02)), angles);
 }
 
-/// Weight of a triangle's contribution at one of its corners.
-inline double CornerWeight(TangentMethod method,
-  const TriangleFrame& frame,
-  const double* angles,
-  int corner)
+/// Weight of a triangle's contribution at a corner: its area or its angle there, or 1.
+inline double CornerWeight(TangentMethod method, double area, double angle)
 {
-  switch (method)
-  {
-    case TangentMethod::AreaWeighted:
-      return frame.Area;
-    case TangentMethod::AngleWeighted:
-      return angles[corner];
-    case TangentMethod::Unweighted:
-    default:
-      return 1.0;
-  }
+  return method == TangentMethod::AreaWeighted
+    ? area
+    : (method == TangentMethod::AngleWeighted ? angle : 1.0);
 }
 
 /// The handedness a triangle gives at a corner whose shading normal is n: +1 when
 /// sign * cross(n, T) points along dP/dv. A triangle whose winding disagrees with n (flipped
-/// winding, inward normals) flips its orientation here.
-inline int CornerSign(int orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
+/// winding, inward normals) flips its orientation here. For orientations stored as any number
+/// type (+1, -1, 0).
+template<typename T>
+inline T CornerSign(T orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
 {
   return glm::dot(n, triangleNormal) < 0.0 ? -orientation : orientation;
 }
 inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 {
-  return CornerSign(frame.Orientation, frame.Normal, n);
+  return CornerSign<int>(frame.Orientation, frame.Normal, n);
+}
+
+/**
+ * For the first `count` triangles of a block whose frames ComputeTriangleBlock gave (with their
+ * corner angles for AngleWeighted) and whose corner normals are set: each corner's CornerWeight,
+ * signed with the handedness its triangle gives its shading normal (CornerSign), in a plain loop
+ * the compiler vectorizes.
+ */
+inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      const glm::dvec3 normal(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
+      const glm::dvec3 n(b.CornerNormal[k][0][i], b.CornerNormal[k][1][i], b.CornerNormal[k][2][i]);
+      b.SignedWeight[k][i] =
+        CornerSign(b.Orientation[i], normal, n) * CornerWeight(method, b.Area[i], b.Angle[k][i]);
+    }
+  }
 }
 
 namespace detail

@@ -337,6 +337,65 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
   }
 }
 
+TEST(TangentFrameKernels, SignedCornerWeightsOfABlockAreThoseOfCornerSignAndCornerWeight)
+{
+  // SignCornerWeights computes a block's signed corner weights in a vectorized loop: each must
+  // have the bits of CornerSign(frame, normal) * CornerWeight(method, area, angle), for every
+  // method, with shading normals that agree with the triangle's winding, oppose it, are
+  // perpendicular to it or zero, and triangles without a frame (orientation 0).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  const DegeneracyTolerance tol;
+  TriangleBlock block;
+  const int count = TriangleBlock::Size - 3;
+  std::vector<std::array<glm::dvec3, 3>> normals(count);
+  for (int i = 0; i < count; ++i)
+  {
+    glm::dvec3 p[3];
+    glm::dvec2 uv[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = glm::dvec3(d(rng), d(rng), d(rng));
+      uv[k] = glm::dvec2(d(rng), d(rng));
+    }
+    if (i % 7 == 3)
+    {
+      uv[2] = uv[1]; // no frame
+    }
+    block.SetCorners(i, p, uv);
+    const glm::dvec3 winding = glm::cross(p[1] - p[0], p[2] - p[0]);
+    for (int k = 0; k < 3; ++k)
+    {
+      const glm::dvec3 other(d(rng), d(rng), d(rng));
+      const glm::dvec3 choices[4] = {
+        winding + 0.1 * other, -winding + 0.1 * other, glm::cross(winding, other), glm::dvec3(0.0)
+      };
+      normals[i][k] = choices[(i + k) % 4];
+      block.SetCornerNormal(k, i, normals[i][k]);
+    }
+  }
+  for (TangentMethod method :
+    { TangentMethod::Unweighted, TangentMethod::AreaWeighted, TangentMethod::AngleWeighted })
+  {
+    ComputeTriangleBlock(block, count, tol, method == TangentMethod::AngleWeighted);
+    SignCornerWeights(block, count, method);
+    int negative = 0;
+    for (int i = 0; i < count; ++i)
+    {
+      const TriangleFrame f = block.Frame(i);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double expected =
+          CornerSign(f, normals[i][k]) * CornerWeight(method, f.Area, block.Angle[k][i]);
+        EXPECT_EQ(block.SignedWeight[k][i], expected)
+          << "corner " << k << " of triangle " << i << ", method " << static_cast<int>(method);
+        negative += expected < 0.0 ? 1 : 0;
+      }
+    }
+    EXPECT_GT(negative, 0); // both handednesses occur
+  }
+}
+
 TEST(TangentFrameKernels, PointBlockGivesTheBitsOfSafeNormalizeAndPerpendicularTangent)
 {
   // ComputePointBlock computes the common case in a vectorized loop and sends the rest to
