@@ -507,12 +507,9 @@ TEST(PolyDataTangentFrames, SplitCornersOfPolygonsAndStripsSeeTheirOwnFrame)
           ? "strips"
           : (mesh->GetPolys()->IsHomogeneous() == 4 ? "quads" : "triangles"));
       SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
-      vtkNew<vtkPolyDataTangentFrames> filter;
-      filter->SetInputData(mesh);
-      filter->SetMethod(method);
-      filter->Update();
-      vtkPolyData* out = filter->GetOutput();
-      EXPECT_EQ(filter->GetNumberOfSplitPoints(), 5); // the seam column
+      vtkSmartPointer<vtkPolyData> out =
+        RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
+      EXPECT_EQ(out->GetNumberOfPoints(), mesh->GetNumberOfPoints() + 5); // the seam column
       vtkDataArray* t = out->GetPointData()->GetTangents();
       vtkDataArray* sign = out->GetPointData()->GetArray("TangentSigns");
       vtkDataArray* tc = out->GetPointData()->GetTCoords();
@@ -575,11 +572,8 @@ TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
     { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
   {
     SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
-    vtkNew<vtkPolyDataTangentFrames> filter;
-    filter->SetInputData(mesh);
-    filter->SetMethod(method);
-    filter->Update();
-    vtkPolyData* out = filter->GetOutput();
+    vtkSmartPointer<vtkPolyData> out =
+      RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
     ASSERT_GT(out->GetNumberOfPoints(), numIn); // the seams split
     auto* outTag = vtkIntArray::SafeDownCast(out->GetPointData()->GetScalars());
     auto* outLabel = vtkStringArray::SafeDownCast(out->GetPointData()->GetAbstractArray("Label"));
