@@ -394,7 +394,9 @@ inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
 
 /**
  * Solve E1 = du1 T + dv1 B, E2 = du2 T + dv2 B for one triangle and classify it
- * (ComputeFrameFromEdges). With `angles`, also its interior angles (ComputeCornerAngles).
+ * (ComputeFrameFromEdges). With `angles`, also its interior angles in radians, from
+ * atan2(|e1 x e2|, e1.e2), which stays accurate near 0 and pi where acos does not; zero when the
+ * triangle is degenerate in position.
  */
 inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec3& p1,
@@ -557,30 +559,6 @@ inline void ComputeTriangleBlock(TriangleBlock& b,
     const double none[3] = { 0.0, 0.0, 0.0 };
     b.Set(i, f, withAngles ? angles : none);
   }
-}
-
-/// Interior angles (radians) of a triangle at its three corners, from atan2(|a x b|, a.b),
-/// which stays accurate for angles near 0 and pi where acos does not. Zero for a triangle
-/// that is degenerate in position.
-inline void ComputeCornerAngles(const glm::dvec3& p0,
-  const glm::dvec3& p1,
-  const glm::dvec3& p2,
-  double angles[3])
-{
-  // The same rescaled edges as ComputeTriangleFrame, so both give the same bits.
-  glm::dvec3 e01 = p1 - p0;
-  glm::dvec3 e02 = p2 - p0;
-  const double maxE = detail::MaxAbs(e01, e02);
-  angles[0] = angles[1] = angles[2] = 0.0;
-  if (!(maxE > 0.0) || !std::isfinite(maxE))
-  {
-    return;
-  }
-  const int e = detail::RescaleExponent(maxE);
-  e01 = detail::ScaleByPowerOfTwo(e01, e);
-  e02 = detail::ScaleByPowerOfTwo(e02, e);
-  const glm::dvec3 e12 = e02 - e01;
-  detail::CornerAnglesFromEdges(e01, e02, e12, glm::length(glm::cross(e01, e02)), angles);
 }
 
 /// Weight of a triangle's contribution at a corner: its area or its angle there, or 1.
