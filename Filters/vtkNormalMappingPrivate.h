@@ -42,12 +42,6 @@ namespace vtkNormalMapping
 {
 namespace detail
 {
-/// The number of ranges of `size` ids (the last one shorter) that cover [0, n).
-inline vtkIdType ChunkCount(vtkIdType n, vtkIdType size)
-{
-  return n <= 0 ? 0 : (n + size - 1) / size;
-}
-
 /**
  * The number of threads a vtkSMPTools::For can use from here: 1 inside a vtkSMPTools parallel scope
  * with nested parallelism turned off (VTK then runs the inner loops serially, on the calling
