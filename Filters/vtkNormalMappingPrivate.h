@@ -49,6 +49,19 @@ namespace detail
  */
 int UsableThreads();
 
+/// Whether every id of ids[begin, end) is in [0, numPoints), in one pass without an early exit,
+/// so that the loop vectorizes.
+template<typename IdT>
+bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoints)
+{
+  bool inRange = true;
+  for (vtkIdType i = begin; i < end; ++i)
+  {
+    inRange &= ids[i] >= 0 && static_cast<vtkIdType>(ids[i]) < numPoints;
+  }
+  return inRange;
+}
+
 /// Calls worker(typed array, args...) through vtkArrayDispatch for the arrays whose value type is
 /// in ValueTypes (every type by default), else worker(array, args...) with the generic
 /// vtkDataArray API.

@@ -202,21 +202,16 @@ void CellTriangle(const IdT* pts, vtkIdType j, bool strip, vtkIdType tri[3])
   tri[2] = pts[j + 2];
 }
 
-/// Whether every id of [ids, ids + n) is in [0, numPoints), checked in parallel.
+/// Whether every id of [ids, ids + n) is in [0, numPoints) (detail::IdsInRange), in parallel.
 template<typename IdT>
-bool IdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
+bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
 {
   std::atomic<bool> bad{ false };
   vtkSMPTools::For(0,
     n,
     [&](vtkIdType begin, vtkIdType end)
     {
-      bool inRange = true;
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        inRange &= ids[i] >= 0 && static_cast<vtkIdType>(ids[i]) < numPoints;
-      }
-      if (!inRange)
+      if (!vtkNormalMapping::detail::IdsInRange(ids, begin, end, numPoints))
       {
         bad = true;
       }
@@ -237,7 +232,7 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
   {
     const bool inRange = WithCellStorage(cellArrays[kind],
       [&](const auto*, const auto* conn)
-      { return IdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
+      { return AllIdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
     if (!inRange)
     {
       return false;

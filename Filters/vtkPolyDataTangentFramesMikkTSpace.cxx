@@ -367,18 +367,6 @@ int PositionInStripTriangle(long long i, long long j)
   return i == j + 1 ? 0 : (i == j ? 1 : 2);
 }
 
-/// True when every id of cells [begin, end) of a cell array's storage is in [0, numPoints).
-template<typename IdT>
-bool IdsInRange(const IdT* conn, long long begin, long long end, vtkIdType numPoints)
-{
-  bool ok = true;
-  for (long long i = begin; i < end; ++i)
-  {
-    ok &= conn[i] >= 0 && static_cast<vtkIdType>(conn[i]) < numPoints;
-  }
-  return ok;
-}
-
 /// Fills `s`; returns false with `problem` set when a cell array is malformed or a polygon or
 /// strip with fewer than 3 points has an id outside [0, numPoints) (the kernel checks the
 /// others, and skips these without looking at their ids).
