@@ -91,7 +91,9 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
 /**
  * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple
  * numIn + i copies tuple source[i] (a point split in two takes all its point data along).
- * An array shorter than numIn cannot follow the points and is returned as it is.
+ * The copy keeps the array's name, component names, information and lookup table, and holds
+ * exactly its tuples. An array shorter than numIn cannot follow the points and is returned as
+ * it is.
  */
 inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* array,
   vtkIdType numIn,
@@ -102,6 +104,21 @@ inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* arra
     return array;
   }
   const vtkIdType extra = static_cast<vtkIdType>(source.size());
+  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
+  copy->SetNumberOfComponents(array->GetNumberOfComponents());
+  copy->SetName(array->GetName());
+  copy->CopyComponentNames(array);
+  if (array->HasInformation())
+  {
+    copy->CopyInformation(array->GetInformation());
+  }
+  auto* values = vtkDataArray::SafeDownCast(array);
+  if (values && values->GetLookupTable())
+  {
+    vtkDataArray::SafeDownCast(copy)->SetLookupTable(values->GetLookupTable());
+  }
+  copy->SetNumberOfTuples(numIn + extra);
+  copy->InsertTuples(0, numIn, 0, array);
   vtkNew<vtkIdList> src, dst;
   src->SetNumberOfIds(extra);
   dst->SetNumberOfIds(extra);
@@ -110,10 +127,6 @@ inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* arra
     src->SetId(i, source[static_cast<size_t>(i)]);
     dst->SetId(i, numIn + i);
   }
-  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
-  copy->DeepCopy(array);
-  copy->SetNumberOfTuples(numIn); // appended tuples follow the points, not extra input tuples
-  copy->Resize(numIn + extra);
   copy->InsertTuples(dst, src, array);
   return copy;
 }

@@ -547,7 +547,8 @@ TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
 {
   // Extra point data of two kinds (numeric with component names, an information key, a lookup
   // table and the scalars attribute; strings) on a mesh whose mirror seams split: the input
-  // points keep their tuples, and each appended point copies those of the point it splits from.
+  // points keep their tuples, each appended point copies those of the point it splits from,
+  // and the arrays hold just their tuples.
   auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
   const vtkIdType numIn = mesh->GetNumberOfPoints();
   vtkNew<vtkIntArray> tag; // (source id, -source id)
@@ -586,6 +587,14 @@ TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
     EXPECT_NE(outTag->GetLookupTable(), nullptr);
     EXPECT_EQ(outTag->GetNumberOfTuples(), out->GetNumberOfPoints());
     EXPECT_EQ(outLabel->GetNumberOfValues(), out->GetNumberOfPoints());
+    // No spare capacity: an output that keeps twice its arrays' memory costs a pipeline that
+    // holds it that much more.
+    for (vtkAbstractArray* array : { static_cast<vtkAbstractArray*>(outTag),
+           static_cast<vtkAbstractArray*>(outLabel),
+           static_cast<vtkAbstractArray*>(out->GetPoints()->GetData()) })
+    {
+      EXPECT_EQ(array->GetSize(), array->GetNumberOfValues()) << array->GetName();
+    }
     for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
     {
       const vtkIdType source = outTag->GetValue(2 * p);
