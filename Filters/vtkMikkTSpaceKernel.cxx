@@ -30,6 +30,7 @@
 #include <vtkSMPTools.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -293,7 +294,6 @@ struct Kernel
   bool AnyMulti = false; // some face has more than 3 corners
   struct Triangle
   {
-    Idx Slot[3]; // face corner indices
     Idx Weld[3]; // welded vertex ids
     Frame Dir;   // sign(det) Os/|Os|, sign(det) Ot/|Ot|, |Os|/|det|, |Ot|/|det|
     uint8_t Flags;
@@ -301,6 +301,9 @@ struct Kernel
   // One record per triangle: the vertex phase reads all of it. Not value-initialised: the
   // triangle pass writes every record.
   std::unique_ptr<Triangle[]> Tris;
+  // Face corner of each triangle corner (3 per triangle); null when every face is a triangle
+  // stored in order, whose triangle corner c is face corner c.
+  std::unique_ptr<Idx[]> Slots;
   long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
 
   // fans: corners of non-degenerate triangles grouped by welded id, ascending
@@ -326,7 +329,11 @@ struct Kernel
   Idx PointOfWeld(Idx w) const { return w < NumPoints ? w : Idx(Conn[w - NumPoints]); }
   Idx FanSize(Idx v) const { return FanStart[size_t(v) + 1] - FanStart[size_t(v)]; }
   // face corner and welded vertex of triangle corner c = 3 t + i
-  Idx SlotOf(Idx c) const { return Tris[size_t(c / 3)].Slot[c % 3]; }
+  Idx SlotOf(Idx c) const { return Slots ? Slots[size_t(c)] : c; }
+  std::array<Idx, 3> SlotsOf(Idx t) const
+  {
+    return { SlotOf(3 * t), SlotOf(3 * t + 1), SlotOf(3 * t + 2) };
+  }
   Idx WeldOf(Idx c) const { return Tris[size_t(c / 3)].Weld[c % 3]; }
 
   bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
@@ -496,7 +503,10 @@ void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t
   for (int i = 0; i < 3; ++i)
   {
     pts[i] = Idx(Conn[slots[i]]);
-    tri.Slot[i] = slots[i];
+    if (Slots)
+    {
+      Slots[3 * size_t(t) + size_t(i)] = slots[i];
+    }
     tri.Weld[i] = Rep[size_t(pts[i])] >= 0 ? Rep[size_t(pts[i])] : NumPoints + slots[i];
   }
   const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
@@ -624,6 +634,7 @@ void Kernel::BuildTriangles()
   NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
   ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
   std::vector<uint8_t> chunkMulti(size_t(NumFaceChunks), 0);
+  std::vector<uint8_t> chunkInOrder(size_t(NumFaceChunks), 1); // faces (3f, 3f + 1, 3f + 2)
   ForEachFaceChunk(
     [&](long long c)
     {
@@ -632,6 +643,7 @@ void Kernel::BuildTriangles()
       for (long long f = c * kFaceChunk; f < fe; ++f)
       {
         const long long b = Off[f], e = Off[f + 1];
+        chunkInOrder[size_t(c)] &= b == 3 * f && e == b + 3;
         if (FaceHasTriangles(b, e))
         {
           sum += Idx(e - b - 2);
@@ -640,13 +652,19 @@ void Kernel::BuildTriangles()
       }
       ChunkTriBase[size_t(c) + 1] = sum;
     });
+  bool inOrder = true;
   for (long long c = 0; c < NumFaceChunks; ++c)
   {
     ChunkTriBase[size_t(c) + 1] += ChunkTriBase[size_t(c)];
     AnyMulti = AnyMulti || chunkMulti[size_t(c)];
+    inOrder = inOrder && chunkInOrder[size_t(c)];
   }
   NumTris = ChunkTriBase[size_t(NumFaceChunks)];
   Tris.reset(new Triangle[size_t(NumTris)]);
+  if (!inOrder)
+  {
+    Slots.reset(new Idx[3 * size_t(NumTris)]);
+  }
 
   struct Counts
   {
@@ -680,7 +698,7 @@ void Kernel::BuildTriangles()
           ++n.Invalid;
           for (Idx u = t; u < t + nTri; ++u)
           {
-            Tris[size_t(u)] = Triangle{ { base, base, base }, { 0, 0, 0 }, {}, kDead };
+            Tris[size_t(u)] = Triangle{ { 0, 0, 0 }, {}, kDead }; // never in a fan
           }
         }
         else if (nTri == 1)
@@ -775,7 +793,7 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     const Idx c = fan[j], i = c % 3;
     const Triangle& tri = Tris[size_t(c / 3)];
     m[j].Corner = c;
-    m[j].Slot = tri.Slot[i];
+    m[j].Slot = SlotOf(c);
     m[j].Next = tri.Weld[(i + 1) % 3];
     m[j].Prev = tri.Weld[(i + 2) % 3];
     m[j].Flags = tri.Flags;
@@ -1086,10 +1104,9 @@ void Kernel::GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint
 // Triangles of one face share a face corner; different faces never do.
 bool Kernel::SameFace(Idx ta, Idx tb) const
 {
-  const Idx* a = Tris[size_t(ta)].Slot;
-  const Idx* b = Tris[size_t(tb)].Slot;
+  const std::array<Idx, 3> a = SlotsOf(ta), b = SlotsOf(tb);
   return ta == tb ||
-    std::any_of(a, a + 3, [b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
+    std::any_of(a.begin(), a.end(), [&b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
 }
 
 void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx key)
@@ -1179,16 +1196,16 @@ void Kernel::CopyDegenerates()
           }
           if (n == 4 && (tri[0].Flags & kOneDegenQuad))
           {
-            const Idx* gs = tri[(tri[0].Flags & kDegenerate) ? 1 : 0].Slot;
+            const std::array<Idx, 3> gs = SlotsOf(t + ((tri[0].Flags & kDegenerate) ? 1 : 0));
             Idx missing = Idx(b);
             while (missing == gs[0] || missing == gs[1] || missing == gs[2])
             {
               ++missing;
             }
             const V3 dst = Pos(Idx(Conn[missing]));
-            const Idx* src =
-              std::find_if(gs, gs + 3, [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
-            if (src != gs + 3)
+            const auto src = std::find_if(
+              gs.begin(), gs.end(), [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
+            if (src != gs.end())
             {
               Out[size_t(missing)] = Out[size_t(*src)];
             }
@@ -1200,7 +1217,7 @@ void Kernel::CopyDegenerates()
           {
             for (int i = 0; i < 3 && !(Tris[size_t(u)].Flags & kDegenerate); ++i)
             {
-              covered[size_t(Tris[size_t(u)].Slot[i] - b)] = 1;
+              covered[size_t(SlotOf(3 * u + i) - b)] = 1;
             }
           }
           for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
