@@ -651,15 +651,17 @@ struct ScatteredSums
   }
   int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
 
-  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight.
+  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
+  /// of zero weight (no frame, or a normal in the triangle's plane) goes to the first side and
+  /// changes none of its bits: it adds zeros to sums that are never -0.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
   {
     Side& first = this->First[p];
-    if (signedWeight == 0.0)
-    {
-      return;
-    }
-    if (first.Weight == 0.0 || (first.Weight > 0.0) == (signedWeight > 0.0))
+    // One branch, taken only on mirror seams: whether the point's first handedness is already
+    // set and differs from this corner's.
+    const bool otherSide = (first.Weight != 0.0) & (signedWeight != 0.0) &
+      (std::signbit(first.Weight) != std::signbit(signedWeight));
+    if (!otherSide)
     {
       first.Add(signedWeight, tangent);
       return;
@@ -700,10 +702,7 @@ struct ScatteredSums
       s.Tangent[index] = side.Tangent;
       s.Weight[index] = std::abs(side.Weight);
     };
-    if (this->First[p].Weight != 0.0)
-    {
-      put(this->First[p]);
-    }
+    put(this->First[p]); // no corner yet: zero weight and tangent, like no put at all
     if (this->HasOther[p])
     {
       put(this->Other[this->OwnerOf(p)].at(p));
