@@ -1007,6 +1007,69 @@ TEST(PolyDataTangentFrames, OutOfRangeIdsInLargeTriangleMeshesForAnyNumberOfThre
   }
 }
 
+TEST(PolyDataTangentFrames, OutOfRangeIdsAnywhereAreAnErrorOnEveryPath)
+{
+  // One bad id (first, middle or last corner; equal to the number of points, negative, or
+  // huge) on every path that reads ids: each method, with input normals, without normals (point
+  // links), with an unusable normal (links too), with cell tangents, on one thread and on two
+  // (18,432 triangles: more than one chunk of the two-thread sums). Each run must report the
+  // error, pass the input through and count nothing; under AddressSanitizer a read outside the
+  // arrays fails the run.
+  const auto clean = vtkNormalMapping::MakeTorus(MirroredTorusOptions(96, 96));
+  const vtkIdType numPoints = clean->GetNumberOfPoints();
+  const vtkIdType numIds = clean->GetPolys()->GetNumberOfConnectivityIds();
+  enum NormalsMode
+  {
+    Given,
+    None,
+    OneUnusable,
+    CellTangents
+  };
+  for (int method : EveryMethod)
+  {
+    for (NormalsMode mode : { Given, None, OneUnusable, CellTangents })
+    {
+      for (vtkIdType position : { vtkIdType(0), numIds / 2 + 1, numIds - 1 })
+      {
+        for (double bad : { double(numPoints), -1.0, std::ldexp(1.0, 40) })
+        {
+          for (int threads : { 1, 2 })
+          {
+            SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+              ", normals mode " + std::to_string(mode) + ", corner " + std::to_string(position) +
+              ", id " + std::to_string(bad) + ", " + std::to_string(threads) + " threads");
+            vtkNew<vtkPolyData> mesh;
+            mesh->DeepCopy(clean);
+            mesh->GetPolys()->GetConnectivityArray()->SetComponent(position, 0, bad);
+            if (mode == None)
+            {
+              mesh->GetPointData()->SetNormals(nullptr);
+            }
+            if (mode == OneUnusable)
+            {
+              mesh->GetPointData()->GetNormals()->SetTuple3(numPoints / 3, 0.0, 0.0, 0.0);
+            }
+            vtkNew<vtkPolyDataTangentFrames> filter;
+            Messages messages(filter);
+            filter->SetInputData(mesh);
+            filter->SetMethod(method);
+            filter->SetComputeCellTangents(mode == CellTangents);
+            NormalMappingTesting::WithThreads(threads, [&]() { filter->Update(); });
+            vtkPolyData* out = filter->GetOutput();
+            EXPECT_TRUE(
+              messages.Has(messages.Errors, "outside [0, " + std::to_string(numPoints) + ")"));
+            EXPECT_EQ(out->GetPointData()->GetArray("Tangents"), nullptr);
+            EXPECT_EQ(out->GetNumberOfPoints(), numPoints);
+            EXPECT_EQ(out->GetPolys(), mesh->GetPolys());
+            EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), 0);
+            EXPECT_EQ(filter->GetNumberOfSplitPoints(), 0);
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, CellsWithFewerThanThreePointsPassThrough)
 {
   // Polygons with 0, 1 and 2 points and strips of 0, 1 and 2 points beside a mirrored pair:
