@@ -520,7 +520,7 @@ bool BuildSurface(vtkCellArray* polys,
 /// Which point each output corner uses and which frame each output point gets.
 struct Assignment
 {
-  std::vector<long long> FirstSlot;    // per input point: kernel corner of its first corner, or -1
+  std::vector<CornerFrame> PointFrame; // per input point: frame of its first corner (Sign 0: none)
   std::vector<vtkIdType> SplitSource;  // per new point: the input point it copies
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
@@ -543,18 +543,21 @@ void Assign(const Surface& s,
 {
   const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
 
-  // 1. One ascending pass, polygon corners then strip corners: the first corner with a frame of
-  // every point, and the corners whose frame differs from their point's first corner.
-  a.FirstSlot.assign(static_cast<size_t>(numPoints), -1);
+  // 1. One ascending pass, polygon corners then strip corners: the frame of every point's first
+  // corner with a frame, and the corners whose frame differs from it. The point keeps a copy of
+  // the frame (kernel frames have Sign +1 or -1, so Sign 0 marks a point not reached yet): each
+  // corner then reads one entry per point instead of a point entry and a corner entry.
+  a.PointFrame.assign(static_cast<size_t>(numPoints), CornerFrame{ { 0.0f, 0.0f, 0.0f }, 0.0f });
   std::vector<long long> differing;
   const auto visit = [&](long long c, long long point, long long slot)
   {
-    long long& first = a.FirstSlot[static_cast<size_t>(point)];
-    if (first < 0)
+    CornerFrame& first = a.PointFrame[static_cast<size_t>(point)];
+    const CornerFrame& mine = frames[static_cast<size_t>(slot)];
+    if (first.Sign == 0.0f)
     {
-      first = slot;
+      first = mine;
     }
-    else if (!SameFrame(frames[static_cast<size_t>(slot)], frames[static_cast<size_t>(first)]))
+    else if (!SameFrame(mine, first))
     {
       differing.push_back(c);
     }
@@ -703,12 +706,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
     {
       return a.SplitFrame[static_cast<size_t>(p - numIn)];
     }
-    const long long slot = a.FirstSlot[static_cast<size_t>(p)];
-    if (slot >= 0)
-    {
-      return frames[static_cast<size_t>(slot)];
-    }
-    return mikk::DefaultCornerFrame;
+    const CornerFrame& first = a.PointFrame[static_cast<size_t>(p)];
+    return first.Sign != 0.0f ? first : mikk::DefaultCornerFrame;
   };
   const auto sourceOf = [&](vtkIdType p)
   { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
