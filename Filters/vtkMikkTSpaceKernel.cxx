@@ -295,7 +295,7 @@ struct Kernel
   struct Triangle
   {
     Idx Weld[3]; // welded vertex ids
-    Frame Dir;   // sign(det) Os/|Os|, sign(det) Ot/|Ot|, |Os|/|det|, |Ot|/|det|
+    V3 S, T;     // sign(det) Os/|Os|, sign(det) Ot/|Ot|
     uint8_t Flags;
   };
   // One record per triangle: the vertex phase reads all of it. Not value-initialised: the
@@ -304,6 +304,9 @@ struct Kernel
   // Face corner of each triangle corner (3 per triangle); null when every face is a triangle
   // stored in order, whose triangle corner c is face corner c.
   std::unique_ptr<Idx[]> Slots;
+  // |Os|/|det| and |Ot|/|det| of each triangle, only when some face has more than 3 corners:
+  // they only decide how the several frames written to one face corner merge (Average).
+  std::unique_ptr<float[]> Mags;
   long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
 
   // fans: corners of non-degenerate triangles grouped by welded id, ascending
@@ -550,7 +553,12 @@ void Kernel::FinishDirections(Idx t0, TriangleRows& r)
   for (size_t j = 0; j < n; ++j)
   {
     Triangle& tri = Tris[size_t(t0) + j];
-    tri.Dir = Frame{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
+    tri.S = tri.T = V3{ 0, 0, 0 };
+    float* mags = Mags ? Mags.get() + 2 * (size_t(t0) + j) : nullptr;
+    if (mags)
+    {
+      mags[0] = mags[1] = 0;
+    }
     if (tri.Flags & kExcluded)
     {
       continue;
@@ -559,8 +567,13 @@ void Kernel::FinishDirections(Idx t0, TriangleRows& r)
     uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
     if (NotZero(det))
     {
-      tri.Dir =
-        Frame{ { r.Sx[j], r.Sy[j], r.Sz[j] }, { r.Tx[j], r.Ty[j], r.Tz[j] }, r.MagS[j], r.MagT[j] };
+      tri.S = V3{ r.Sx[j], r.Sy[j], r.Sz[j] };
+      tri.T = V3{ r.Tx[j], r.Ty[j], r.Tz[j] };
+      if (mags)
+      {
+        mags[0] = r.MagS[j];
+        mags[1] = r.MagT[j];
+      }
       if (NotZero(r.MagS[j]) && NotZero(r.MagT[j]))
       {
         flags = uint8_t(flags & ~kGWA);
@@ -665,6 +678,10 @@ void Kernel::BuildTriangles()
   {
     Slots.reset(new Idx[3 * size_t(NumTris)]);
   }
+  if (AnyMulti)
+  {
+    Mags.reset(new float[2 * size_t(NumTris)]);
+  }
 
   struct Counts
   {
@@ -698,7 +715,7 @@ void Kernel::BuildTriangles()
           ++n.Invalid;
           for (Idx u = t; u < t + nTri; ++u)
           {
-            Tris[size_t(u)] = Triangle{ { 0, 0, 0 }, {}, kDead }; // never in a fan
+            Tris[size_t(u)] = Triangle{ { 0, 0, 0 }, {}, {}, kDead }; // never in a fan
           }
         }
         else if (nTri == 1)
@@ -797,8 +814,8 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     m[j].Next = tri.Weld[(i + 1) % 3];
     m[j].Prev = tri.Weld[(i + 2) % 3];
     m[j].Flags = tri.Flags;
-    m[j].MagS = tri.Dir.MagS;
-    m[j].MagT = tri.Dir.MagT;
+    m[j].MagS = Mags ? Mags[2 * size_t(c / 3)] : 0.0f;
+    m[j].MagT = Mags ? Mags[2 * size_t(c / 3) + 1] : 0.0f;
   }
 }
 
@@ -913,9 +930,9 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   for (size_t j = 0; j < k; ++j)
   {
     const Member& a = s.M[j];
-    const Frame& dir = Tris[size_t(a.Corner / 3)].Dir;
-    set(j, dir.S);
-    set(k + j, dir.T);
+    const Triangle& tri = Tris[size_t(a.Corner / 3)];
+    set(j, tri.S);
+    set(k + j, tri.T);
     set(2 * k + j, Sub(Pos(PointOfWeld(a.Next)), p));
     if (a.Link[1] < 0)
     {
