@@ -294,12 +294,11 @@ struct Kernel
   bool AnyMulti = false; // some face has more than 3 corners
   struct Triangle
   {
-    Idx Weld[3]; // welded vertex ids
-    V3 S, T;     // sign(det) Os/|Os|, sign(det) Ot/|Ot|
+    V3 S, T; // sign(det) Os/|Os|, sign(det) Ot/|Ot|
     uint8_t Flags;
   };
-  // One record per triangle: the vertex phase reads all of it. Not value-initialised: the
-  // triangle pass writes every record.
+  // One record per triangle, all the vertex phase reads of it (welded ids come from the points'
+  // table, WeldOf). Not value-initialised: the triangle pass writes every record.
   std::unique_ptr<Triangle[]> Tris;
   // Face corner of each triangle corner (3 per triangle); null when every face is a triangle
   // stored in order, whose triangle corner c is face corner c.
@@ -337,7 +336,14 @@ struct Kernel
   {
     return { SlotOf(3 * t), SlotOf(3 * t + 1), SlotOf(3 * t + 2) };
   }
-  Idx WeldOf(Idx c) const { return Tris[size_t(c / 3)].Weld[c % 3]; }
+  // Welded id of corner c of a triangle that is not dead: its point's, or for a point with a NaN
+  // one of its own past the points.
+  Idx WeldOf(Idx c) const
+  {
+    const Idx slot = SlotOf(c);
+    const Idx w = Rep[size_t(Conn[slot])];
+    return w >= 0 ? w : NumPoints + slot;
+  }
 
   bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
   bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
@@ -510,7 +516,6 @@ void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t
     {
       Slots[3 * size_t(t) + size_t(i)] = slots[i];
     }
-    tri.Weld[i] = Rep[size_t(pts[i])] >= 0 ? Rep[size_t(pts[i])] : NumPoints + slots[i];
   }
   const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
   tri.Flags = Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2) ? kDegenerate : 0;
@@ -715,7 +720,7 @@ void Kernel::BuildTriangles()
           ++n.Invalid;
           for (Idx u = t; u < t + nTri; ++u)
           {
-            Tris[size_t(u)] = Triangle{ { 0, 0, 0 }, {}, {}, kDead }; // never in a fan
+            Tris[size_t(u)] = Triangle{ {}, {}, kDead }; // never in a fan
           }
         }
         else if (nTri == 1)
@@ -778,7 +783,7 @@ void Kernel::BuildFans()
     {
       for (int i = 0; i < 3; ++i)
       {
-        ++FanStart[size_t(Tris[size_t(t)].Weld[i]) + 1];
+        ++FanStart[size_t(WeldOf(3 * t + i)) + 1];
       }
     }
   }
@@ -794,7 +799,7 @@ void Kernel::BuildFans()
     {
       for (int i = 0; i < 3; ++i)
       {
-        Fan[size_t(pos[size_t(Tris[size_t(t)].Weld[i])]++)] = 3 * t + i;
+        Fan[size_t(pos[size_t(WeldOf(3 * t + i))]++)] = 3 * t + i;
       }
     }
   }
@@ -811,8 +816,8 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
     const Triangle& tri = Tris[size_t(c / 3)];
     m[j].Corner = c;
     m[j].Slot = SlotOf(c);
-    m[j].Next = tri.Weld[(i + 1) % 3];
-    m[j].Prev = tri.Weld[(i + 2) % 3];
+    m[j].Next = WeldOf(c - i + (i + 1) % 3);
+    m[j].Prev = WeldOf(c - i + (i + 2) % 3);
     m[j].Flags = tri.Flags;
     m[j].MagS = Mags ? Mags[2 * size_t(c / 3)] : 0.0f;
     m[j].MagT = Mags ? Mags[2 * size_t(c / 3) + 1] : 0.0f;
@@ -833,7 +838,7 @@ void Kernel::AdoptGroupWithAnyOrientation()
     {
       for (int i = 0; i < 3; ++i)
       {
-        gwaVertex[size_t(Tris[size_t(t)].Weld[i])] = 1;
+        gwaVertex[size_t(WeldOf(3 * t + i))] = 1;
       }
     }
   }
