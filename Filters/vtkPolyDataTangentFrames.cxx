@@ -606,7 +606,9 @@ struct PointSums
  */
 struct ScatteredSums
 {
-  struct Side
+  /// One handedness' sums of a point: 32 bytes, aligned to 32 so that adding a corner reads and
+  /// writes one cache line, not two.
+  struct alignas(32) Side
   {
     dvec3 Tangent{ 0.0 };
     double Weight = 0.0;
@@ -616,6 +618,7 @@ struct ScatteredSums
       this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
     }
   };
+  static_assert(sizeof(Side) == 32, "a Side fills half a cache line");
   /// Points per block of one owner: whole cache lines of First.
   static constexpr vtkIdType BlockSize = 256;
   std::vector<Side> First;
