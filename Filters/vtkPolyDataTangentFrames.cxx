@@ -788,11 +788,12 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   vtkIdType numPoints)
 {
   std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
-  // Which points are split, looked up per connectivity entry before any search.
-  std::vector<bool> isSplit(static_cast<size_t>(numPoints), false);
+  // Which points are split, looked up per connectivity entry; the few entries of split points
+  // then find their cell and their copy by binary search.
+  std::vector<unsigned char> isSplit(static_cast<size_t>(numPoints), 0);
   for (const SplitPoint& s : splits)
   {
-    isSplit[s.Id] = true;
+    isSplit[s.Id] = 1;
   }
   vtkIdType firstCell = 0;
   vtkIdType base = 0;
@@ -800,46 +801,44 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   {
     const bool strip = kind == 1;
     vtkCellArray* cells = cellArrays[kind];
+    const vtkIdType numCells = cells->GetNumberOfCells();
     WithCellStorage(cells,
       [&](const auto* offsets, const auto* conn)
       {
-        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+        for (vtkIdType pos = 0; pos < static_cast<vtkIdType>(offsets[numCells]); ++pos)
         {
-          const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
-          const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
-          for (vtkIdType k = 0; k < n; ++k)
+          const vtkIdType id = conn[pos];
+          if (!isSplit[id])
           {
-            const vtkIdType id = conn[offsets[c] + k];
-            if (!isSplit[id])
-            {
-              continue;
-            }
+            continue;
+          }
+          // The cell holding this entry (the last one starting at or before it: cells without
+          // points start where the next one does) and its triangles that hold the corner (see
+          // CellTriangle).
+          const vtkIdType c = std::upper_bound(offsets, offsets + numCells + 1, pos) - offsets - 1;
+          const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+          const vtkIdType k = pos - static_cast<vtkIdType>(offsets[c]);
+          const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
+          const vtkIdType first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
+          const vtkIdType last = strip ? std::min<vtkIdType>(k, n - 3)
+                                       : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
+          int vote = 0;
+          for (vtkIdType j = first; j <= last; ++j)
+          {
+            vote += CornerHandedness(tris, sides, firstTriangle + j, id);
+          }
+          if (vote < 0)
+          {
             const auto it = std::lower_bound(splits.begin(),
               splits.end(),
               id,
               [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
-            if (it == splits.end() || it->Id != id)
-            {
-              continue;
-            }
-            // The cell's triangles that hold corner k (see CellTriangle).
-            const vtkIdType first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
-            const vtkIdType last = strip ? std::min<vtkIdType>(k, n - 3)
-                                         : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
-            int vote = 0;
-            for (vtkIdType j = first; j <= last; ++j)
-            {
-              vote += CornerHandedness(tris, sides, firstTriangle + j, id);
-            }
-            if (vote < 0)
-            {
-              repoint.emplace_back(
-                base + offsets[c] + k, numPoints + static_cast<vtkIdType>(it - splits.begin()));
-            }
+            repoint.emplace_back(
+              base + pos, numPoints + static_cast<vtkIdType>(it - splits.begin()));
           }
         }
       });
-    firstCell += cells->GetNumberOfCells();
+    firstCell += numCells;
     base += cells->GetNumberOfConnectivityIds();
   }
   return repoint;

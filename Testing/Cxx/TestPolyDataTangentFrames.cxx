@@ -1123,6 +1123,84 @@ TEST(PolyDataTangentFrames, CellsWithFewerThanThreePointsPassThrough)
   }
 }
 
+TEST(PolyDataTangentFrames, SplitCornersAfterCellsWithoutPointsFindTheirCells)
+{
+  // A mirrored torus as polygons and as strips, with a cell of two points and a cell of no points
+  // before each of its cells. The corners of split points are found among the connectivity
+  // entries and traced back to their cell, which must pass over the cells without points (they
+  // start where the next cell does). Every method gives the points, the frames and the
+  // re-pointed cells of the mesh without the short cells.
+  auto polygons = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
+  vtkNew<vtkStripper> stripper;
+  stripper->SetInputData(polygons);
+  stripper->Update();
+  ASSERT_GT(stripper->GetOutput()->GetNumberOfStrips(), 0);
+  for (vtkPolyData* mesh : { polygons.Get(), stripper->GetOutput() })
+  {
+    const bool strips = mesh->GetNumberOfStrips() > 0;
+    SCOPED_TRACE(strips ? "strips" : "polygons");
+    vtkCellArray* original = strips ? mesh->GetStrips() : mesh->GetPolys();
+    vtkNew<vtkCellArray> padded;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < original->GetNumberOfCells(); ++c)
+    {
+      original->GetCellAtId(c, ids);
+      padded->InsertNextCell(2, ids->GetPointer(0));
+      padded->InsertNextCell(0, ids->GetPointer(0));
+      padded->InsertNextCell(ids);
+    }
+    vtkNew<vtkPolyData> input;
+    input->ShallowCopy(mesh);
+    if (strips)
+    {
+      input->SetStrips(padded);
+    }
+    else
+    {
+      input->SetPolys(padded);
+    }
+    for (int method : EveryMethod)
+    {
+      SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+      const auto configure = [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); };
+      auto reference = RunFrames(mesh, configure);
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      filter->SetInputData(input);
+      configure(filter);
+      filter->Update();
+      vtkPolyData* out = filter->GetOutput();
+      EXPECT_TRUE(messages.Errors.empty());
+      ASSERT_GT(reference->GetNumberOfPoints(), mesh->GetNumberOfPoints()); // the seams split
+      ASSERT_EQ(out->GetNumberOfPoints(), reference->GetNumberOfPoints());
+      for (const char* name : { "Tangents", "TangentSigns" })
+      {
+        vtkDataArray* got = out->GetPointData()->GetArray(name);
+        vtkDataArray* want = reference->GetPointData()->GetArray(name);
+        ASSERT_NE(got, nullptr);
+        for (vtkIdType i = 0; i < want->GetNumberOfValues(); ++i)
+        {
+          ASSERT_EQ(got->GetVariantValue(i), want->GetVariantValue(i)) << name << " value " << i;
+        }
+      }
+      vtkCellArray* got = strips ? out->GetStrips() : out->GetPolys();
+      vtkCellArray* want = strips ? reference->GetStrips() : reference->GetPolys();
+      ASSERT_EQ(got->GetNumberOfCells(), 3 * want->GetNumberOfCells());
+      vtkNew<vtkIdList> a, b;
+      for (vtkIdType c = 0; c < want->GetNumberOfCells(); ++c)
+      {
+        want->GetCellAtId(c, a);
+        got->GetCellAtId(3 * c + 2, b);
+        ASSERT_EQ(a->GetNumberOfIds(), b->GetNumberOfIds());
+        for (vtkIdType k = 0; k < a->GetNumberOfIds(); ++k)
+        {
+          ASSERT_EQ(a->GetId(k), b->GetId(k)) << "cell " << c << ", corner " << k;
+        }
+      }
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, OnlyEmptyPolygonsAndStrips)
 {
   // Points, but every polygon and strip without points: a warning and a pass-through of the
