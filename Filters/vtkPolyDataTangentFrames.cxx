@@ -619,7 +619,8 @@ struct ScatteredSums
     }
   };
   static_assert(sizeof(Side) == 32, "a Side fills half a cache line");
-  /// Points per block of one owner: whole cache lines of First.
+  /// Points per block of one owner: 8 KB of First, so that two owners can share only the cache
+  /// line at the edge of a block.
   static constexpr vtkIdType BlockSize = 256;
   std::vector<Side> First;
   std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
