@@ -397,6 +397,39 @@ TEST(MikkTSpaceKernel, MirroredPairSigns)
   EXPECT_EQ(res.NumberOfDefaultCorners, 0);
 }
 
+// A face corner that two triangles of a quad write keeps the first frame only when the two agree
+// in direction and in magnitude; otherwise the reference averages and renormalises. Two quads
+// over the same four points, in two corner orders: at the diagonal corners of the second quad,
+// its triangles' frames have the same directions bit for bit but different magnitudes
+// (|dP/du| 1.63 and 0.89), so the reference renormalises their sum, which moves the tangent by
+// an ulp. The expected bits are the original mikktspace.c's output (genTangSpaceDefault) for
+// this mesh. A merge that compares only the directions keeps the unrenormalised frame there.
+TEST(MikkTSpaceKernel, MultiWriterMergeComparesMagnitudes)
+{
+  Mesh m;
+  const long long p0 = m.AddPoint({ 1, 0, 0 }, kUp, { 1.5f, -0.5f });
+  const long long p1 = m.AddPoint({ -1, 0, 1 }, kUp, { 0.5f, -1 });
+  const long long p2 = m.AddPoint({ 0, -2, 0 }, kUp, { -1, -1 });
+  const long long p3 = m.AddPoint({ -2, -2, 0 }, kUp, { -1, -1.5f });
+  m.AddFace({ p1, p2, p3, p0 });
+  m.AddFace({ p3, p1, p2, p0 });
+  const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), 8u);
+  // Every tangent is (-1, 2, 0) / sqrt(5), rounded three ways: x = -y / 2 exactly.
+  const float single = 0x1.c9f25cp-1f;      // one writer
+  const float equal = 0x1.c9f25ep-1f;       // two writers whose frames agree in every bit
+  const float renormalised = 0x1.c9f26p-1f; // two writers whose magnitudes differ
+  const std::array<float, 8> y = {
+    equal, single, equal, single, renormalised, single, renormalised, single
+  };
+  for (size_t c = 0; c < 8; ++c)
+  {
+    const mikk::CornerFrame expected = { { -0.5f * y[c], y[c], 0.0f }, c < 4 ? 1.0f : -1.0f };
+    EXPECT_TRUE(BitEqual(res.Corners[c], expected))
+      << "corner " << c << ": " << res.Corners[c].Tangent[0] << " " << res.Corners[c].Tangent[1];
+  }
+}
+
 // Degenerate triangles copy the first good corner with the same welded vertex (or get the
 // default); in a quad with one degenerate triangle the missing corner copies the good
 // triangle's corner at the same position.
