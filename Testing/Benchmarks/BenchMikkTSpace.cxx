@@ -12,6 +12,8 @@
 // on 64 x 32 meshes) after one warm-up run each, the first of a round rotating
 // (Bench::RunRounds). Per mesh: the median and quartiles of the original's time / ours, the ratio
 // of the fastest runs, and the face corners whose kernel frame differs from the original's.
+// Then the original and the kernel on 100,000 small random meshes (1,000 with --smoke), face
+// corner by face corner (RandomMeshes).
 // Printed, and written to DIR/mikktspace.md (a section of docs/benchmarks.md) with --out;
 // scripts/bench.sh runs it. The original is compiled in only when the CMake variable
 // NORMALMAPPING_MIKKTSPACE_REFERENCE_DIR names its source (it is not part of this repository);
@@ -38,10 +40,13 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -208,6 +213,103 @@ Comparison Compare(const Bench::PairingMesh& mesh, int rounds)
   return result;
 }
 
+/**
+ * Small random meshes, for the corner by corner comparison: 4 to 12 points on a small integer
+ * grid (mostly flat, some lifted by one), normals of a few directions, texture coordinates on a
+ * half-integer grid, and 1 to 12 triangles or quads on random points (a point may repeat within a
+ * face). So they hold what large meshes rarely do: folds, mirrored and zero UV areas, non-manifold
+ * and repeated edges, degenerate triangles and quads. Each ends with an isolated triangle on
+ * points of its own: the original leaves the edges of the largest welded index unsorted
+ * (docs/mikktspace.md), and that triangle's edges are then the only ones there.
+ */
+class RandomMeshes
+{
+public:
+  NormalMappingTesting::KernelMesh Next()
+  {
+    NormalMappingTesting::KernelMesh m;
+    const int numPoints = this->Uniform(4, 12);
+    for (int p = 0; p < numPoints; ++p)
+    {
+      const bool lifted = this->Uniform(0, 2) == 0;
+      const std::array<float, 3> position = { float(this->Uniform(-2, 2)),
+        float(this->Uniform(-2, 2)),
+        lifted ? float(this->Uniform(-1, 1)) : 0.0f };
+      std::array<float, 3> normal = { this->Uniform(0, 3) == 0 ? float(this->Uniform(-1, 1)) : 0.0f,
+        this->Uniform(0, 3) == 0 ? float(this->Uniform(-1, 1)) : 0.0f,
+        1.0f };
+      const float length =
+        std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+      for (float& c : normal)
+      {
+        c /= length;
+      }
+      m.AddPoint(position,
+        normal,
+        { 0.5f * float(this->Uniform(-3, 3)), 0.5f * float(this->Uniform(-3, 3)) });
+    }
+    const int numFaces = this->Uniform(1, 12);
+    for (int f = 0; f < numFaces; ++f)
+    {
+      const int corners = this->Uniform(0, 2) == 0 ? 3 : 4;
+      for (int k = 0; k < corners; ++k)
+      {
+        m.Conn.push_back(this->Uniform(0, numPoints - 1));
+      }
+      m.Offsets.push_back(static_cast<long long>(m.Conn.size()));
+    }
+    const long long a = m.AddPoint({ 10, 0, 0 }, { 0, 0, 1 }, { 10, 0 });
+    const long long b = m.AddPoint({ 11, 0, 0 }, { 0, 0, 1 }, { 11, 0 });
+    const long long c = m.AddPoint({ 10, 1, 0 }, { 0, 0, 1 }, { 10, 1 });
+    m.AddFace({ a, b, c });
+    return m;
+  }
+
+private:
+  /// An integer in [lo, hi], the same sequence with every standard library.
+  int Uniform(int lo, int hi)
+  {
+    return lo + static_cast<int>(this->Engine() % static_cast<unsigned>(hi - lo + 1));
+  }
+  std::mt19937 Engine{ 1 };
+};
+
+/// The original and the kernel (one thread) on `count` random meshes (RandomMeshes), corner by
+/// corner; the section's paragraph in `md`. False when the original failed on one.
+bool CompareRandomMeshes(long long count, std::ostringstream& md)
+{
+  RandomMeshes meshes;
+  long long corners = 0, differing = 0, meshesDiffering = 0;
+  bool ok = true;
+  for (long long i = 0; i < count; ++i)
+  {
+    const NormalMappingTesting::KernelMesh mesh = meshes.Next();
+    const mikk::MeshInput in = mesh.Input();
+    Reference reference(in);
+    ok = reference.Run() && ok;
+    const mikk::Result kernel = mikk::ComputeMikkTSpace(in, 1);
+    long long here = 0;
+    for (size_t c = 0; c < reference.Corners.size(); ++c)
+    {
+      here +=
+        std::memcmp(&reference.Corners[c], &kernel.Corners[c], sizeof(mikk::CornerFrame)) ? 1 : 0;
+    }
+    corners += static_cast<long long>(reference.Corners.size());
+    differing += here;
+    meshesDiffering += here > 0 ? 1 : 0;
+  }
+  std::cout << "random small meshes: " << count << " meshes, " << corners << " face corners, "
+            << differing << " differing from mikktspace.c in " << meshesDiffering << " meshes"
+            << (ok ? "" : " (A RUN FAILED)") << std::endl;
+  md << "Random small meshes (4 to 12 points on a small grid, 1 to 12 triangles and quads on them, "
+        "with folds, mirrored and zero UV areas, non-manifold and repeated edges, degenerate "
+        "faces; see `RandomMeshes` in `Testing/Benchmarks/BenchMikkTSpace.cxx`): "
+     << Bench::Count(count) << " meshes, " << Bench::Count(corners) << " face corners, of which "
+     << Bench::Count(differing) << " differ from the original's in any bit (in "
+     << Bench::Count(meshesDiffering) << " meshes).\n";
+  return ok;
+}
+
 /// The paired runs on every mesh; the section's text in `md`. False when a run failed.
 bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
 {
@@ -277,6 +379,8 @@ int RunPaired(const std::string& out, bool smoke, int rounds)
   bool ok = true;
 #ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
   ok = ComparePaired(smoke, rounds, md);
+  md << "\n";
+  ok = CompareRandomMeshes(smoke ? 1000 : 100000, md) && ok;
 #else
   (void)smoke;
   (void)rounds;
