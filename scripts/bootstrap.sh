@@ -33,6 +33,8 @@ packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark
   python3-vtk9 libpython3-dev libpng-dev libjpeg-dev)
 # g++-aarch64-linux-gnu: the test job compiles the library for 64-bit ARM (scripts/portability.sh).
 [ "$job" != test ] || packages+=(g++-aarch64-linux-gnu)
+# ccache: compiled objects kept outside the checkout (below).
+packages+=(ccache)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -44,6 +46,21 @@ if [ "${#missing[@]}" -gt 0 ]; then
   $sudo_cmd apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
     "${missing[@]}" >/dev/null
+fi
+
+# Every build below (this one, ParaView's, the sanitizer and OSMesa module builds, and the
+# builds ctest runs) compiles through ccache, with its objects in the cache folder the OSMesa VTK
+# also lives in: a fresh clone then recompiles only what changed. Paths are hashed relative to
+# the checkout, so clones in other folders share the objects. No writable cache folder: no
+# ccache, the builds compile everything.
+cache="${NORMALMAPPING_CACHE:-/var/cache/normalmapping}"
+if ! mkdir -p "$cache" 2>/dev/null || [ ! -w "$cache" ]; then
+  [ "$(id -u)" -eq 0 ] || { sudo mkdir -p "$cache" && sudo chown "$(id -u):$(id -g)" "$cache"; } ||
+    true
+fi
+if mkdir -p "$cache/ccache" 2>/dev/null && [ -w "$cache/ccache" ]; then
+  export CCACHE_DIR="$cache/ccache" CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
+  export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
 fi
 
 # The original mikktspace.c is not part of this repository: its folder, when given, is compiled

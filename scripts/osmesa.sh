@@ -171,7 +171,9 @@ build_vtk() {
   echo "== VTK with OSMesa (minimal), into $prefix"
   local src
   src="$(find "$work" -maxdepth 1 -type d -name 'vtk9-*' | head -n 1)"
-  cmake -S "$src" -B "$work/vtk-build" -G Ninja --no-warn-unused-cli \
+  # VTK is built once per key: its objects would only fill the compiler cache (bootstrap.sh).
+  env -u CMAKE_C_COMPILER_LAUNCHER -u CMAKE_CXX_COMPILER_LAUNCHER \
+    cmake -S "$src" -B "$work/vtk-build" -G Ninja --no-warn-unused-cli \
     -DCMAKE_INSTALL_PREFIX="$prefix" "${vtk_options[@]}" >"$work/vtk-configure.log" ||
     { tail -n 40 "$work/vtk-configure.log"; exit 1; }
   "${niced[@]}" cmake --build "$work/vtk-build" -j "$jobs" >"$work/vtk-build.log" 2>&1 ||
