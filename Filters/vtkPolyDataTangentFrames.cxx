@@ -159,6 +159,129 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
   return problem;
 }
 
+/**
+ * Whether every cell array of `input` can be read safely (CellArrayProblem); if not, an error
+ * says which and why. Warns about polygons and strips with fewer than 3 points.
+ * `polysAreTriangles`: every polygon has 3 points.
+ */
+bool ReadableCells(vtkPolyDataTangentFrames* self, vtkPolyData* input, bool& polysAreTriangles)
+{
+  const std::pair<const char*, vtkCellArray*> cellArrays[] = { { "vertex", input->GetVerts() },
+    { "line", input->GetLines() },
+    { "polygon", input->GetPolys() },
+    { "triangle strip", input->GetStrips() } };
+  vtkIdType shortCells[4] = { 0, 0, 0, 0 };
+  bool trianglesOnly[4] = { true, true, true, true };
+  for (int a = 0; a < 4; ++a)
+  {
+    const std::string problem =
+      CellArrayProblem(cellArrays[a].second, shortCells[a], trianglesOnly[a]);
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(self,
+        "Cannot compute tangent frames: the " << cellArrays[a].first << " cell array is malformed: "
+                                              << problem << "; passing the input through.");
+      return false;
+    }
+  }
+  if (shortCells[2] + shortCells[3] > 0)
+  {
+    vtkWarningWithObjectMacro(self,
+      << shortCells[2] + shortCells[3]
+      << " polygon or strip cells have fewer than 3 points; they pass through and give no "
+         "frames.");
+  }
+  polysAreTriangles = trianglesOnly[2];
+  return true;
+}
+
+/**
+ * The texture coordinates the frames follow: the point array `name`, or the active TCoords when
+ * `name` is empty. Null, with an error, when it is missing, not numeric or too short; warns when
+ * it has one component (v = 0) or more than two (the first two are used).
+ */
+vtkDataArray* TextureCoordinatesOf(vtkPolyDataTangentFrames* self,
+  vtkPolyData* input,
+  const std::string& name)
+{
+  vtkPointData* pd = input->GetPointData();
+  vtkAbstractArray* abstract = name.empty() ? pd->GetTCoords() : pd->GetAbstractArray(name.c_str());
+  const std::string label = name.empty() ? std::string("texture coordinates (no active TCoords)")
+                                         : "texture coordinates '" + name + "'";
+  std::string problem;
+  vtkDataArray* uvs = NumericPointArray(input, label.c_str(), abstract, problem);
+  if (!uvs)
+  {
+    vtkErrorWithObjectMacro(
+      self, "Cannot compute tangent frames: " << problem << "; passing the input through.");
+    return nullptr;
+  }
+  const char* uvName = uvs->GetName() ? uvs->GetName() : "";
+  if (uvs->GetNumberOfComponents() == 1)
+  {
+    vtkWarningWithObjectMacro(self,
+      "Texture coordinates '" << uvName
+                              << "' have 1 component; using (u, 0), so every triangle has zero "
+                                 "UV area and gets a fallback frame.");
+  }
+  else if (uvs->GetNumberOfComponents() > 2)
+  {
+    vtkWarningWithObjectMacro(self,
+      "Texture coordinates '" << uvName << "' have " << uvs->GetNumberOfComponents()
+                              << " components; using the first two.");
+  }
+  return uvs;
+}
+
+/**
+ * The input's point normals when they are usable as an array (numeric, 3 components, one per
+ * point), else null with a warning that says what happens instead: the cell normals, when there
+ * are usable ones (returned in `cellNormals`), averaged to points, or normals computed from the
+ * triangles.
+ */
+vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
+  vtkPolyData* input,
+  vtkDataArray*& cellNormals)
+{
+  cellNormals = nullptr;
+  vtkDataArray* normals = input->GetPointData()->GetNormals();
+  if (normals)
+  {
+    std::string problem;
+    normals = NumericPointArray(input, "Normals", normals, problem);
+    if (normals && normals->GetNumberOfComponents() != 3)
+    {
+      problem = "point normals have " + std::to_string(normals->GetNumberOfComponents()) +
+        " components instead of 3";
+      normals = nullptr;
+    }
+    if (!normals)
+    {
+      vtkWarningWithObjectMacro(self, "Ignoring the point normals: " << problem << ".");
+    }
+  }
+  if (normals)
+  {
+    return normals;
+  }
+  vtkDataArray* cn = input->GetCellData()->GetNormals();
+  if (cn && cn->GetNumberOfComponents() == 3 &&
+    cn->GetNumberOfTuples() >= input->GetNumberOfCells())
+  {
+    cellNormals = cn;
+    vtkWarningWithObjectMacro(self,
+      "The input has cell normals but no point normals; averaging the cell normals to points "
+      "(area-weighted) and adding them as point 'Normals'.");
+  }
+  else
+  {
+    vtkWarningWithObjectMacro(self,
+      "The input has no point normals; computing smooth area-weighted point normals (without "
+      "splitting) and adding them as point 'Normals'.");
+  }
+  return nullptr;
+}
+
 /// Storage whose every entry the filter writes before reading it (not cleared first).
 template<typename T>
 using Buffer = std::unique_ptr<T[]>;
@@ -1657,23 +1780,10 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
     return 1;
   };
   // Malformed cell arrays first: nothing below (not even the cell counts) can be trusted.
-  const std::pair<const char*, vtkCellArray*> cellArrays[] = { { "vertex", input->GetVerts() },
-    { "line", input->GetLines() },
-    { "polygon", input->GetPolys() },
-    { "triangle strip", input->GetStrips() } };
-  vtkIdType shortCells[4] = { 0, 0, 0, 0 };
-  bool trianglesOnly[4] = { true, true, true, true };
-  for (int a = 0; a < 4; ++a)
+  bool polysAreTriangles = true;
+  if (!ReadableCells(this, input, polysAreTriangles))
   {
-    const std::string problem =
-      CellArrayProblem(cellArrays[a].second, shortCells[a], trianglesOnly[a]);
-    if (!problem.empty())
-    {
-      vtkErrorMacro("Cannot compute tangent frames: the " << cellArrays[a].first
-                                                          << " cell array is malformed: " << problem
-                                                          << "; passing the input through.");
-      return passThrough();
-    }
+    return passThrough();
   }
   if (input->GetNumberOfPoints() == 0 ||
     input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
@@ -1681,78 +1791,15 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
     // Nothing to give frames to; not an error (vertices and lines only, or empty input).
     return passThrough();
   }
-  if (shortCells[2] + shortCells[3] > 0)
-  {
-    vtkWarningMacro(<< shortCells[2] + shortCells[3]
-                    << " polygon or strip cells have fewer than 3 points; they "
-                       "pass through and give no frames.");
-  }
-
-  // Texture coordinates.
-  vtkPointData* pd = input->GetPointData();
-  std::string problem;
-  vtkAbstractArray* uvAbstract = this->TCoordsArrayName.empty()
-    ? pd->GetTCoords()
-    : pd->GetAbstractArray(this->TCoordsArrayName.c_str());
-  const std::string uvLabel = this->TCoordsArrayName.empty()
-    ? std::string("texture coordinates (no active TCoords)")
-    : "texture coordinates '" + this->TCoordsArrayName + "'";
-  vtkDataArray* uvs = NumericPointArray(input, uvLabel.c_str(), uvAbstract, problem);
+  vtkDataArray* uvs = TextureCoordinatesOf(this, input, this->TCoordsArrayName);
   if (!uvs)
   {
-    vtkErrorMacro("Cannot compute tangent frames: " << problem << "; passing the input through.");
     return passThrough();
   }
-  if (uvs->GetNumberOfComponents() == 1)
-  {
-    vtkWarningMacro("Texture coordinates '"
-      << (uvs->GetName() ? uvs->GetName() : "")
-      << "' have 1 component; using (u, 0), so every "
-         "triangle has zero UV area and gets a fallback frame.");
-  }
-  else if (uvs->GetNumberOfComponents() > 2)
-  {
-    vtkWarningMacro("Texture coordinates '" << (uvs->GetName() ? uvs->GetName() : "") << "' have "
-                                            << uvs->GetNumberOfComponents()
-                                            << " components; using the first two.");
-  }
-
-  // Normals: point normals, else cell normals, else computed.
-  vtkDataArray* normals = pd->GetNormals();
   vtkDataArray* cellNormals = nullptr;
-  if (normals)
-  {
-    normals = NumericPointArray(input, "Normals", normals, problem);
-    if (normals && normals->GetNumberOfComponents() != 3)
-    {
-      problem = "point normals have " + std::to_string(normals->GetNumberOfComponents()) +
-        " components instead of 3";
-      normals = nullptr;
-    }
-    if (!normals)
-    {
-      vtkWarningMacro("Ignoring the point normals: " << problem << ".");
-    }
-  }
-  if (!normals)
-  {
-    vtkDataArray* cn = input->GetCellData()->GetNormals();
-    if (cn && cn->GetNumberOfComponents() == 3 &&
-      cn->GetNumberOfTuples() >= input->GetNumberOfCells())
-    {
-      cellNormals = cn;
-      vtkWarningMacro("The input has cell normals but no point normals; averaging the cell "
-                      "normals to points (area-weighted) and adding them as point 'Normals'.");
-    }
-    else
-    {
-      vtkWarningMacro("The input has no point normals; computing smooth area-weighted point "
-                      "normals (without splitting) and adding them as point 'Normals'.");
-    }
-  }
-
+  vtkDataArray* normals = PointNormalsOf(this, input, cellNormals);
   const BlockInput block{
-    input, output, uvs, normals, cellNormals, trianglesOnly[2], progressBegin, progressEnd
+    input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
   };
   return this->SuppliedTangents != RECOMPUTE ? this->ExecuteSupplied(block)
                                              : this->ComputeBlock(block);
