@@ -16,6 +16,7 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace
@@ -75,6 +76,77 @@ vtkSmartPointer<vtkDataArray> NewArray(bool doublePrecision,
   array->SetNumberOfTuples(tuples);
   return array;
 }
+
+/// The number of points whose defects include any bit of `mask`.
+vtkIdType CountDefects(const vtkNormalMapping::FrameCheck& check, unsigned char mask)
+{
+  return static_cast<vtkIdType>(std::count_if(check.Defects.begin(),
+    check.Defects.end(),
+    [mask](unsigned char defects) { return (defects & mask) != 0; }));
+}
+
+/// `input` with one more point array, SourceIdsName, holding each point's own id.
+vtkSmartPointer<vtkPolyData> WithSourceIds(vtkPolyData* input)
+{
+  auto marked = vtkSmartPointer<vtkPolyData>::New();
+  marked->ShallowCopy(input);
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName(SourceIdsName);
+  ids->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    ids->SetValue(p, p);
+  }
+  marked->GetPointData()->AddArray(ids);
+  return marked;
+}
+
+/// New frame arrays of `tuples` tuples in `pd`, as floats or doubles.
+FrameOutput NewFrameOutput(vtkPointData* pd,
+  bool doublePrecision,
+  bool bitangents,
+  vtkIdType tuples)
+{
+  FrameOutput out;
+  auto tangents =
+    NewArray(doublePrecision, vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples);
+  auto signs = NewArray(doublePrecision, vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples);
+  pd->SetTangents(tangents);
+  pd->AddArray(signs);
+  out.Tangents = tangents;
+  out.Signs = signs;
+  if (bitangents)
+  {
+    auto b = NewArray(doublePrecision, vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples);
+    pd->AddArray(b);
+    out.Bitangents = b;
+  }
+  return out;
+}
+
+/**
+ * The frame arrays ComputeBlock wrote to `output` from `input` (WithSourceIds), and the input
+ * point of every output point in `sourceIds`, which leaves the output. False when there are none
+ * to write into: after an error ComputeBlock passes the input through (its arrays, shared: never
+ * written) and after an abort the output is empty.
+ */
+bool ComputedFrameOutput(vtkPolyData* input,
+  vtkPolyData* output,
+  FrameOutput& out,
+  vtkSmartPointer<vtkIdTypeArray>& sourceIds)
+{
+  vtkPointData* outPD = output->GetPointData();
+  vtkPointData* inPD = input->GetPointData();
+  sourceIds = vtkIdTypeArray::SafeDownCast(outPD->GetArray(SourceIdsName));
+  outPD->RemoveArray(SourceIdsName);
+  out.Tangents = outPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName());
+  out.Signs = outPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+  out.Bitangents = outPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName());
+  return sourceIds && out.Tangents && out.Signs &&
+    sourceIds->GetNumberOfTuples() == output->GetNumberOfPoints() &&
+    out.Tangents != inPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName()) &&
+    out.Signs != inPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+}
 } // namespace
 
 const char* vtkPolyDataTangentFrames::GetSuppliedTangentsName(int mode)
@@ -133,16 +205,11 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   this->NumberOfNonFiniteTangents += counts.NonFinite;
   this->NumberOfNonUnitTangents += counts.NotUnit;
   this->NumberOfNonPerpendicularTangents += counts.NotPerpendicular;
-  const unsigned char wrongSign = vtkNormalMapping::DefectSignNotUnit |
-    vtkNormalMapping::DefectSignAgainstWinding | vtkNormalMapping::DefectMixedWinding;
+  this->NumberOfWrongSignTangents += CountDefects(check,
+    vtkNormalMapping::DefectSignNotUnit | vtkNormalMapping::DefectSignAgainstWinding |
+      vtkNormalMapping::DefectMixedWinding);
   const unsigned char replaced = keepValid ? 0xff : vtkNormalMapping::DefectNonFinite;
-  const vtkIdType numPoints = input->GetNumberOfPoints();
-  vtkIdType numReplaced = 0;
-  for (vtkIdType p = 0; p < numPoints; ++p)
-  {
-    this->NumberOfWrongSignTangents += (check.Defects[p] & wrongSign) ? 1 : 0;
-    numReplaced += (check.Defects[p] & replaced) ? 1 : 0;
-  }
+  const vtkIdType numReplaced = CountDefects(check, replaced);
   this->NumberOfReplacedTangents += numReplaced;
   if (!keepValid && numReplaced > 0)
   {
@@ -151,66 +218,28 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   }
 
   // Computed frames first, where some are needed; then the kept frames over them.
-  const bool needsComputation = numReplaced > 0 || this->ComputeCellTangents;
-  vtkSmartPointer<vtkIdTypeArray> sourceIds;
-  if (needsComputation)
-  {
-    vtkNew<vtkPolyData> marked;
-    marked->ShallowCopy(input);
-    vtkNew<vtkIdTypeArray> ids;
-    ids->SetName(SourceIdsName);
-    ids->SetNumberOfTuples(numPoints);
-    for (vtkIdType p = 0; p < numPoints; ++p)
-    {
-      ids->SetValue(p, p);
-    }
-    marked->GetPointData()->AddArray(ids);
-    compute(marked);
-    sourceIds = vtkIdTypeArray::SafeDownCast(output->GetPointData()->GetArray(SourceIdsName));
-    output->GetPointData()->RemoveArray(SourceIdsName);
-  }
-  else
-  {
-    output->ShallowCopy(input);
-  }
-
-  vtkPointData* outPD = output->GetPointData();
-  const vtkIdType numOut = output->GetNumberOfPoints();
   FrameOutput out;
-  // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:
-  // the opposite of the supplied (glTF) convention.
-  out.SignFactor = this->GLTFSignConvention && this->Method != MIKKTSPACE ? -1.0 : 1.0;
-  if (needsComputation)
+  vtkSmartPointer<vtkIdTypeArray> sourceIds;
+  if (numReplaced > 0 || this->ComputeCellTangents)
   {
-    out.Tangents = outPD->GetArray(TangentsArrayName());
-    out.Signs = outPD->GetArray(SignsArrayName());
-    out.Bitangents = outPD->GetArray(BitangentsArrayName());
-    // After an error ComputeBlock passes the input through (its arrays, shared: never written)
-    // and after an abort the output is empty.
-    vtkPointData* inPD = input->GetPointData();
-    if (!sourceIds || !out.Tangents || !out.Signs || sourceIds->GetNumberOfTuples() != numOut ||
-      out.Tangents == inPD->GetArray(TangentsArrayName()) ||
-      out.Signs == inPD->GetArray(SignsArrayName()))
+    compute(WithSourceIds(input));
+    if (!ComputedFrameOutput(input, output, out, sourceIds))
     {
       return 1;
     }
   }
   else
   {
-    const bool doublePrecision = this->DoubleOutput(input);
-    auto tangents = NewArray(doublePrecision, TangentsArrayName(), 3, numOut);
-    auto signs = NewArray(doublePrecision, SignsArrayName(), 1, numOut);
-    outPD->SetTangents(tangents);
-    outPD->AddArray(signs);
-    out.Tangents = tangents;
-    out.Signs = signs;
-    if (this->ComputeBitangents)
-    {
-      auto bitangents = NewArray(doublePrecision, BitangentsArrayName(), 3, numOut);
-      outPD->AddArray(bitangents);
-      out.Bitangents = bitangents;
-    }
+    output->ShallowCopy(input);
+    out = NewFrameOutput(output->GetPointData(),
+      this->DoubleOutput(input),
+      this->ComputeBitangents,
+      output->GetNumberOfPoints());
   }
+  // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:
+  // the opposite of the supplied (glTF) convention.
+  out.SignFactor = this->GLTFSignConvention && this->Method != MIKKTSPACE ? -1.0 : 1.0;
+  const vtkIdType numOut = output->GetNumberOfPoints();
   vtkSMPTools::For(0,
     numOut,
     [&](vtkIdType begin, vtkIdType end)
