@@ -1174,6 +1174,55 @@ vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkId
   array->SetNumberOfTuples(tuples);
   return array;
 }
+
+/// The output's point frame arrays: tangents, signs and, when asked for, bitangents.
+template<typename OutT>
+struct OutputFrames
+{
+  vtkSmartPointer<OutArray<OutT>> Tangents;
+  vtkSmartPointer<OutArray<OutT>> Signs;
+  vtkSmartPointer<OutArray<OutT>> Bitangents;
+
+  OutputFrames(vtkIdType tuples, bool bitangents)
+    : Tangents(NewArray<OutT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples))
+    , Signs(NewArray<OutT>(vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples))
+    , Bitangents(bitangents
+          ? NewArray<OutT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
+          : nullptr)
+  {
+  }
+
+  /// Their storage, to write frames into; valid until Resize.
+  FrameArrays<OutT> Storage() const
+  {
+    return { this->Tangents->GetPointer(0),
+      this->Signs->GetPointer(0),
+      this->Bitangents ? this->Bitangents->GetPointer(0) : nullptr };
+  }
+
+  void Resize(vtkIdType tuples)
+  {
+    for (OutArray<OutT>* array :
+      { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
+    {
+      if (array)
+      {
+        array->SetNumberOfTuples(tuples);
+      }
+    }
+  }
+
+  /// Adds them to `pd`, the tangents as its active tangents.
+  void AddTo(vtkPointData* pd) const
+  {
+    pd->SetTangents(this->Tangents);
+    pd->AddArray(this->Signs);
+    if (this->Bitangents)
+    {
+      pd->AddArray(this->Bitangents);
+    }
+  }
+};
 } // namespace
 
 /// One execution on one polydata, with what it needs from the filter.
@@ -1462,6 +1511,46 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     this->Output->SetStrips(
       vtkNormalMapping::detail::RepointCells(this->Cells[1], repoint, polySize, stripSize, maxId));
   }
+
+  /**
+   * The output: the input with the split points appended (their point data copied, the computed
+   * normals too) and their mirrored corners re-pointed, the point frames, and the cell tangents
+   * when asked for.
+   */
+  template<typename OutT>
+  void WriteOutput(const std::vector<SplitPoint>& splits,
+    OutputFrames<OutT>& frames,
+    vtkSmartPointer<OutArray<OutT>> computedNormals)
+  {
+    std::vector<vtkIdType> splitSource(splits.size());
+    std::transform(
+      splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
+    vtkNormalMapping::detail::CopyWithAppendedPoints(this->Input, this->Output, splitSource);
+    frames.Resize(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
+    if (!splits.empty())
+    {
+      if (computedNormals)
+      {
+        computedNormals = OutArray<OutT>::SafeDownCast(vtkNormalMapping::detail::ExtendPointArray(
+          computedNormals, this->NumberOfPoints, splitSource));
+      }
+      this->AppendSplitFrames(splits, frames.Storage());
+    }
+    vtkPointData* outPD = this->Output->GetPointData();
+    if (computedNormals)
+    {
+      outPD->SetNormals(computedNormals);
+    }
+    frames.AddTo(outPD);
+    if (this->Self->ComputeCellTangents)
+    {
+      const vtkIdType numCells = this->Input->GetNumberOfCells();
+      auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
+      CellTangentArray(
+        this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
+      this->Output->GetCellData()->SetTangents(cellTangents);
+    }
+  }
 };
 
 template<typename OutT>
@@ -1548,23 +1637,11 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
 
   // Room for the split points' frames too: one per mirror-seam point when splitting.
-  const vtkIdType withSplits = numPoints + (self->Splitting ? sums.SeamPoints() : 0);
-  auto tangents = NewArray<OutT>(TangentsArrayName(), 3, withSplits);
-  auto signs = NewArray<OutT>(SignsArrayName(), 1, withSplits);
-  vtkSmartPointer<OutArray<OutT>> bitangents;
-  if (self->ComputeBitangents)
-  {
-    bitangents = NewArray<OutT>(BitangentsArrayName(), 3, withSplits);
-  }
-  const auto frameArrays = [&]()
-  {
-    return FrameArrays<OutT>{ tangents->GetPointer(0),
-      signs->GetPointer(0),
-      bitangents ? bitangents->GetPointer(0) : nullptr };
-  };
+  OutputFrames<OutT> frames(
+    numPoints + (self->Splitting ? sums.SeamPoints() : 0), self->ComputeBitangents);
   const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  WriteFrames(numPoints, sumsOf, normals, self->Splitting, frameArrays(), kinds.get());
+  WriteFrames(numPoints, sumsOf, normals, self->Splitting, frames.Storage(), kinds.get());
   const std::vector<vtkIdType> conflicts =
     PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
   const std::vector<vtkIdType> fallbacks =
@@ -1578,7 +1655,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   if (!fallbacks.empty())
   {
     FillFallbacks(
-      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frameArrays());
+      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frames.Storage());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
@@ -1586,50 +1663,8 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   {
     return 1;
   }
-
-  // Output: the input with the split points appended and their mirrored corners re-pointed.
-  vtkPolyData* input = this->Input;
-  vtkPolyData* output = this->Output;
   self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
-  std::vector<vtkIdType> splitSource(splits.size());
-  std::transform(
-    splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
-  vtkNormalMapping::detail::CopyWithAppendedPoints(input, output, splitSource);
-  for (OutArray<OutT>* array : { tangents.Get(), signs.Get(), bitangents.Get() })
-  {
-    if (array)
-    {
-      array->SetNumberOfTuples(numPoints + static_cast<vtkIdType>(splits.size()));
-    }
-  }
-  if (!splits.empty())
-  {
-    if (computedNormals)
-    {
-      computedNormals = OutArray<OutT>::SafeDownCast(
-        vtkNormalMapping::detail::ExtendPointArray(computedNormals, numPoints, splitSource));
-    }
-    this->AppendSplitFrames(splits, frameArrays());
-  }
-  vtkPointData* outPD = output->GetPointData();
-  if (computedNormals)
-  {
-    outPD->SetNormals(computedNormals);
-  }
-  outPD->SetTangents(tangents);
-  outPD->AddArray(signs);
-  if (bitangents)
-  {
-    outPD->AddArray(bitangents);
-  }
-  if (self->ComputeCellTangents)
-  {
-    const vtkIdType numCells = input->GetNumberOfCells();
-    auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
-    CellTangentArray(
-      this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
-    output->GetCellData()->SetTangents(cellTangents);
-  }
+  this->WriteOutput(splits, frames, computedNormals);
   this->Continue(1.0);
   return 1;
 }
