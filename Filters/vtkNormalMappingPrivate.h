@@ -15,6 +15,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataTangentFrames.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
@@ -165,6 +166,62 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
     }
   }
 }
+
+/// A new array of class ArrayT with the given name, components and tuples (values not set).
+template<typename ArrayT>
+vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+/**
+ * The output's point frame arrays, `tuples` long, of one array class (vtkFloatArray or
+ * vtkDoubleArray): tangents, signs and, when asked for, bitangents, named as
+ * vtkPolyDataTangentFrames names them. The one place the filter's paths make them.
+ */
+template<typename ArrayT>
+struct OutputFrames
+{
+  vtkSmartPointer<ArrayT> Tangents;
+  vtkSmartPointer<ArrayT> Signs;
+  vtkSmartPointer<ArrayT> Bitangents; // null when not asked for
+
+  OutputFrames(vtkIdType tuples, bool bitangents)
+    : Tangents(NewArray<ArrayT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples))
+    , Signs(NewArray<ArrayT>(vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples))
+    , Bitangents(bitangents
+          ? NewArray<ArrayT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
+          : nullptr)
+  {
+  }
+
+  /// Changes the number of tuples of each (their storage may move).
+  void Resize(vtkIdType tuples)
+  {
+    for (ArrayT* array : { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
+    {
+      if (array)
+      {
+        array->SetNumberOfTuples(tuples);
+      }
+    }
+  }
+
+  /// Adds them to `pd`, the tangents as its active tangents.
+  void AddTo(vtkPointData* pd) const
+  {
+    pd->SetTangents(this->Tangents);
+    pd->AddArray(this->Signs);
+    if (this->Bitangents)
+    {
+      pd->AddArray(this->Bitangents);
+    }
+  }
+};
 
 /**
  * A copy of `cells` whose connectivity positions [base, base + size) listed in `repoint`

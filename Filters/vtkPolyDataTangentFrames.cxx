@@ -1168,61 +1168,21 @@ using OutArray =
 template<typename OutT>
 vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkIdType tuples)
 {
-  auto array = vtkSmartPointer<OutArray<OutT>>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
+  return vtkNormalMapping::detail::NewArray<OutArray<OutT>>(name, components, tuples);
 }
 
-/// The output's point frame arrays: tangents, signs and, when asked for, bitangents.
+/// The output's frame arrays of values OutT.
 template<typename OutT>
-struct OutputFrames
+using OutputFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
+
+/// The storage of `frames`, to write frames into; valid until Resize.
+template<typename OutT>
+FrameArrays<OutT> StorageOf(const OutputFrames<OutT>& frames)
 {
-  vtkSmartPointer<OutArray<OutT>> Tangents;
-  vtkSmartPointer<OutArray<OutT>> Signs;
-  vtkSmartPointer<OutArray<OutT>> Bitangents;
-
-  OutputFrames(vtkIdType tuples, bool bitangents)
-    : Tangents(NewArray<OutT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples))
-    , Signs(NewArray<OutT>(vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples))
-    , Bitangents(bitangents
-          ? NewArray<OutT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
-          : nullptr)
-  {
-  }
-
-  /// Their storage, to write frames into; valid until Resize.
-  FrameArrays<OutT> Storage() const
-  {
-    return { this->Tangents->GetPointer(0),
-      this->Signs->GetPointer(0),
-      this->Bitangents ? this->Bitangents->GetPointer(0) : nullptr };
-  }
-
-  void Resize(vtkIdType tuples)
-  {
-    for (OutArray<OutT>* array :
-      { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
-    {
-      if (array)
-      {
-        array->SetNumberOfTuples(tuples);
-      }
-    }
-  }
-
-  /// Adds them to `pd`, the tangents as its active tangents.
-  void AddTo(vtkPointData* pd) const
-  {
-    pd->SetTangents(this->Tangents);
-    pd->AddArray(this->Signs);
-    if (this->Bitangents)
-    {
-      pd->AddArray(this->Bitangents);
-    }
-  }
-};
+  return { frames.Tangents->GetPointer(0),
+    frames.Signs->GetPointer(0),
+    frames.Bitangents ? frames.Bitangents->GetPointer(0) : nullptr };
+}
 } // namespace
 
 /// One execution on one polydata, with what it needs from the filter.
@@ -1534,7 +1494,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         computedNormals = OutArray<OutT>::SafeDownCast(vtkNormalMapping::detail::ExtendPointArray(
           computedNormals, this->NumberOfPoints, splitSource));
       }
-      this->AppendSplitFrames(splits, frames.Storage());
+      this->AppendSplitFrames(splits, StorageOf<OutT>(frames));
     }
     vtkPointData* outPD = this->Output->GetPointData();
     if (computedNormals)
@@ -1641,7 +1601,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     numPoints + (self->Splitting ? sums.SeamPoints() : 0), self->ComputeBitangents);
   const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  WriteFrames(numPoints, sumsOf, normals, self->Splitting, frames.Storage(), kinds.get());
+  WriteFrames(numPoints, sumsOf, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
   const std::vector<vtkIdType> conflicts =
     PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
   const std::vector<vtkIdType> fallbacks =
@@ -1654,8 +1614,12 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(
-      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frames.Storage());
+    FillFallbacks(this->Tris,
+      this->CornerSides.get(),
+      normals,
+      kinds.get(),
+      fallbacks,
+      StorageOf<OutT>(frames));
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
@@ -1664,7 +1628,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     return 1;
   }
   self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
-  this->WriteOutput(splits, frames, computedNormals);
+  this->WriteOutput<OutT>(splits, frames, computedNormals);
   this->Continue(1.0);
   return 1;
 }

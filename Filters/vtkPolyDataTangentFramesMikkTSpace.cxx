@@ -712,24 +712,10 @@ void WriteOutput(const MikkTSpaceRequest& request,
   const auto sourceOf = [&](vtkIdType p)
   { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
 
-  vtkNew<OutArray> tangents, signs;
-  tangents->SetName(vtkPolyDataTangentFrames::TangentsArrayName());
-  tangents->SetNumberOfComponents(3);
-  tangents->SetNumberOfTuples(numOut);
-  signs->SetName(vtkPolyDataTangentFrames::SignsArrayName());
-  signs->SetNumberOfComponents(1);
-  signs->SetNumberOfTuples(numOut);
-  vtkSmartPointer<OutArray> bitangents;
-  if (request.Bitangents)
-  {
-    bitangents = vtkSmartPointer<OutArray>::New();
-    bitangents->SetName(vtkPolyDataTangentFrames::BitangentsArrayName());
-    bitangents->SetNumberOfComponents(3);
-    bitangents->SetNumberOfTuples(numOut);
-  }
-  OutT* tOut = tangents->GetPointer(0);
-  OutT* sOut = signs->GetPointer(0);
-  OutT* bOut = bitangents ? bitangents->GetPointer(0) : nullptr;
+  const OutputFrames<OutArray> arrays(numOut, request.Bitangents);
+  OutT* tOut = arrays.Tangents->GetPointer(0);
+  OutT* sOut = arrays.Signs->GetPointer(0);
+  OutT* bOut = arrays.Bitangents ? arrays.Bitangents->GetPointer(0) : nullptr;
   vtkSMPTools::For(0,
     numOut,
     [&](vtkIdType b, vtkIdType e)
@@ -765,21 +751,14 @@ void WriteOutput(const MikkTSpaceRequest& request,
     outPD->SetNormals(vtkDataArray::SafeDownCast(
       numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
   }
-  outPD->SetTangents(tangents);
-  outPD->AddArray(signs);
-  if (bitangents)
-  {
-    outPD->AddArray(bitangents);
-  }
+  arrays.AddTo(outPD);
 
   if (request.CellTangents)
   {
     const vtkIdType numCells = input->GetNumberOfCells();
     const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    vtkNew<OutArray> cellTangents;
-    cellTangents->SetName(vtkPolyDataTangentFrames::TangentsArrayName());
-    cellTangents->SetNumberOfComponents(3);
-    cellTangents->SetNumberOfTuples(numCells);
+    auto cellTangents =
+      NewArray<OutArray>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
     OutT* cOut = cellTangents->GetPointer(0);
     std::fill(cOut, cOut + 3 * numCells, OutT(0));
     vtkSMPTools::For(0,

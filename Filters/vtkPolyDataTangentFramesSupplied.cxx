@@ -4,6 +4,7 @@
 // of the points that need one come from ComputeBlock.
 #include "vtkPolyDataTangentFrames.h"
 
+#include "vtkNormalMappingPrivate.h"
 #include "vtkTangentFrameChecks.h"
 #include "vtkTangentFrameKernels.h"
 
@@ -57,26 +58,6 @@ struct FrameOutput
   }
 };
 
-vtkSmartPointer<vtkDataArray> NewArray(bool doublePrecision,
-  const char* name,
-  int components,
-  vtkIdType tuples)
-{
-  vtkSmartPointer<vtkDataArray> array;
-  if (doublePrecision)
-  {
-    array = vtkSmartPointer<vtkDoubleArray>::New();
-  }
-  else
-  {
-    array = vtkSmartPointer<vtkFloatArray>::New();
-  }
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
 /// The number of points whose defects include any bit of `mask`.
 vtkIdType CountDefects(const vtkNormalMapping::FrameCheck& check, unsigned char mask)
 {
@@ -101,26 +82,16 @@ vtkSmartPointer<vtkPolyData> WithSourceIds(vtkPolyData* input)
   return marked;
 }
 
-/// New frame arrays of `tuples` tuples in `pd`, as floats or doubles.
-FrameOutput NewFrameOutput(vtkPointData* pd,
-  bool doublePrecision,
-  bool bitangents,
-  vtkIdType tuples)
+/// New frame arrays of `tuples` tuples of class ArrayT in `pd`.
+template<typename ArrayT>
+FrameOutput NewFrameOutput(vtkPointData* pd, bool bitangents, vtkIdType tuples)
 {
+  const vtkNormalMapping::detail::OutputFrames<ArrayT> arrays(tuples, bitangents);
+  arrays.AddTo(pd);
   FrameOutput out;
-  auto tangents =
-    NewArray(doublePrecision, vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples);
-  auto signs = NewArray(doublePrecision, vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples);
-  pd->SetTangents(tangents);
-  pd->AddArray(signs);
-  out.Tangents = tangents;
-  out.Signs = signs;
-  if (bitangents)
-  {
-    auto b = NewArray(doublePrecision, vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples);
-    pd->AddArray(b);
-    out.Bitangents = b;
-  }
+  out.Tangents = arrays.Tangents;
+  out.Signs = arrays.Signs;
+  out.Bitangents = arrays.Bitangents;
   return out;
 }
 
@@ -231,10 +202,9 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   else
   {
     output->ShallowCopy(input);
-    out = NewFrameOutput(output->GetPointData(),
-      this->DoubleOutput(input),
-      this->ComputeBitangents,
-      output->GetNumberOfPoints());
+    const auto make =
+      this->DoubleOutput(input) ? NewFrameOutput<vtkDoubleArray> : NewFrameOutput<vtkFloatArray>;
+    out = make(output->GetPointData(), this->ComputeBitangents, output->GetNumberOfPoints());
   }
   // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:
   // the opposite of the supplied (glTF) convention.
