@@ -535,18 +535,18 @@ const CornerFrame& FrameOf(const Surface& s, const std::vector<CornerFrame>& fra
   return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
 }
 
-void Assign(const Surface& s,
+/**
+ * One ascending pass, polygon corners then strip corners: every point's frame is that of its
+ * first corner with a frame (a.PointFrame), and the corners whose frame differs from it are
+ * returned. The point keeps a copy of the frame (kernel frames have Sign +1 or -1, so Sign 0
+ * marks a point not reached yet): each corner then reads one entry per point instead of a point
+ * entry and a corner entry.
+ */
+std::vector<long long> FirstFrames(const Surface& s,
   const std::vector<CornerFrame>& frames,
   vtkIdType numPoints,
-  bool splitting,
   Assignment& a)
 {
-  const auto frameOf = [&](long long c) -> const CornerFrame& { return FrameOf(s, frames, c); };
-
-  // 1. One ascending pass, polygon corners then strip corners: the frame of every point's first
-  // corner with a frame, and the corners whose frame differs from it. The point keeps a copy of
-  // the frame (kernel frames have Sign +1 or -1, so Sign 0 marks a point not reached yet): each
-  // corner then reads one entry per point instead of a point entry and a corner entry.
   a.PointFrame.assign(static_cast<size_t>(numPoints), CornerFrame{ { 0.0f, 0.0f, 0.0f }, 0.0f });
   std::vector<long long> differing;
   const auto visit = [&](long long c, long long point, long long slot)
@@ -578,10 +578,19 @@ void Assign(const Surface& s,
         s.StripSlot[static_cast<size_t>(i)]);
     }
   }
+  return differing;
+}
 
-  // 2. Strip corners whose strip triangles disagree.
+/**
+ * The strip corners (output corner ids) whose strip triangles disagree: a corner shared by up to
+ * three triangles of a strip takes the frame of one of them (FrameOf); these are the corners where
+ * another one gives a different frame. Per chunk of kChunk strips, in strip order.
+ */
+std::vector<std::vector<long long>> StripDisagreements(const Surface& s,
+  const std::vector<CornerFrame>& frames)
+{
   const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
-  std::vector<std::vector<long long>> stripDisagree(static_cast<size_t>(numStripChunks));
+  std::vector<std::vector<long long>> disagree(static_cast<size_t>(numStripChunks));
   vtkSMPTools::For(0,
     numStripChunks,
     1,
@@ -597,13 +606,13 @@ void Assign(const Surface& s,
           const long long t0 = s.StripFirstTriangle[k];
           for (long long i = 0; i < n; ++i)
           {
-            const CornerFrame& chosen = frameOf(s.PolyCorners + first + i);
+            const CornerFrame& chosen = FrameOf(s, frames, s.PolyCorners + first + i);
             for (long long j = std::max(0LL, i - 2) + 1; j <= std::min(i, n - 3); ++j)
             {
               const long long slot = s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
               if (!SameFrame(frames[static_cast<size_t>(slot)], chosen))
               {
-                stripDisagree[chunk].push_back(s.PolyCorners + first + i);
+                disagree[chunk].push_back(s.PolyCorners + first + i);
                 break;
               }
             }
@@ -611,8 +620,25 @@ void Assign(const Surface& s,
         }
       }
     });
+  return disagree;
+}
 
-  // 3. Sequential, in corner order: conflicts and new points.
+/**
+ * Every point's frame (FirstFrames), the points with corners of other frames (conflicts: the
+ * corners FirstFrames found, and the strip corners whose triangles disagree), and with
+ * `splitting` one new point per other frame of a point, with the corners of that frame re-pointed
+ * to it.
+ */
+void Assign(const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  vtkIdType numPoints,
+  bool splitting,
+  Assignment& a)
+{
+  const std::vector<long long> differing = FirstFrames(s, frames, numPoints, a);
+  const std::vector<std::vector<long long>> stripDisagree = StripDisagreements(s, frames);
+
+  // Sequential, in corner order: conflicts and new points.
   std::vector<unsigned char> conflict;
   const auto markConflict = [&](long long p)
   {
@@ -643,7 +669,7 @@ void Assign(const Surface& s,
     {
       continue;
     }
-    const CornerFrame& f = frameOf(c);
+    const CornerFrame& f = FrameOf(s, frames, c);
     std::vector<vtkIdType>& mine = extra[p];
     vtkIdType id = -1;
     for (vtkIdType candidate : mine)
