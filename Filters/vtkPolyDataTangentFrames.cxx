@@ -863,7 +863,7 @@ struct FrameArrays
     this->Signs[p] = static_cast<OutT>(sign);
     if (this->Bitangents)
     {
-      const dvec3 b = sign * glm::cross(n, t);
+      const dvec3 b = vtkNormalMapping::Bitangent(n, t, sign);
       for (int c = 0; c < 3; ++c)
       {
         this->Bitangents[3 * p + c] = static_cast<OutT>(b[c]);

@@ -822,7 +822,7 @@ void WriteOutput(const MikkTSpaceRequest& request,
           // gives a zero bitangent (SafeNormalize), never NaN.
           const glm::dvec3 n = SafeNormalize(contractNormals[sourceOf(p)]);
           const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
-          const glm::dvec3 bt = static_cast<double>(sign) * glm::cross(n, t);
+          const glm::dvec3 bt = Bitangent(n, t, static_cast<double>(sign));
           for (int k = 0; k < 3; ++k)
           {
             bOut[3 * p + k] = static_cast<OutT>(bt[k]);

@@ -50,9 +50,10 @@ struct FrameOutput
     {
       double n[3];
       normals->GetTuple(in, n);
-      const glm::dvec3 b = sign *
-        glm::cross(vtkNormalMapping::SafeNormalize(glm::dvec3(n[0], n[1], n[2])),
-          glm::dvec3(t[0], t[1], t[2]));
+      const glm::dvec3 b =
+        vtkNormalMapping::Bitangent(vtkNormalMapping::SafeNormalize(glm::dvec3(n[0], n[1], n[2])),
+          glm::dvec3(t[0], t[1], t[2]),
+          sign);
       this->Bitangents->SetTuple3(out, b.x, b.y, b.z);
     }
   }

@@ -627,6 +627,12 @@ inline glm::dvec3 UnitPerpendicular(const glm::dvec3& n, const glm::dvec3& t, bo
 }
 } // namespace detail
 
+/// The bitangent of a frame: sign * (n x t), for the unit normal n and unit tangent t.
+inline glm::dvec3 Bitangent(const glm::dvec3& n, const glm::dvec3& t, double sign)
+{
+  return sign * glm::cross(n, t);
+}
+
 /// Unit normal, or zero when n is zero, denormal-small or non-finite.
 inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
 {
