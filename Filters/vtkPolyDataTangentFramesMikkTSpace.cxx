@@ -357,6 +357,12 @@ struct Surface
   }
 };
 
+/// The problem an id outside the points makes.
+std::string BadIdsProblem(vtkIdType numPoints)
+{
+  return "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
+}
+
 /// Position of strip corner i in strip triangle j (which must contain it).
 int PositionInStripTriangle(long long i, long long j)
 {
@@ -367,77 +373,154 @@ int PositionInStripTriangle(long long i, long long j)
   return i == j + 1 ? 0 : (i == j ? 1 : 2);
 }
 
-/// Fills `s`; returns false with `problem` set when a cell array is malformed or a polygon or
-/// strip with fewer than 3 points has an id outside [0, numPoints) (the kernel checks the
-/// others, and skips these without looking at their ids).
+/**
+ * The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle); false with
+ * `problem` set when their offsets are inconsistent or a strip with fewer than 3 points has an id
+ * outside [0, numPoints) (the kernel checks the others, and skips these without looking at them).
+ */
+bool LayOutStrips(vtkCellArray* strips, vtkIdType numPoints, Surface& s, std::string& problem)
+{
+  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  if (s.NumStrips == 0)
+  {
+    return true;
+  }
+  bool ok = true, inRange = true;
+  WithCellStorage(strips,
+    [&](auto* off, auto* conn)
+    {
+      ok = off[0] == 0 && off[s.NumStrips] == s.StripCorners;
+      for (vtkIdType k = 0; ok && k < s.NumStrips; ++k)
+      {
+        const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
+        ok = n >= 0;
+        inRange &= n >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
+        s.StripCornerStart[k + 1] = off[k + 1];
+        s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
+      }
+    });
+  problem = !ok ? "the triangle strip cell array has inconsistent offsets"
+                : (inRange ? "" : BadIdsProblem(numPoints));
+  return ok && inRange;
+}
+
+/**
+ * Notes the corners of polygons with fewer than 3 points (s.PolyFrameless: they get no frame);
+ * false with `problem` set when the offsets decrease or end elsewhere than the connectivity, or
+ * such a polygon has an id outside [0, numPoints).
+ */
+bool CheckPolygons(vtkCellArray* polys, vtkIdType numPoints, Surface& s, std::string& problem)
+{
+  if (s.NumPolys == 0)
+  {
+    return true;
+  }
+  bool ok = true, inRange = true;
+  WithCellStorage(polys,
+    [&](auto* off, auto* conn)
+    {
+      ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
+      for (vtkIdType k = 0; ok && k < s.NumPolys; ++k)
+      {
+        const long long b = off[k], e = off[k + 1];
+        ok = e >= b && e <= s.PolyCorners;
+        if (ok && e - b < 3)
+        {
+          inRange &= IdsInRange(conn, b, e, numPoints);
+          s.PolyFrameless.resize(static_cast<size_t>(s.PolyCorners), 0);
+          std::fill(s.PolyFrameless.begin() + b, s.PolyFrameless.begin() + e, 1);
+        }
+      }
+    });
+  problem = !ok ? "the polygon cell array has inconsistent offsets"
+                : (inRange ? "" : BadIdsProblem(numPoints));
+  return ok && inRange;
+}
+
+/// The polygons as the first faces: their offsets and ids copied to 64-bit storage.
+void CopyPolygons(vtkCellArray* polys, vtkIdType numPolys, long long* offsets, long long* conn)
+{
+  WithCellStorage(polys,
+    [&](auto* off, auto* ids)
+    {
+      vtkSMPTools::For(0,
+        numPolys,
+        [&](vtkIdType b, vtkIdType e)
+        {
+          for (vtkIdType k = b; k < e; ++k)
+          {
+            offsets[k + 1] = off[k + 1];
+          }
+          for (long long k = off[b]; k < static_cast<long long>(off[e]); ++k)
+          {
+            conn[k] = ids[k];
+          }
+        });
+    });
+}
+
+/**
+ * The strip triangles as faces after the polygons, each with the strip's winding, and per strip
+ * corner its point (s.StripPoint) and the kernel corner whose frame it takes (s.StripSlot: that
+ * of the first strip triangle containing it).
+ */
+void UnrollStrips(vtkCellArray* strips, Surface& s, long long* offsets, long long* conn)
+{
+  s.StripPoint.resize(static_cast<size_t>(s.StripCorners));
+  s.StripSlot.resize(static_cast<size_t>(s.StripCorners));
+  WithCellStorage(strips,
+    [&](auto*, auto* ids)
+    {
+      vtkSMPTools::For(0,
+        s.NumStrips,
+        [&](vtkIdType b, vtkIdType e)
+        {
+          for (vtkIdType k = b; k < e; ++k)
+          {
+            const long long first = s.StripCornerStart[k];
+            const long long n = s.StripCornerStart[k + 1] - first;
+            const long long t0 = s.StripFirstTriangle[k];
+            for (long long i = 0; i < n; ++i)
+            {
+              s.StripPoint[first + i] = ids[first + i];
+              const long long j = std::max(0LL, i - 2); // first strip triangle containing i
+              s.StripSlot[first + i] =
+                n < 3 ? -1 : s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
+            }
+            for (long long j = 0; j + 2 < n; ++j)
+            {
+              const long long face = s.NumPolys + t0 + j;
+              const long long base = s.PolyCorners + 3 * (t0 + j);
+              const bool odd = (j & 1) != 0;
+              offsets[face + 1] = base + 3;
+              conn[base] = ids[first + (odd ? j + 1 : j)];
+              conn[base + 1] = ids[first + (odd ? j : j + 1)];
+              conn[base + 2] = ids[first + j + 2];
+            }
+          }
+        });
+    });
+}
+
+/// Fills `s`; returns false with `problem` set when a cell array is malformed (LayOutStrips,
+/// CheckPolygons).
 bool BuildSurface(vtkCellArray* polys,
   vtkCellArray* strips,
   vtkIdType numPoints,
   Surface& s,
   std::string& problem)
 {
-  const std::string badIds =
-    "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
   s.NumPolys = polys ? polys->GetNumberOfCells() : 0;
   s.NumStrips = strips ? strips->GetNumberOfCells() : 0;
   s.PolyCorners = s.NumPolys > 0 ? polys->GetNumberOfConnectivityIds() : 0;
   s.StripCorners = s.NumStrips > 0 ? strips->GetNumberOfConnectivityIds() : 0;
-
-  // Strip layout (sequential prefix sums, validating the offsets).
-  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  if (s.NumStrips > 0)
+  if (!LayOutStrips(strips, numPoints, s, problem) || !CheckPolygons(polys, numPoints, s, problem))
   {
-    bool ok = true, inRange = true;
-    WithCellStorage(strips,
-      [&](auto* off, auto* conn)
-      {
-        ok = off[0] == 0 && off[s.NumStrips] == s.StripCorners;
-        for (vtkIdType k = 0; ok && k < s.NumStrips; ++k)
-        {
-          const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
-          ok = n >= 0;
-          inRange &= n >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
-          s.StripCornerStart[k + 1] = off[k + 1];
-          s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
-        }
-      });
-    if (!ok || !inRange)
-    {
-      problem = ok ? badIds : "the triangle strip cell array has inconsistent offsets";
-      return false;
-    }
-  }
-  if (s.NumPolys > 0)
-  {
-    bool ok = true, inRange = true;
-    WithCellStorage(polys,
-      [&](auto* off, auto* conn)
-      {
-        // Offsets must not decrease (the copy below relies on it). Polygons with fewer than 3
-        // points (rare) are noted: their corners get no frame.
-        ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
-        for (vtkIdType k = 0; ok && k < s.NumPolys; ++k)
-        {
-          const long long b = off[k], e = off[k + 1];
-          ok = e >= b && e <= s.PolyCorners;
-          if (ok && e - b < 3)
-          {
-            inRange &= IdsInRange(conn, b, e, numPoints);
-            s.PolyFrameless.resize(static_cast<size_t>(s.PolyCorners), 0);
-            std::fill(s.PolyFrameless.begin() + b, s.PolyFrameless.begin() + e, 1);
-          }
-        }
-      });
-    if (!ok || !inRange)
-    {
-      problem = ok ? badIds : "the polygon cell array has inconsistent offsets";
-      return false;
-    }
+    return false;
   }
   const long long numStripTriangles = s.StripFirstTriangle.back();
   s.NumFaces = s.NumPolys + numStripTriangles;
-
   if (s.NumStrips == 0 && s.NumPolys > 0 && polys->IsStorage64Bit())
   {
     // Shared: the kernel reads the polygon storage directly.
@@ -447,73 +530,17 @@ bool BuildSurface(vtkCellArray* polys,
   }
   s.OffsetStore.resize(static_cast<size_t>(s.NumFaces) + 1);
   s.ConnectivityStore.resize(static_cast<size_t>(s.PolyCorners + 3 * numStripTriangles));
-  long long* offsets = s.OffsetStore.data();
-  long long* conn = s.ConnectivityStore.data();
-  offsets[0] = 0;
+  s.OffsetStore[0] = 0;
   if (s.NumPolys > 0)
   {
-    WithCellStorage(polys,
-      [&](auto* off, auto* ids)
-      {
-        vtkSMPTools::For(0,
-          s.NumPolys,
-          [&](vtkIdType b, vtkIdType e)
-          {
-            for (vtkIdType k = b; k < e; ++k)
-            {
-              offsets[k + 1] = off[k + 1];
-            }
-            for (long long k = off[b]; k < static_cast<long long>(off[e]); ++k)
-            {
-              conn[k] = ids[k];
-            }
-          });
-      });
+    CopyPolygons(polys, s.NumPolys, s.OffsetStore.data(), s.ConnectivityStore.data());
   }
   if (s.NumStrips > 0)
   {
-    s.StripPoint.resize(static_cast<size_t>(s.StripCorners));
-    s.StripSlot.resize(static_cast<size_t>(s.StripCorners));
-    WithCellStorage(strips,
-      [&](auto*, auto* ids)
-      {
-        vtkSMPTools::For(0,
-          s.NumStrips,
-          [&](vtkIdType b, vtkIdType e)
-          {
-            for (vtkIdType k = b; k < e; ++k)
-            {
-              const long long first = s.StripCornerStart[k];
-              const long long n = s.StripCornerStart[k + 1] - first;
-              const long long t0 = s.StripFirstTriangle[k];
-              for (long long i = 0; i < n; ++i)
-              {
-                s.StripPoint[first + i] = ids[first + i];
-                if (n < 3)
-                {
-                  s.StripSlot[first + i] = -1;
-                  continue;
-                }
-                const long long j = std::max(0LL, i - 2); // first strip triangle containing i
-                s.StripSlot[first + i] =
-                  s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
-              }
-              for (long long j = 0; j + 2 < n; ++j)
-              {
-                const long long face = s.NumPolys + t0 + j;
-                const long long base = s.PolyCorners + 3 * (t0 + j);
-                const bool odd = (j & 1) != 0;
-                offsets[face + 1] = base + 3;
-                conn[base] = ids[first + (odd ? j + 1 : j)];
-                conn[base + 1] = ids[first + (odd ? j : j + 1)];
-                conn[base + 2] = ids[first + j + 2];
-              }
-            }
-          });
-      });
+    UnrollStrips(strips, s, s.OffsetStore.data(), s.ConnectivityStore.data());
   }
-  s.FaceOffsets = offsets;
-  s.FaceConnectivity = conn;
+  s.FaceOffsets = s.OffsetStore.data();
+  s.FaceConnectivity = s.ConnectivityStore.data();
   return true;
 }
 
@@ -752,41 +779,20 @@ void CellTangents(const Surface& s,
     });
 }
 
+/**
+ * Every output point's frame: the kernel frame Assignment gives it (the default for points no
+ * corner with a frame reaches), made to meet the contract with the normal of the input point it
+ * comes from (ContractFrame), its sign in the requested convention, and its bitangent.
+ */
 template<typename OutArray>
-void WriteOutput(const MikkTSpaceRequest& request,
-  const Surface& s,
-  const std::vector<CornerFrame>& frames,
-  const float* positions,
+void WritePointFrames(const MikkTSpaceRequest& request,
   const ContractNormals& contractNormals,
   const Assignment& a,
-  vtkPolyData* output)
+  vtkIdType numIn,
+  const OutputFrames<OutArray>& arrays)
 {
   using OutT = typename OutArray::ValueType;
-  vtkPolyData* input = request.Input;
-  const vtkIdType numIn = input->GetNumberOfPoints();
-  const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
-  const vtkIdType numOut = numIn + numSplits;
   const float signFactor = request.GLTFSign ? -1.0f : 1.0f;
-
-  // Structure, cell data, point data (extended with copies for the new points).
-  CopyWithAppendedPoints(input, output, a.SplitSource);
-  vtkPointData* outPD = output->GetPointData();
-  if (numSplits > 0)
-  {
-    const vtkIdType maxId = numOut - 1;
-    if (s.PolyCorners > 0)
-    {
-      output->SetPolys(RepointCells(input->GetPolys(), a.Repoint, 0, s.PolyCorners, maxId));
-    }
-    if (s.StripCorners > 0)
-    {
-      output->SetStrips(
-        RepointCells(input->GetStrips(), a.Repoint, s.PolyCorners, s.StripCorners, maxId));
-    }
-  }
-
-  // Per-point frames, as the kernel gave them (points without a corner that has a frame: the
-  // default); the contract is applied below, with the point's own normal.
   const auto pointFrame = [&](vtkIdType p) -> const CornerFrame&
   {
     if (p >= numIn)
@@ -798,13 +804,11 @@ void WriteOutput(const MikkTSpaceRequest& request,
   };
   const auto sourceOf = [&](vtkIdType p)
   { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
-
-  const OutputFrames<OutArray> arrays(numOut, request.Bitangents);
   OutT* tOut = arrays.Tangents->GetPointer(0);
   OutT* sOut = arrays.Signs->GetPointer(0);
   OutT* bOut = arrays.Bitangents ? arrays.Bitangents->GetPointer(0) : nullptr;
   vtkSMPTools::For(0,
-    numOut,
+    arrays.Tangents->GetNumberOfTuples(),
     [&](vtkIdType b, vtkIdType e)
     {
       for (vtkIdType p = b; p < e; ++p)
@@ -830,7 +834,43 @@ void WriteOutput(const MikkTSpaceRequest& request,
         }
       }
     });
+}
 
+/**
+ * The output: the input with the split points appended (their point data copied, the computed
+ * normals too) and the corners of their frames re-pointed, the point frames, and the cell
+ * tangents when asked for.
+ */
+template<typename OutArray>
+void WriteOutput(const MikkTSpaceRequest& request,
+  const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  const float* positions,
+  const ContractNormals& contractNormals,
+  const Assignment& a,
+  vtkPolyData* output)
+{
+  using OutT = typename OutArray::ValueType;
+  vtkPolyData* input = request.Input;
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
+  CopyWithAppendedPoints(input, output, a.SplitSource);
+  if (numSplits > 0)
+  {
+    const vtkIdType maxId = numIn + numSplits - 1;
+    if (s.PolyCorners > 0)
+    {
+      output->SetPolys(RepointCells(input->GetPolys(), a.Repoint, 0, s.PolyCorners, maxId));
+    }
+    if (s.StripCorners > 0)
+    {
+      output->SetStrips(
+        RepointCells(input->GetStrips(), a.Repoint, s.PolyCorners, s.StripCorners, maxId));
+    }
+  }
+  const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
+  WritePointFrames(request, contractNormals, a, numIn, arrays);
+  vtkPointData* outPD = output->GetPointData();
   if (request.ComputedNormals)
   {
     // the filter's computed array (named "Normals", of the output type), extended like the
@@ -839,7 +879,6 @@ void WriteOutput(const MikkTSpaceRequest& request,
       numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
   }
   arrays.AddTo(outPD);
-
   if (request.CellTangents)
   {
     const vtkIdType numCells = input->GetNumberOfCells();
@@ -852,45 +891,18 @@ void WriteOutput(const MikkTSpaceRequest& request,
     output->GetCellData()->SetTangents(cellTangents);
   }
 }
-} // namespace
 
-//------------------------------------------------------------------------------
-int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
+/**
+ * The kernel's corner frames for the surface's faces, with progress from 0.05 to 0.85; the
+ * result says whether it was aborted or could not run.
+ */
+mikk::Result RunKernel(vtkPolyDataTangentFrames* filter,
+  const Surface& surface,
+  vtkIdType numPoints,
+  const float* positions,
+  const float* normals,
+  const float* tcoords)
 {
-  counts = MikkTSpaceCounts();
-  vtkPolyDataTangentFrames* filter = request.Filter;
-  vtkPolyData* input = request.Input;
-  const auto passThrough = [&]()
-  {
-    output->ShallowCopy(input);
-    return 1;
-  };
-  const vtkIdType numPoints = input->GetNumberOfPoints();
-  if (!request.TCoords || request.TCoords->GetNumberOfTuples() < numPoints || !request.Normals ||
-    request.Normals->GetNumberOfComponents() != 3 ||
-    request.Normals->GetNumberOfTuples() < numPoints)
-  {
-    vtkErrorWithObjectMacro(filter,
-      "MikkTSpace needs point texture coordinates and 3-component point normals for every "
-      "point; passing the input through.");
-    return passThrough();
-  }
-
-  Surface surface;
-  std::string problem;
-  if (!BuildSurface(input->GetPolys(), input->GetStrips(), numPoints, surface, problem))
-  {
-    vtkErrorWithObjectMacro(
-      filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");
-    return passThrough();
-  }
-
-  std::vector<float> positionStore, normalStore, tcoordStore;
-  const float* positions = KernelPositions(input->GetPoints(), numPoints, positionStore);
-  const float* normals = FloatData(request.Normals, numPoints, 3, normalStore);
-  const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
-  filter->UpdateProgress(0.05);
-
   mikk::MeshInput in;
   in.NumberOfFaces = surface.NumFaces;
   in.FaceOffsets = surface.FaceOffsets;
@@ -899,32 +911,74 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   in.Positions = positions;
   in.Normals = normals;
   in.TCoords = tcoords;
-  mikk::Result result = mikk::ComputeMikkTSpace(in,
+  return mikk::ComputeMikkTSpace(in,
     0,
     [filter](double progress)
     {
       filter->UpdateProgress(0.05 + 0.8 * progress);
       return filter->GetAbortExecute() != 0;
     });
-  if (result.Aborted || filter->GetAbortExecute())
+}
+
+/// Why the kernel could not compute frames (empty when it could).
+std::string KernelProblem(const mikk::Result& result, vtkIdType numPoints)
+{
+  if (result.NumberOfInvalidFaces > 0)
+  {
+    return std::to_string(result.NumberOfInvalidFaces) +
+      " polygons or strip triangles use point ids outside [0, " + std::to_string(numPoints) + ")";
+  }
+  return result.TooLarge ? "the input exceeds the kernel's 32-bit index limits" : "";
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
+{
+  counts = MikkTSpaceCounts();
+  vtkPolyDataTangentFrames* filter = request.Filter;
+  vtkPolyData* input = request.Input;
+  const auto fail = [&](const std::string& problem)
+  {
+    vtkErrorWithObjectMacro(
+      filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");
+    output->ShallowCopy(input);
+    return 1;
+  };
+  const auto abort = [&]()
   {
     output->Initialize();
     return 1;
-  }
-  if (result.NumberOfInvalidFaces > 0)
+  };
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  if (!request.TCoords || request.TCoords->GetNumberOfTuples() < numPoints || !request.Normals ||
+    request.Normals->GetNumberOfComponents() != 3 ||
+    request.Normals->GetNumberOfTuples() < numPoints)
   {
-    vtkErrorWithObjectMacro(filter,
-      "Cannot compute MikkTSpace frames: "
-        << result.NumberOfInvalidFaces << " polygons or strip triangles use point ids outside [0, "
-        << numPoints << "); passing the input through.");
-    return passThrough();
+    return fail("it needs texture coordinates and 3-component normals for every point");
   }
-  if (result.TooLarge)
+  Surface surface;
+  std::string problem;
+  if (!BuildSurface(input->GetPolys(), input->GetStrips(), numPoints, surface, problem))
   {
-    vtkErrorWithObjectMacro(filter,
-      "Cannot compute MikkTSpace frames: the input exceeds the kernel's 32-bit index limits; "
-      "passing the input through.");
-    return passThrough();
+    return fail(problem);
+  }
+
+  std::vector<float> positionStore, normalStore, tcoordStore;
+  const float* positions = KernelPositions(input->GetPoints(), numPoints, positionStore);
+  const float* normals = FloatData(request.Normals, numPoints, 3, normalStore);
+  const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
+  filter->UpdateProgress(0.05);
+
+  mikk::Result result = RunKernel(filter, surface, numPoints, positions, normals, tcoords);
+  if (result.Aborted || filter->GetAbortExecute())
+  {
+    return abort();
+  }
+  problem = KernelProblem(result, numPoints);
+  if (!problem.empty())
+  {
+    return fail(problem);
   }
   counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
   counts.DefaultCorners = result.NumberOfDefaultCorners;
@@ -940,8 +994,7 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   filter->UpdateProgress(0.9);
   if (filter->GetAbortExecute())
   {
-    output->Initialize();
-    return 1;
+    return abort();
   }
 
   const auto write = [&](auto* arrayType)
