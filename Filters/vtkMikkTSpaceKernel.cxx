@@ -380,7 +380,16 @@ struct Kernel
       });
   }
 
+  // Faces of one chunk that give no triangles, and its triangles' classes.
+  struct Counts
+  {
+    long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
+  };
+
   void Weld();
+  void CountTriangles();
+  void SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n);
+  void SetupChunk(long long c, TriangleRows& rows, Counts& n);
   void BuildTriangles();
   void SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row);
   void SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row);
@@ -389,6 +398,7 @@ struct Kernel
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
   void AdoptGroupWithAnyOrientation();
+  void ProcessVertices();
   void ProcessVertex(Idx v, Scratch& s);
   void CornerMath(Idx v, Scratch& s) const;
   void ResolveGroup(Scratch& s, const Idx* members, size_t count);
@@ -399,6 +409,8 @@ struct Kernel
   void MergeMultiWriters();
   void CopyDegenerates();
   void Finish(Result& res);
+  template<typename Aborted>
+  bool Run(const Aborted& aborted);
 };
 
 //------------------------------------------------------------------------------
@@ -646,13 +658,16 @@ void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
   }
 }
 
-void Kernel::BuildTriangles()
+// Per chunk of faces, the number of its triangles (ChunkTriBase becomes their prefix sums), and
+// whether any face has more than 3 corners (AnyMulti) or any is not stored as corners
+// (3f, 3f + 1, 3f + 2) (Slots needed); allocates the triangle records.
+void Kernel::CountTriangles()
 {
   const long long nf = In.NumberOfFaces;
   NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
   ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
   std::vector<uint8_t> chunkMulti(size_t(NumFaceChunks), 0);
-  std::vector<uint8_t> chunkInOrder(size_t(NumFaceChunks), 1); // faces (3f, 3f + 1, 3f + 2)
+  std::vector<uint8_t> chunkInOrder(size_t(NumFaceChunks), 1);
   ForEachFaceChunk(
     [&](long long c)
     {
@@ -687,80 +702,82 @@ void Kernel::BuildTriangles()
   {
     Mags.reset(new float[2 * size_t(NumTris)]);
   }
+}
 
-  struct Counts
+// The triangles of face [b, e) from triangle t on, in `rows` from `row` on: one triangle, a quad
+// split on a diagonal (SetupQuad), or a fan (0, k+1, k+2) of a larger polygon; a face with an id
+// outside the points gives dead triangles and counts as invalid.
+void Kernel::SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n)
+{
+  const Idx base = Idx(b), nTri = Idx(e - b - 2);
+  if (!std::all_of(Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; }))
   {
-    long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
-  };
-  std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
-  vtkSMPThreadLocal<TriangleRows> scratch;
-  ForEachFaceChunk(
-    [&](long long c)
+    ++n.Invalid;
+    std::fill(Tris.get() + t, Tris.get() + t + nTri, Triangle{ {}, {}, kDead }); // never in a fan
+  }
+  else if (nTri == 1)
+  {
+    const Idx slots[3] = { base, base + 1, base + 2 };
+    SetupTriangle(t, slots, rows, row);
+  }
+  else if (nTri == 2)
+  {
+    SetupQuad(t, base, rows, row);
+  }
+  else
+  {
+    // corner 0 is shared by all the fan's triangles, corners 1 and 2 by neighbours
+    for (Idx k = 0; k < nTri; ++k)
     {
-      Counts& n = counts[size_t(c)];
-      const Idx t0 = ChunkTriBase[size_t(c)];
-      TriangleRows& rows = scratch.Local();
-      rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
-      const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-      Idx t = t0;
-      for (long long f = c * kFaceChunk; f < fe; ++f)
+      const Idx slots[3] = { base, base + k + 1, base + k + 2 };
+      SetupTriangle(t + k, slots, rows, row + size_t(k));
+      Tris[size_t(t + k)].Flags |=
+        uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
+    }
+  }
+}
+
+// The triangles of chunk c of faces, complete (directions, flags, quad rules), and their counts.
+void Kernel::SetupChunk(long long c, TriangleRows& rows, Counts& n)
+{
+  const Idx t0 = ChunkTriBase[size_t(c)];
+  rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
+  const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
+  Idx t = t0;
+  for (long long f = c * kFaceChunk; f < fe; ++f)
+  {
+    const long long b = Off[f], e = Off[f + 1];
+    if (!FaceHasTriangles(b, e))
+    {
+      ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
+      continue;
+    }
+    SetupFace(b, e, t, rows, size_t(t - t0), n);
+    t += Idx(e - b - 2);
+  }
+  FinishDirections(t0, rows);
+  ForEachTriangulatedFace(c,
+    [&](long long b, long long e, Idx u)
+    {
+      if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
       {
-        const long long b = Off[f], e = Off[f + 1];
-        if (!FaceHasTriangles(b, e))
-        {
-          ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
-          continue;
-        }
-        const Idx base = Idx(b), nTri = Idx(e - b - 2);
-        const size_t row = size_t(t - t0);
-        const bool valid = std::all_of(
-          Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; });
-        if (!valid)
-        {
-          ++n.Invalid;
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            Tris[size_t(u)] = Triangle{ {}, {}, kDead }; // never in a fan
-          }
-        }
-        else if (nTri == 1)
-        {
-          const Idx slots[3] = { base, base + 1, base + 2 };
-          SetupTriangle(t, slots, rows, row);
-        }
-        else if (nTri == 2)
-        {
-          SetupQuad(t, base, rows, row);
-        }
-        else
-        {
-          // fan (0, k+1, k+2); corner 0 is shared by all, corners 1 and 2 by neighbours
-          for (Idx k = 0; k < nTri; ++k)
-          {
-            const Idx slots[3] = { base, base + k + 1, base + k + 2 };
-            SetupTriangle(t + k, slots, rows, row + size_t(k));
-            Tris[size_t(t + k)].Flags |=
-              uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
-          }
-        }
-        t += nTri;
-      }
-      FinishDirections(t0, rows);
-      ForEachTriangulatedFace(c,
-        [&](long long b, long long e, Idx u)
-        {
-          if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
-          {
-            QuadOrientation(u, rows, size_t(u - t0));
-          }
-        });
-      for (Idx u = t0; u < t; ++u)
-      {
-        const uint8_t fl = Tris[size_t(u)].Flags;
-        n.Degenerate += (fl & kDegenerate) ? 1 : 0;
-        n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
+        QuadOrientation(u, rows, size_t(u - t0));
       }
     });
+  for (Idx u = t0; u < t; ++u)
+  {
+    const uint8_t fl = Tris[size_t(u)].Flags;
+    n.Degenerate += (fl & kDegenerate) ? 1 : 0;
+    n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
+  }
+}
+
+void Kernel::BuildTriangles()
+{
+  CountTriangles();
+  std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
+  vtkSMPThreadLocal<TriangleRows> scratch;
+  ForEachFaceChunk([&](long long c) { SetupChunk(c, scratch.Local(), counts[size_t(c)]); });
   for (const Counts& n : counts)
   {
     NumDegenerate += n.Degenerate;
@@ -1297,21 +1314,13 @@ void SetAllDefault(Result& res)
   res.NumberOfDefaultCorners = static_cast<long long>(res.Corners.size());
 }
 
-Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
+// Whether the kernel has faces to work on; when not, `res` is the final result: no faces, too
+// many corners or points for 32-bit indices, only empty faces, or missing arrays.
+bool CheckInput(const MeshInput& in, Result& res)
 {
-  Result res;
-  const auto aborted = [&](double p)
-  {
-    res.Aborted = progress && progress(p);
-    if (res.Aborted)
-    {
-      SetAllDefault(res);
-    }
-    return res.Aborted;
-  };
   if (in.NumberOfFaces <= 0 || !in.FaceOffsets)
   {
-    return res;
+    return false;
   }
   const long long numSlots = std::max(0LL, in.FaceOffsets[in.NumberOfFaces]);
   res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see Finish)
@@ -1321,80 +1330,113 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
   {
     res.TooLarge = true;
     SetAllDefault(res);
-    return res;
+    return false;
   }
   if (numSlots == 0)
   {
     // only faces without corners: their (empty) connectivity may be a null pointer
     res.NumberOfSkippedFaces = in.NumberOfFaces;
-    return res;
+    return false;
   }
   if (!in.FaceConnectivity || !in.Positions || !in.Normals || !in.TCoords)
   {
     SetAllDefault(res);
     res.NumberOfInvalidFaces = in.NumberOfFaces;
-    return res;
+    return false;
   }
+  return true;
+}
 
-  Kernel K(in);
-  K.NumPoints = Idx(numPoints);
-  K.NumSlots = Idx(numSlots);
-  K.Off = in.FaceOffsets;
-  K.Conn = in.FaceConnectivity;
-  K.Out = res.Corners.data();
-  if (aborted(0.0))
+// Phase 5 for every welded vertex with a fan, in parallel.
+void Kernel::ProcessVertices()
+{
+  if (AnyMulti)
   {
-    return res;
-  }
-  K.Weld();
-  if (aborted(0.15))
-  {
-    return res;
-  }
-  K.BuildTriangles();
-  if (aborted(0.4))
-  {
-    return res;
-  }
-  K.BuildFans();
-  if (aborted(0.5))
-  {
-    return res;
-  }
-  if (K.NumGWA > 0)
-  {
-    K.AdoptGroupWithAnyOrientation();
-  }
-  if (K.AnyMulti)
-  {
-    K.Side.assign(3 * size_t(K.NumTris), SideFrame{ {}, -1, 0 });
+    Side.assign(3 * size_t(NumTris), SideFrame{ {}, -1, 0 });
   }
   vtkSMPThreadLocal<Scratch> scratch;
   vtkSMPTools::For(0,
-    vtkIdType(K.NumVerts),
+    vtkIdType(NumVerts),
     1024,
     [&](vtkIdType b, vtkIdType e)
     {
       Scratch& s = scratch.Local();
       for (Idx v = Idx(b); v < Idx(e); ++v)
       {
-        if (K.FanSize(v) > 0)
+        if (FanSize(v) > 0)
         {
-          K.ProcessVertex(v, s);
+          ProcessVertex(v, s);
         }
       }
     });
+}
+
+// The phases in order, with `aborted(fraction done)` asked between them; false when it says to
+// stop.
+template<typename Aborted>
+bool Kernel::Run(const Aborted& aborted)
+{
+  if (aborted(0.0))
+  {
+    return false;
+  }
+  Weld();
+  if (aborted(0.15))
+  {
+    return false;
+  }
+  BuildTriangles();
+  if (aborted(0.4))
+  {
+    return false;
+  }
+  BuildFans();
+  if (aborted(0.5))
+  {
+    return false;
+  }
+  if (NumGWA > 0)
+  {
+    AdoptGroupWithAnyOrientation();
+  }
+  ProcessVertices();
   if (aborted(0.9))
+  {
+    return false;
+  }
+  if (AnyMulti)
+  {
+    MergeMultiWriters();
+  }
+  if (NumDegenerate > 0)
+  {
+    CopyDegenerates();
+  }
+  return true;
+}
+
+Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
+{
+  Result res;
+  if (!CheckInput(in, res))
   {
     return res;
   }
-  if (K.AnyMulti)
+  Kernel K(in);
+  K.NumPoints = Idx(std::max(0LL, in.NumberOfPoints));
+  K.NumSlots = Idx(res.Corners.size());
+  K.Off = in.FaceOffsets;
+  K.Conn = in.FaceConnectivity;
+  K.Out = res.Corners.data();
+  const auto aborted = [&](double p)
   {
-    K.MergeMultiWriters();
-  }
-  if (K.NumDegenerate > 0)
+    res.Aborted = progress && progress(p);
+    return res.Aborted;
+  };
+  if (!K.Run(aborted))
   {
-    K.CopyDegenerates();
+    SetAllDefault(res);
+    return res;
   }
   K.Finish(res);
   res.NumberOfDegenerateTriangles = K.NumDegenerate;
