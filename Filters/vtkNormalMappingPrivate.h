@@ -63,6 +63,19 @@ bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoi
   return inRange;
 }
 
+/**
+ * Triangle j of a strip whose points are pts: (j, j+1, j+2), with every odd one reversed so that
+ * all triangles of a strip share its winding.
+ */
+template<typename IdT, typename OutT>
+void StripTriangle(const IdT* pts, vtkIdType j, OutT tri[3])
+{
+  const bool odd = (j & 1) != 0;
+  tri[0] = static_cast<OutT>(pts[odd ? j + 1 : j]);
+  tri[1] = static_cast<OutT>(pts[odd ? j : j + 1]);
+  tri[2] = static_cast<OutT>(pts[j + 2]);
+}
+
 /// Calls worker(typed array, args...) through vtkArrayDispatch for the arrays whose value type is
 /// in ValueTypes (every type by default), else worker(array, args...) with the generic
 /// vtkDataArray API.

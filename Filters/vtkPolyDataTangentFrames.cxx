@@ -305,26 +305,6 @@ struct Triangles
   }
 };
 
-/**
- * Triangle j of a cell with points pts: polygons fan from corner 0, strip triangle j is
- * (j, j+1, j+2) with every odd one reversed so that all triangles of a strip share its winding.
- */
-template<typename IdT>
-void CellTriangle(const IdT* pts, vtkIdType j, bool strip, vtkIdType tri[3])
-{
-  if (!strip)
-  {
-    tri[0] = pts[0];
-    tri[1] = pts[j + 1];
-    tri[2] = pts[j + 2];
-    return;
-  }
-  const bool odd = (j & 1) != 0;
-  tri[0] = pts[odd ? j + 1 : j];
-  tri[1] = pts[odd ? j : j + 1];
-  tri[2] = pts[j + 2];
-}
-
 /// Whether every id of [ids, ids + n) is in [0, numPoints) (detail::IdsInRange), in parallel.
 template<typename IdT>
 bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
@@ -342,48 +322,32 @@ bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
   return !bad;
 }
 
-/// Lists the triangles of polygons and strips; false when a cell has a point id outside
-/// [0, numPoints). polysAreTriangles: every polygon has 3 points.
-bool BuildTriangles(vtkCellArray* const cellArrays[2],
-  bool polysAreTriangles,
-  vtkIdType numPoints,
-  Triangles& out)
+/// The triangles of polygons that are all triangles, with no strips: the polygons' connectivity,
+/// shared when it is stored as vtkIdType, else copied.
+void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
 {
-  vtkCellArray* polys = cellArrays[0];
-  out.NumberOfCells = polys->GetNumberOfCells() + cellArrays[1]->GetNumberOfCells();
-  for (int kind = 0; kind < 2; ++kind)
+  out.Count = polys->GetNumberOfCells();
+  if (polys->IsStorage64Bit() &&
+    std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
   {
-    const bool inRange = WithCellStorage(cellArrays[kind],
-      [&](const auto*, const auto* conn)
-      { return AllIdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
-    if (!inRange)
-    {
-      return false;
-    }
+    out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
+    return;
   }
-  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0)
-  {
-    out.Count = polys->GetNumberOfCells();
-    if (polys->IsStorage64Bit() &&
-      std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
+  out.Storage.reset(new vtkIdType[3 * out.Count]);
+  out.Ids = out.Storage.get();
+  WithCellStorage(polys,
+    [&](const auto*, const auto* conn)
     {
-      out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
-      return true;
-    }
-    // Triangles with ids of another type: the same ids as vtkIdType.
-    out.Storage.reset(new vtkIdType[3 * out.Count]);
-    out.Ids = out.Storage.get();
-    WithCellStorage(polys,
-      [&](const auto*, const auto* conn)
-      {
-        vtkSMPTools::For(0,
-          3 * out.Count,
-          [&](vtkIdType begin, vtkIdType end)
-          { std::copy(conn + begin, conn + end, out.Storage.get() + begin); });
-      });
-    return true;
-  }
+      vtkSMPTools::For(0,
+        3 * out.Count,
+        [&](vtkIdType begin, vtkIdType end)
+        { std::copy(conn + begin, conn + end, out.Storage.get() + begin); });
+    });
+}
 
+/// Per polygon, then per strip, its first triangle (out.CellStart), and the number of triangles.
+void CountCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
+{
   out.CellStart.resize(static_cast<size_t>(out.NumberOfCells + 1));
   vtkIdType next = 0;
   vtkIdType cell = 0;
@@ -402,9 +366,16 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
   }
   out.CellStart[out.NumberOfCells] = next;
   out.Count = next;
-  out.Storage.reset(new vtkIdType[3 * next]);
-  out.Ids = out.Storage.get();
+}
 
+/**
+ * The triangles of every polygon and strip, where CountCellTriangles put them: polygons fan from
+ * their corner 0, strips keep their winding (StripTriangle).
+ */
+void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
+{
+  out.Storage.reset(new vtkIdType[3 * out.Count]);
+  out.Ids = out.Storage.get();
   vtkIdType firstCell = 0;
   for (int kind = 0; kind < 2; ++kind)
   {
@@ -418,17 +389,52 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
           {
             for (vtkIdType c = begin; c < end; ++c)
             {
+              const auto* pts = conn + offsets[c];
               const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
               vtkIdType* tri = out.Storage.get() + 3 * out.CellStart[firstCell + c];
               for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
               {
-                CellTriangle(conn + offsets[c], j, kind == 1, tri);
+                if (kind == 1)
+                {
+                  vtkNormalMapping::detail::StripTriangle(pts, j, tri);
+                  continue;
+                }
+                tri[0] = pts[0];
+                tri[1] = pts[j + 1];
+                tri[2] = pts[j + 2];
               }
             }
           });
       });
     firstCell += cells->GetNumberOfCells();
   }
+}
+
+/// Lists the triangles of polygons and strips; false when a cell has a point id outside
+/// [0, numPoints). polysAreTriangles: every polygon has 3 points.
+bool BuildTriangles(vtkCellArray* const cellArrays[2],
+  bool polysAreTriangles,
+  vtkIdType numPoints,
+  Triangles& out)
+{
+  out.NumberOfCells = cellArrays[0]->GetNumberOfCells() + cellArrays[1]->GetNumberOfCells();
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool inRange = WithCellStorage(cellArrays[kind],
+      [&](const auto*, const auto* conn)
+      { return AllIdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
+    if (!inRange)
+    {
+      return false;
+    }
+  }
+  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0)
+  {
+    ShareTrianglePolygons(cellArrays[0], out);
+    return true;
+  }
+  CountCellTriangles(cellArrays, out);
+  ListCellTriangles(cellArrays, out);
   return true;
 }
 

@@ -490,13 +490,9 @@ void UnrollStrips(vtkCellArray* strips, Surface& s, long long* offsets, long lon
             }
             for (long long j = 0; j + 2 < n; ++j)
             {
-              const long long face = s.NumPolys + t0 + j;
               const long long base = s.PolyCorners + 3 * (t0 + j);
-              const bool odd = (j & 1) != 0;
-              offsets[face + 1] = base + 3;
-              conn[base] = ids[first + (odd ? j + 1 : j)];
-              conn[base + 1] = ids[first + (odd ? j : j + 1)];
-              conn[base + 2] = ids[first + j + 2];
+              offsets[s.NumPolys + t0 + j + 1] = base + 3;
+              StripTriangle(ids + first, j, conn + base);
             }
           }
         });
