@@ -1450,6 +1450,47 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     return normals;
   }
 
+  /// Smooth point normals (SmoothNormals, +z where a point has no area) as an output array.
+  template<typename OutT>
+  vtkSmartPointer<OutArray<OutT>> ComputedNormals()
+  {
+    const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
+    auto normals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
+    OutT* out = normals->GetPointer(0);
+    for (size_t p = 0; p < smooth.size(); ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        out[3 * p + c] = static_cast<OutT>(smooth[p][c]);
+      }
+    }
+    return normals;
+  }
+
+  /// The MikkTSpace method (RunMikkTSpace) with these normals, and its counts.
+  int RunMikkTSpaceMethod(vtkDataArray* normals, bool computed, bool doublePrecision)
+  {
+    vtkPolyDataTangentFrames* self = this->Self;
+    vtkNormalMapping::detail::MikkTSpaceRequest request;
+    request.Filter = self;
+    request.Input = this->Input;
+    request.TCoords = this->UVs;
+    request.Normals = normals;
+    request.ComputedNormals = computed;
+    request.DoublePrecision = doublePrecision;
+    request.GLTFSign = self->GLTFSignConvention;
+    request.Splitting = self->Splitting;
+    request.Bitangents = self->ComputeBitangents;
+    request.CellTangents = self->ComputeCellTangents;
+    vtkNormalMapping::detail::MikkTSpaceCounts counts;
+    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
+    self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
+    self->NumberOfFallbackPoints += counts.FallbackCorners;
+    self->NumberOfHandednessConflicts += counts.Conflicts;
+    self->NumberOfSplitPoints += counts.SplitPoints;
+    return result;
+  }
+
   template<typename OutT>
   int Run();
   template<typename OutT>
@@ -1529,8 +1570,6 @@ int vtkPolyDataTangentFrames::Internals::Run()
   this->Cells[1] = input->GetStrips();
   this->FirstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const bool mikkTSpace = self->Method == MIKKTSPACE;
-  const TangentMethod method =
-    mikkTSpace ? TangentMethod::AreaWeighted : static_cast<TangentMethod>(self->Method);
 
   // Normals: the input's (unit, with geometric stand-ins where unusable), or computed.
   vtkSmartPointer<OutArray<OutT>> computedNormals;
@@ -1550,44 +1589,20 @@ int vtkPolyDataTangentFrames::Internals::Run()
   }
   if (!this->Normals)
   {
-    const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
-    computedNormals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
-    OutT* out = computedNormals->GetPointer(0);
-    for (size_t p = 0; p < smooth.size(); ++p)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        out[3 * p + c] = static_cast<OutT>(smooth[p][c]);
-      }
-    }
+    computedNormals = this->ComputedNormals<OutT>();
   }
-
   if (mikkTSpace)
   {
-    vtkNormalMapping::detail::MikkTSpaceRequest request;
-    request.Filter = self;
-    request.Input = input;
-    request.TCoords = this->UVs;
-    request.Normals = computedNormals ? computedNormals.Get() : this->Normals;
-    request.ComputedNormals = computedNormals != nullptr;
-    request.DoublePrecision = std::is_same<OutT, double>::value;
-    request.GLTFSign = self->GLTFSignConvention;
-    request.Splitting = self->Splitting;
-    request.Bitangents = self->ComputeBitangents;
-    request.CellTangents = self->ComputeCellTangents;
-    vtkNormalMapping::detail::MikkTSpaceCounts counts;
-    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
-    self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
-    self->NumberOfFallbackPoints += counts.FallbackCorners;
-    self->NumberOfHandednessConflicts += counts.Conflicts;
-    self->NumberOfSplitPoints += counts.SplitPoints;
-    return result;
+    return this->RunMikkTSpaceMethod(computedNormals ? computedNormals.Get() : this->Normals,
+      computedNormals != nullptr,
+      std::is_same<OutT, double>::value);
   }
   // The frames follow the normals as stored.
   Buffer<dvec3> unitNormals;
   const ShadingNormals normals = this->ShadingNormalsOf(
     computedNormals ? computedNormals.Get() : this->Normals, unusable, unitNormals);
-  return this->RunWeighted<OutT>(method, computedNormals, normals);
+  return this->RunWeighted<OutT>(
+    static_cast<TangentMethod>(self->Method), computedNormals, normals);
 }
 
 template<typename OutT>
