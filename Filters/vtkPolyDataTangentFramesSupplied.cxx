@@ -119,6 +119,33 @@ bool ComputedFrameOutput(vtkPolyData* input,
     out.Tangents != inPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName()) &&
     out.Signs != inPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
 }
+
+/**
+ * Output points [0, numOut) keep the supplied frames of their input points (`sourceIds`, or the
+ * same id without it), except those whose defects include a bit of `replaced`.
+ */
+void KeepFrames(const FrameOutput& out,
+  const vtkNormalMapping::SuppliedFrameArrays& supplied,
+  vtkDataArray* normals,
+  const vtkNormalMapping::FrameCheck& check,
+  unsigned char replaced,
+  vtkIdTypeArray* sourceIds,
+  vtkIdType numOut)
+{
+  vtkSMPTools::For(0,
+    numOut,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        const vtkIdType source = sourceIds ? sourceIds->GetValue(p) : p;
+        if (!(check.Defects[source] & replaced))
+        {
+          out.Keep(supplied, normals, source, p);
+        }
+      }
+    });
+}
 } // namespace
 
 const char* vtkPolyDataTangentFrames::GetSuppliedTangentsName(int mode)
@@ -210,20 +237,7 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:
   // the opposite of the supplied (glTF) convention.
   out.SignFactor = this->GLTFSignConvention && this->Method != MIKKTSPACE ? -1.0 : 1.0;
-  const vtkIdType numOut = output->GetNumberOfPoints();
-  vtkSMPTools::For(0,
-    numOut,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType p = begin; p < end; ++p)
-      {
-        const vtkIdType source = sourceIds ? sourceIds->GetValue(p) : p;
-        if (!(check.Defects[source] & replaced))
-        {
-          out.Keep(supplied, normals, source, p);
-        }
-      }
-    });
+  KeepFrames(out, supplied, normals, check, replaced, sourceIds, output->GetNumberOfPoints());
   this->UpdateProgress(block.ProgressEnd);
   return 1;
 }
