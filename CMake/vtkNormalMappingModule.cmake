@@ -19,6 +19,7 @@ set(_nm_sources
   Filters/vtkNormalMappingPrivate.cxx
   Filters/vtkPolyDataTangentFramesMikkTSpace.cxx
   Filters/vtkPolyDataTangentFramesSupplied.cxx
+  Filters/vtkPolyDataTangentFramesWeighted.cxx
   Filters/vtkTangentFrameChecks.cxx
   Rendering/vtkNormalMapShading.cxx)
 # Not installed. vtkTangentFrameKernels.h (the math, over GLM vectors) is reachable from the
@@ -58,7 +59,7 @@ endforeach()
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
   set_property(SOURCE
     "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkMikkTSpaceKernel.cxx"
-    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkPolyDataTangentFrames.cxx"
+    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkPolyDataTangentFramesWeighted.cxx"
     APPEND PROPERTY COMPILE_OPTIONS -ffp-contract=off -fno-math-errno -fno-trapping-math)
 endif()
 

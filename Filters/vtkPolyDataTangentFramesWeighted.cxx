@@ -1,0 +1,1461 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkPolyDataTangentFrames::ComputeBlock: the shading normals, then the MikkTSpace method
+// (vtkPolyDataTangentFramesMikkTSpace.cxx) or the weighted methods, which this file holds.
+#include "vtkPolyDataTangentFrames.h"
+
+#include "vtkNormalMappingPrivate.h"
+#include "vtkPolyDataTangentFramesMikkTSpace.h"
+#include "vtkTangentFrameKernels.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cfloat>
+#include <cstring>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+/*
+ * How the weighted methods run (everything in double, the passes on vtkSMPTools::For):
+ * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
+ *    normals are computed, every point gets the list of its triangle corners in that order (the
+ *    links).
+ * 2. Every point gets its shading normal: the input's, or where that is unusable (or the input
+ *    has none) the area-weighted sum of its triangles' normals, through the links. Float normals
+ *    that are all usable are read in place (ShadingNormals); any others become unit vectors.
+ * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
+ *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
+ *    orientation, flipped where its winding disagrees with the point's normal).
+ * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
+ *    one thread adds each block of frames as it is computed; several compute the frames of a
+ *    chunk of triangles in parallel, then add them to their points, chunk after chunk, each
+ *    thread adding to the points it owns. Each point adds the same terms in the same order, so
+ *    the output is bit-identical for any number of threads. A point then takes the frame of its
+ *    one handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1
+ *    frame goes to the point's copy) or the heavier side.
+ * 5. Points without a usable triangle take their neighbours' frames; split points are appended
+ *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
+ */
+
+namespace
+{
+using glm::dvec2;
+using glm::dvec3;
+using vtkNormalMapping::DegeneracyTolerance;
+using vtkNormalMapping::IsUsableNormal;
+using vtkNormalMapping::PerpendicularTangent;
+using vtkNormalMapping::SafeNormalize;
+using vtkNormalMapping::TangentMethod;
+using vtkNormalMapping::TriangleBlock;
+using vtkNormalMapping::TriangleFrame;
+using vtkNormalMapping::detail::DispatchArray;
+using vtkNormalMapping::detail::WithCellStorage;
+
+/// Storage whose every entry the filter writes before reading it (not cleared first).
+template<typename T>
+using Buffer = std::unique_ptr<T[]>;
+
+/// The triangles of the polygons and strips, in cell order.
+struct Triangles
+{
+  vtkIdType Count = 0;
+  /// Three point ids per triangle: the polygons' own connectivity when every polygon is a
+  /// triangle stored with vtkIdType ids and there are no strips, else Storage.
+  const vtkIdType* Ids = nullptr;
+  Buffer<vtkIdType> Storage;
+  /// Per polygon, then per strip, its first triangle, and one more entry for the end; empty
+  /// when triangle t is polygon t.
+  std::vector<vtkIdType> CellStart;
+
+  vtkIdType NumberOfCells = 0;
+  vtkIdType FirstTriangle(vtkIdType cell) const
+  {
+    return this->CellStart.empty() ? cell : this->CellStart[cell];
+  }
+};
+
+/// Whether every id of [ids, ids + n) is in [0, numPoints) (detail::IdsInRange), in parallel.
+template<typename IdT>
+bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
+{
+  std::atomic<bool> bad{ false };
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      if (!vtkNormalMapping::detail::IdsInRange(ids, begin, end, numPoints))
+      {
+        bad = true;
+      }
+    });
+  return !bad;
+}
+
+/// The triangles of polygons that are all triangles, with no strips: the polygons' connectivity,
+/// shared when it is stored as vtkIdType, else copied.
+void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
+{
+  out.Count = polys->GetNumberOfCells();
+  if (polys->IsStorage64Bit() &&
+    std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
+  {
+    out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
+    return;
+  }
+  out.Storage.reset(new vtkIdType[3 * out.Count]);
+  out.Ids = out.Storage.get();
+  WithCellStorage(polys,
+    [&](const auto*, const auto* conn)
+    {
+      vtkSMPTools::For(0,
+        3 * out.Count,
+        [&](vtkIdType begin, vtkIdType end)
+        { std::copy(conn + begin, conn + end, out.Storage.get() + begin); });
+    });
+}
+
+/// Per polygon, then per strip, its first triangle (out.CellStart), and the number of triangles.
+void CountCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
+{
+  out.CellStart.resize(static_cast<size_t>(out.NumberOfCells + 1));
+  vtkIdType next = 0;
+  vtkIdType cell = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = cellArrays[kind];
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto*)
+      {
+        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c, ++cell)
+        {
+          out.CellStart[cell] = next;
+          next += std::max<vtkIdType>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]) - 2, 0);
+        }
+      });
+  }
+  out.CellStart[out.NumberOfCells] = next;
+  out.Count = next;
+}
+
+/**
+ * The triangles of every polygon and strip, where CountCellTriangles put them: polygons fan from
+ * their corner 0, strips keep their winding (StripTriangle).
+ */
+void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
+{
+  out.Storage.reset(new vtkIdType[3 * out.Count]);
+  out.Ids = out.Storage.get();
+  vtkIdType firstCell = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    vtkCellArray* cells = cellArrays[kind];
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto* conn)
+      {
+        vtkSMPTools::For(0,
+          cells->GetNumberOfCells(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            for (vtkIdType c = begin; c < end; ++c)
+            {
+              const auto* pts = conn + offsets[c];
+              const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+              vtkIdType* tri = out.Storage.get() + 3 * out.CellStart[firstCell + c];
+              for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
+              {
+                if (kind == 1)
+                {
+                  vtkNormalMapping::detail::StripTriangle(pts, j, tri);
+                  continue;
+                }
+                tri[0] = pts[0];
+                tri[1] = pts[j + 1];
+                tri[2] = pts[j + 2];
+              }
+            }
+          });
+      });
+    firstCell += cells->GetNumberOfCells();
+  }
+}
+
+/// Lists the triangles of polygons and strips; false when a cell has a point id outside
+/// [0, numPoints). polysAreTriangles: every polygon has 3 points.
+bool BuildTriangles(vtkCellArray* const cellArrays[2],
+  bool polysAreTriangles,
+  vtkIdType numPoints,
+  Triangles& out)
+{
+  out.NumberOfCells = cellArrays[0]->GetNumberOfCells() + cellArrays[1]->GetNumberOfCells();
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool inRange = WithCellStorage(cellArrays[kind],
+      [&](const auto*, const auto* conn)
+      { return AllIdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
+    if (!inRange)
+    {
+      return false;
+    }
+  }
+  if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0)
+  {
+    ShareTrianglePolygons(cellArrays[0], out);
+    return true;
+  }
+  CountCellTriangles(cellArrays, out);
+  ListCellTriangles(cellArrays, out);
+  return true;
+}
+
+/**
+ * Per point, its triangle corners (3 * triangle + corner) in triangle order: the order in which
+ * the computed normals add their terms, whatever the number of threads.
+ */
+struct Links
+{
+  std::vector<vtkIdType> Start; // per point, and one more entry for the end
+  Buffer<vtkIdType> Corners;
+
+  Links(const Triangles& tris, vtkIdType numPoints)
+    : Start(static_cast<size_t>(numPoints + 1), 0)
+    , Corners(new vtkIdType[3 * tris.Count])
+  {
+    const vtkIdType numCorners = 3 * tris.Count;
+    for (vtkIdType c = 0; c < numCorners; ++c)
+    {
+      ++this->Start[tris.Ids[c] + 1];
+    }
+    std::partial_sum(this->Start.begin(), this->Start.end(), this->Start.begin());
+    // Filling moves each point's start to its end, which is the next point's start.
+    for (vtkIdType c = 0; c < numCorners; ++c)
+    {
+      this->Corners[this->Start[tris.Ids[c]]++] = c;
+    }
+    std::copy_backward(this->Start.begin(), this->Start.end() - 1, this->Start.end());
+    this->Start[0] = 0;
+  }
+
+  /// f(triangle, corner) for the corners of point p, in triangle order.
+  template<typename F>
+  void ForEach(vtkIdType p, F&& f) const
+  {
+    for (vtkIdType i = this->Start[p]; i < this->Start[p + 1]; ++i)
+    {
+      f(this->Corners[i] / 3, static_cast<int>(this->Corners[i] % 3));
+    }
+  }
+};
+
+/// What the triangles of a chunk give their corners, one array per quantity.
+struct TriangleFrames
+{
+  Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
+  /**
+   * Per corner, its weight with the handedness the triangle gives it (CornerSign with the
+   * corner point's shading normal) as its sign; zero without a frame.
+   */
+  Buffer<double> SignedWeight;
+  /// Only for cell tangents (else null): the winding normal (3 per triangle) and the area.
+  Buffer<double> Normal;
+  Buffer<double> Area;
+
+  TriangleFrames(vtkIdType n, bool cellTangents)
+    : Tangent(new double[3 * n])
+    , SignedWeight(new double[3 * n])
+    , Normal(cellTangents ? new double[3 * n] : nullptr)
+    , Area(cellTangents ? new double[n] : nullptr)
+  {
+  }
+  /// Stores triangle t's frame and signed corner weights.
+  void Set(vtkIdType t, const TriangleFrame& f, const double signedWeights[3])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      this->Tangent[3 * t + k] = f.Tangent[k];
+      this->SignedWeight[3 * t + k] = signedWeights[k];
+    }
+    if (this->Area)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Normal[3 * t + k] = f.Normal[k];
+      }
+      this->Area[t] = f.Area;
+    }
+  }
+  dvec3 TangentOf(vtkIdType t) const
+  {
+    return dvec3(this->Tangent[3 * t], this->Tangent[3 * t + 1], this->Tangent[3 * t + 2]);
+  }
+  dvec3 NormalOf(vtkIdType t) const
+  {
+    return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
+  }
+};
+
+/**
+ * The shading normal of every point, as 3-tuples of floats or doubles: either unit vectors
+ * (Unit), or a float normal array whose every normal is usable, normalized where a unit vector
+ * is needed. Corner signs need only the direction, so they read the stored vector: a float
+ * normal's dot product with a triangle normal neither overflows nor underflows in double.
+ */
+struct ShadingNormals
+{
+  const float* Float = nullptr;
+  const double* Double = nullptr;
+  bool Unit = true;
+
+  dvec3 Stored(vtkIdType p) const
+  {
+    return this->Float
+      ? dvec3(this->Float[3 * p], this->Float[3 * p + 1], this->Float[3 * p + 2])
+      : dvec3(this->Double[3 * p], this->Double[3 * p + 1], this->Double[3 * p + 2]);
+  }
+  dvec3 UnitOf(vtkIdType p) const
+  {
+    return this->Unit ? this->Stored(p) : SafeNormalize(this->Stored(p));
+  }
+};
+
+/**
+ * ComputeTriangleBlock and, with `signedWeights`, SignCornerWeights for `method` (corner angles
+ * only then, for AngleWeighted), compiled also for the wider vector units of x86-64 CPUs and
+ * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose
+ * loops are worth it. Every clone performs the same IEEE operations (no contraction into fused
+ * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ */
+VTK_NORMALMAPPING_TARGET_CLONES
+void ComputeFrameBlock(TriangleBlock& block,
+  int count,
+  const DegeneracyTolerance& tol,
+  bool signedWeights,
+  TangentMethod method)
+{
+  vtkNormalMapping::ComputeTriangleBlock(
+    block, count, tol, signedWeights && method == TangentMethod::AngleWeighted);
+  if (signedWeights)
+  {
+    vtkNormalMapping::SignCornerWeights(block, count, method);
+  }
+}
+
+/**
+ * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
+ * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
+ * [first, first + count) (ComputeFrameBlock), with `normals` also their corners' weights for
+ * `method` signed with their handedness, for any point and texture coordinate arrays.
+ */
+struct VisitTriangleBlocks
+{
+  template<typename PointArray, typename UVArray, typename Visit>
+  void operator()(PointArray* pointArray,
+    UVArray* uvArray,
+    const Triangles& tris,
+    vtkIdType begin,
+    vtkIdType end,
+    const DegeneracyTolerance& tol,
+    const ShadingNormals* normals,
+    TangentMethod method,
+    bool serial,
+    const Visit& visit) const
+  {
+    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
+    const auto uvs = vtk::DataArrayTupleRange(uvArray);
+    const bool hasV = uvArray->GetNumberOfComponents() > 1;
+    const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd)
+    {
+      TriangleBlock b; // not initialized: each triangle's entries are written before use
+      for (vtkIdType first = rangeBegin; first < rangeEnd; first += TriangleBlock::Size)
+      {
+        const int count =
+          static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, rangeEnd - first));
+        for (int i = 0; i < count; ++i)
+        {
+          dvec3 p[3];
+          dvec2 uv[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            const vtkIdType id = tris.Ids[3 * (first + i) + k];
+            const auto point = points[id];
+            const auto texture = uvs[id];
+            p[k] = dvec3(point[0], point[1], point[2]);
+            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+            if (normals)
+            {
+              b.SetCornerNormal(k, i, normals->Stored(id));
+            }
+          }
+          b.SetCorners(i, p, uv);
+        }
+        ComputeFrameBlock(b, count, tol, normals != nullptr, method);
+        visit(first, static_cast<const TriangleBlock&>(b), count);
+      }
+    };
+    if (serial)
+    {
+      visitRange(begin, end);
+    }
+    else
+    {
+      vtkSMPTools::For(begin, end, visitRange);
+    }
+  }
+};
+
+/// Calls worker(a, b, args...) with a and b as their concrete float or double array types, or
+/// as plain vtkDataArray (virtual access) for any other type.
+template<typename Worker, typename... Args>
+void DispatchReals2(vtkDataArray* a, vtkDataArray* b, Worker&& worker, Args&&... args)
+{
+  using Dispatcher =
+    vtkArrayDispatch::Dispatch2ByValueType<vtkArrayDispatch::Reals, vtkArrayDispatch::Reals>;
+  if (!Dispatcher::Execute(a, b, worker, args...))
+  {
+    worker(a, b, args...);
+  }
+}
+
+/// Unit shading normals from a normal array (zero where it is zero or non-finite).
+struct UnitNormals
+{
+  template<typename NormalArray>
+  void operator()(NormalArray* array, dvec3* out, vtkIdType n) const
+  {
+    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          const auto v = normals[p];
+          out[p] = SafeNormalize(dvec3(v[0], v[1], v[2]));
+        }
+      });
+  }
+};
+
+/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
+struct CountUnusableNormals
+{
+  template<typename NormalArray>
+  void operator()(NormalArray* array, vtkIdType n, vtkIdType& unusable) const
+  {
+    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
+    std::atomic<vtkIdType> count{ 0 };
+    vtkSMPTools::For(0,
+      n,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        vtkIdType here = 0;
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          const auto v = normals[p];
+          here += IsUsableNormal(dvec3(v[0], v[1], v[2])) ? 0 : 1;
+        }
+        count += here;
+      });
+    unusable = count;
+  }
+};
+
+/**
+ * Smooth point normals: per point the sum, in triangle order, of its triangles' area-weighted
+ * unit normals (`weighted`), normalized; `empty` for points with no area.
+ */
+std::vector<dvec3> AreaWeightedNormals(const Links& links,
+  const std::vector<dvec3>& weighted,
+  const dvec3& empty)
+{
+  std::vector<dvec3> normals(links.Start.size() - 1);
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(normals.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        dvec3 sum(0.0);
+        links.ForEach(p, [&](vtkIdType t, int) { sum += weighted[t]; });
+        const dvec3 n = SafeNormalize(sum);
+        normals[p] = n == dvec3(0.0) ? empty : n;
+      }
+    });
+  return normals;
+}
+
+/// The weighted tangent sums of one point, per handedness (index 0: +1, 1: -1).
+struct PointSums
+{
+  dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
+  double Weight[2] = { 0.0, 0.0 };
+
+  /// Whether a corner has this handedness: the weights added are non-zero with the sign of the
+  /// handedness (corner angles, areas clamped to DBL_MAX, or 1), so |a side's sum| is positive
+  /// once it has one.
+  bool Has(int side) const { return this->Weight[side] > 0.0; }
+};
+
+/**
+ * Every point's sums, in half the memory of a PointSums per point: per point the sum of the
+ * handedness its first corner gave it (Weight signed with that handedness; 0 before any corner),
+ * and the other handedness, which only points on mirror seams have, aside. Each side adds its
+ * corners in the order they come (SumFrames: triangle order). The points are dealt in blocks of
+ * BlockSize to a power of two of owners; Add may run concurrently for points of different owners.
+ */
+struct ScatteredSums
+{
+  /// One handedness' sums of a point: 32 bytes, aligned to 32 so that adding a corner reads and
+  /// writes one cache line, not two.
+  struct alignas(32) Side
+  {
+    dvec3 Tangent{ 0.0 };
+    double Weight = 0.0;
+    void Add(double signedWeight, const dvec3& tangent)
+    {
+      this->Tangent += std::abs(signedWeight) * tangent;
+      this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
+    }
+  };
+  static_assert(sizeof(Side) == 32, "a Side fills half a cache line");
+  /// Points per block of one owner: 8 KB of First, so that two owners can share only the cache
+  /// line at the edge of a block.
+  static constexpr vtkIdType BlockSize = 256;
+  std::vector<Side> First;
+  std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
+  std::vector<std::unordered_map<vtkIdType, Side>> Other; // per owner
+  int OwnerMask = 0;
+
+  /// At most maxOwners owners (at least one).
+  ScatteredSums(vtkIdType numPoints, int maxOwners)
+    : First(static_cast<size_t>(numPoints))
+    , HasOther(static_cast<size_t>(numPoints), 0)
+  {
+    int owners = 1;
+    while (2 * owners <= maxOwners)
+    {
+      owners *= 2;
+    }
+    this->Other.resize(static_cast<size_t>(owners));
+    this->OwnerMask = owners - 1;
+  }
+
+  int Owners() const { return this->OwnerMask + 1; }
+
+  /// The number of points with both handednesses (mirror seams).
+  vtkIdType SeamPoints() const
+  {
+    size_t count = 0;
+    for (const auto& other : this->Other)
+    {
+      count += other.size();
+    }
+    return static_cast<vtkIdType>(count);
+  }
+  int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
+
+  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
+  /// of zero weight (no frame, or a normal in the triangle's plane) goes to the first side and
+  /// changes none of its bits: it adds zeros to sums that are never -0.
+  void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
+  {
+    Side& first = this->First[p];
+    // One branch, taken only on mirror seams: whether the point's first handedness is already
+    // set and differs from this corner's.
+    const bool otherSide = (first.Weight != 0.0) & (signedWeight != 0.0) &
+      (std::signbit(first.Weight) != std::signbit(signedWeight));
+    if (!otherSide)
+    {
+      first.Add(signedWeight, tangent);
+      return;
+    }
+    this->HasOther[p] = 1;
+    this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
+  }
+
+  /**
+   * Adds the corners of triangles [begin, end) whose points `owner` owns, in triangle order;
+   * `frames` holds those triangles' frames (triangle t at t - begin).
+   */
+  void AddCorners(const vtkIdType* ids,
+    const TriangleFrames& frames,
+    vtkIdType begin,
+    vtkIdType end,
+    int owner)
+  {
+    const bool all = this->Owners() == 1;
+    for (vtkIdType c = 3 * begin; c < 3 * end; ++c)
+    {
+      const vtkIdType p = ids[c];
+      if (all || this->OwnerOf(p) == owner)
+      {
+        const vtkIdType i = c - 3 * begin;
+        this->Add(p, frames.SignedWeight[i], frames.TangentOf(i / 3));
+      }
+    }
+  }
+
+  /// Point p's sums; safe to call from several threads.
+  PointSums Of(vtkIdType p) const
+  {
+    PointSums s;
+    const auto put = [&](const Side& side)
+    {
+      const int index = side.Weight > 0.0 ? 0 : 1;
+      s.Tangent[index] = side.Tangent;
+      s.Weight[index] = std::abs(side.Weight);
+    };
+    put(this->First[p]); // no corner yet: zero weight and tangent, like no put at all
+    if (this->HasOther[p])
+    {
+      put(this->Other[this->OwnerOf(p)].at(p));
+    }
+    return s;
+  }
+};
+
+/// What the sums of a point show.
+enum class PointKind : unsigned char
+{
+  Framed,   ///< its corners have one handedness
+  Conflict, ///< both handednesses (a mirror seam)
+  Fallback, ///< no usable triangle
+};
+
+/// The output arrays of the frames.
+template<typename OutT>
+struct FrameArrays
+{
+  OutT* Tangents;
+  OutT* Signs;
+  OutT* Bitangents; // null when not asked for
+
+  void Write(vtkIdType p, const dvec3& n, const dvec3& t, double sign) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Tangents[3 * p + c] = static_cast<OutT>(t[c]);
+    }
+    this->Signs[p] = static_cast<OutT>(sign);
+    if (this->Bitangents)
+    {
+      const dvec3 b = vtkNormalMapping::Bitangent(n, t, sign);
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Bitangents[3 * p + c] = static_cast<OutT>(b[c]);
+      }
+    }
+  }
+};
+
+/// A point on a mirror seam with splitting: its normal and the frame of its -1 side, which goes
+/// to its copy.
+struct SplitPoint
+{
+  vtkIdType Id;
+  dvec3 Normal;
+  dvec3 Tangent;
+};
+
+/// The sign of a signed corner weight: the handedness, or 0 without a frame or weight.
+signed char SideOf(double signedWeight)
+{
+  return static_cast<signed char>((signedWeight > 0.0) - (signedWeight < 0.0));
+}
+
+/// The handedness (CornerSides) triangle t gives its corner at point id.
+int CornerHandedness(const Triangles& tris, const signed char* sides, vtkIdType t, vtkIdType id)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    if (tris.Ids[3 * t + k] == id)
+    {
+      return sides[3 * t + k];
+    }
+  }
+  return 0;
+}
+
+/**
+ * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
+ * copy id), polygon positions first, then strip positions after the polygons' connectivity.
+ * A corner's side is the majority handedness of its cell's triangles that hold it.
+ */
+std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
+  const Triangles& tris,
+  const signed char* sides,
+  const std::vector<SplitPoint>& splits,
+  vtkIdType numPoints)
+{
+  std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  // Which points are split, looked up per connectivity entry; the few entries of split points
+  // then find their cell and their copy by binary search.
+  std::vector<unsigned char> isSplit(static_cast<size_t>(numPoints), 0);
+  for (const SplitPoint& s : splits)
+  {
+    isSplit[s.Id] = 1;
+  }
+  vtkIdType firstCell = 0;
+  vtkIdType base = 0;
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool strip = kind == 1;
+    vtkCellArray* cells = cellArrays[kind];
+    const vtkIdType numCells = cells->GetNumberOfCells();
+    WithCellStorage(cells,
+      [&](const auto* offsets, const auto* conn)
+      {
+        for (vtkIdType pos = 0; pos < static_cast<vtkIdType>(offsets[numCells]); ++pos)
+        {
+          const vtkIdType id = conn[pos];
+          if (!isSplit[id])
+          {
+            continue;
+          }
+          // The cell holding this entry (the last one starting at or before it: cells without
+          // points start where the next one does) and its triangles that hold the corner (see
+          // CellTriangle).
+          const vtkIdType c = std::upper_bound(offsets, offsets + numCells + 1, pos) - offsets - 1;
+          const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
+          const vtkIdType k = pos - static_cast<vtkIdType>(offsets[c]);
+          const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
+          const vtkIdType first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
+          const vtkIdType last = strip ? std::min<vtkIdType>(k, n - 3)
+                                       : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
+          int vote = 0;
+          for (vtkIdType j = first; j <= last; ++j)
+          {
+            vote += CornerHandedness(tris, sides, firstTriangle + j, id);
+          }
+          if (vote < 0)
+          {
+            const auto it = std::lower_bound(splits.begin(),
+              splits.end(),
+              id,
+              [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
+            repoint.emplace_back(
+              base + pos, numPoints + static_cast<vtkIdType>(it - splits.begin()));
+          }
+        }
+      });
+    firstCell += numCells;
+    base += cells->GetNumberOfConnectivityIds();
+  }
+  return repoint;
+}
+
+/// Cell tangents: per polygon or strip, its triangles' area-weighted tangents on the plane of
+/// their area-weighted normals; (0, 0, 0) for vertex and line cells.
+template<typename OutT>
+void CellTangentArray(const Triangles& tris,
+  const TriangleFrames& frames,
+  vtkIdType firstSurfaceCell,
+  vtkIdType numCells,
+  OutT* out)
+{
+  std::fill(out, out + 3 * numCells, OutT(0));
+  vtkSMPTools::For(0,
+    tris.NumberOfCells,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        dvec3 t(0.0), n(0.0);
+        for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
+        {
+          t += frames.Area[i] * frames.TangentOf(i);
+          n += frames.Area[i] * SafeNormalize(frames.NormalOf(i));
+        }
+        const dvec3 unit = PerpendicularTangent(SafeNormalize(n), t);
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * (firstSurfaceCell + c) + k] = static_cast<OutT>(unit[k]);
+        }
+      }
+    });
+}
+
+/**
+ * What a point's sums make of it, and the handedness (0: +1, 1: -1) whose frame it takes: its one
+ * handedness, or on a mirror seam (Conflict) the +1 side with splitting, else the heavier side.
+ * A point with no usable triangle (Fallback) takes its neighbours' frames later.
+ */
+PointKind KindOf(const PointSums& s, bool splitting, int& side)
+{
+  const bool conflict = s.Has(0) && s.Has(1);
+  side = conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
+  return conflict ? PointKind::Conflict : (s.Has(side) ? PointKind::Framed : PointKind::Fallback);
+}
+
+/**
+ * ComputePointBlock, compiled also for the wider vector units of x86-64 CPUs, as
+ * ComputeFrameBlock is.
+ */
+VTK_NORMALMAPPING_TARGET_CLONES
+void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool normalize)
+{
+  vtkNormalMapping::ComputePointBlock(block, count, normalize);
+}
+
+/**
+ * Every point's frame, with `sumsOf(p)` giving its sums (KindOf): the tangent of its side made
+ * perpendicular to its unit normal, a block of points at a time (ComputeUnitFrames). Fallback
+ * points are only marked in `kinds`.
+ */
+template<typename OutT, typename SumsOf>
+void WriteFrames(vtkIdType numPoints,
+  const SumsOf& sumsOf,
+  const ShadingNormals& normals,
+  bool splitting,
+  const FrameArrays<OutT>& out,
+  PointKind* kinds)
+{
+  using vtkNormalMapping::PointBlock;
+  vtkSMPTools::For(0,
+    numPoints,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      PointBlock b; // not initialized: each point's entries are written before use
+      double signs[PointBlock::Size];
+      for (vtkIdType first = begin; first < end; first += PointBlock::Size)
+      {
+        const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
+        for (int i = 0; i < count; ++i)
+        {
+          const PointSums s = sumsOf(first + i);
+          int side = 0;
+          kinds[first + i] = KindOf(s, splitting, side);
+          b.Set(i, normals.Stored(first + i), s.Tangent[side]);
+          signs[i] = side == 0 ? 1.0 : -1.0;
+        }
+        ComputeUnitFrames(b, count, !normals.Unit);
+        for (int i = 0; i < count; ++i)
+        {
+          if (kinds[first + i] != PointKind::Fallback)
+          {
+            out.Write(first + i, b.Normal(i), b.Tangent(i), signs[i]);
+          }
+        }
+      }
+    });
+}
+
+/// The points of one kind, in ascending order.
+std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints, PointKind kind)
+{
+  std::vector<vtkIdType> points;
+  for (vtkIdType p = 0; p < numPoints; ++p)
+  {
+    if (kinds[p] == kind)
+    {
+      points.push_back(p);
+    }
+  }
+  return points;
+}
+
+/**
+ * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
+ * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
+ * corners in order collects, per fallback point, its neighbours in triangle order (the order of
+ * the links, which this pass does not need). A fallback point's corners have no handedness
+ * (`sides`), so only those corners are looked at.
+ */
+template<typename OutT>
+void FillFallbacks(const Triangles& tris,
+  const signed char* sides,
+  const ShadingNormals& normals,
+  const PointKind* kinds,
+  const std::vector<vtkIdType>& fallbacks,
+  const FrameArrays<OutT>& out)
+{
+  std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
+  std::vector<int> votes(fallbacks.size(), 0);
+  // Only corners without handedness can be a fallback point's: memchr finds the next one.
+  const signed char* const end = sides + 3 * tris.Count;
+  const auto nextWithout = [end](const signed char* from)
+  { return static_cast<const signed char*>(std::memchr(from, 0, end - from)); };
+  for (const signed char* side = nextWithout(sides); side; side = nextWithout(side + 1))
+  {
+    const vtkIdType c = side - sides;
+    const vtkIdType p = tris.Ids[c];
+    if (kinds[p] != PointKind::Fallback)
+    {
+      continue;
+    }
+    const size_t i = std::lower_bound(fallbacks.begin(), fallbacks.end(), p) - fallbacks.begin();
+    const vtkIdType* triangle = tris.Ids + 3 * (c / 3);
+    for (int m = 0; m < 3; ++m)
+    {
+      const vtkIdType q = triangle[m];
+      if (q != p && kinds[q] != PointKind::Fallback)
+      {
+        sums[i] += dvec3(out.Tangents[3 * q], out.Tangents[3 * q + 1], out.Tangents[3 * q + 2]);
+        votes[i] += out.Signs[q] < 0 ? -1 : 1;
+      }
+    }
+  }
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(fallbacks.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = fallbacks[i];
+        const dvec3 n = normals.UnitOf(p);
+        out.Write(p, n, PerpendicularTangent(n, sums[i]), votes[i] < 0 ? -1.0 : 1.0);
+      }
+    });
+}
+
+/// The -1 frames of the seam points, for their copies, with `sumsOf(p)` giving their sums.
+template<typename SumsOf>
+std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
+  const ShadingNormals& normals,
+  const std::vector<vtkIdType>& conflicts)
+{
+  std::vector<SplitPoint> splits(conflicts.size());
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(conflicts.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const vtkIdType p = conflicts[i];
+        const PointSums& s = sumsOf(p);
+        const dvec3 n = normals.UnitOf(p);
+        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, s.Tangent[1]) };
+      }
+    });
+  return splits;
+}
+
+/// Machine epsilon of the type an array stores.
+double Epsilon(vtkDataArray* array)
+{
+  return array->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON);
+}
+
+/// The output arrays' concrete class for OutT, so that users' SafeDownCasts work.
+template<typename OutT>
+using OutArray =
+  typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
+
+template<typename OutT>
+vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkIdType tuples)
+{
+  return vtkNormalMapping::detail::NewArray<OutArray<OutT>>(name, components, tuples);
+}
+
+/// The output's frame arrays of values OutT.
+template<typename OutT>
+using OutputFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
+
+/// The storage of `frames`, to write frames into; valid until Resize.
+template<typename OutT>
+FrameArrays<OutT> StorageOf(const OutputFrames<OutT>& frames)
+{
+  return { frames.Tangents->GetPointer(0),
+    frames.Signs->GetPointer(0),
+    frames.Bitangents ? frames.Bitangents->GetPointer(0) : nullptr };
+}
+} // namespace
+
+/// One execution on one polydata, with what it needs from the filter.
+struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInput
+{
+  vtkPolyDataTangentFrames* Self;
+
+  vtkIdType NumberOfPoints = 0;
+  vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
+  vtkIdType FirstSurfaceCell = 0;
+  Triangles Tris;
+  std::unique_ptr<TriangleFrames> Frames;
+  std::unique_ptr<Links> PointLinks;
+  /// Per corner, the handedness the triangle gives it (SideOf its signed weight).
+  Buffer<signed char> CornerSides;
+
+  /// Progress as a fraction of this execution; false (output emptied) when aborted.
+  bool Continue(double fraction)
+  {
+    this->Self->UpdateProgress(
+      this->ProgressBegin + fraction * (this->ProgressEnd - this->ProgressBegin));
+    if (this->Self->GetAbortExecute())
+    {
+      this->Output->Initialize();
+      return false;
+    }
+    return true;
+  }
+
+  /// The triangles; false after an error (input passed through).
+  bool Prepare()
+  {
+    if (!BuildTriangles(this->Cells, this->PolysAreTriangles, this->NumberOfPoints, this->Tris))
+    {
+      vtkErrorWithObjectMacro(this->Self,
+        "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
+          << this->NumberOfPoints << "); passing the input through.");
+      this->Output->ShallowCopy(this->Input);
+      return false;
+    }
+    return true;
+  }
+
+  /// The point links, built on first use.
+  const Links& PointLinksOf()
+  {
+    if (!this->PointLinks)
+    {
+      this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
+    }
+    return *this->PointLinks;
+  }
+
+  /// visit(first, block, count) for the triangles of [begin, end), with `normals` also their
+  /// signed corner weights for `method` (VisitTriangleBlocks).
+  template<typename Visit>
+  void VisitFrames(bool serial,
+    const Visit& visit,
+    vtkIdType begin,
+    vtkIdType end,
+    const ShadingNormals* normals = nullptr,
+    TangentMethod method = TangentMethod::Unweighted)
+  {
+    const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
+      Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
+    DispatchReals2(this->Input->GetPoints()->GetData(),
+      this->UVs,
+      VisitTriangleBlocks(),
+      this->Tris,
+      begin,
+      end,
+      tol,
+      normals,
+      method,
+      serial,
+      visit);
+  }
+
+  /**
+   * Smooth area-weighted point normals from the triangles' geometric normals, or from the
+   * input's cell normals when given; `empty` where a point has no area.
+   */
+  std::vector<dvec3> SmoothNormals(vtkDataArray* cellNormals, const dvec3& empty)
+  {
+    std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
+    std::vector<double> area(cellNormals ? weighted.size() : 0);
+    this->VisitFrames(
+      false,
+      [&](vtkIdType first, const TriangleBlock& b, int count)
+      {
+        for (int i = 0; i < count; ++i)
+        {
+          const TriangleFrame f = b.Frame(i);
+          weighted[first + i] = f.Area * SafeNormalize(f.Normal);
+          if (cellNormals)
+          {
+            area[first + i] = f.Area;
+          }
+        }
+      },
+      0,
+      this->Tris.Count);
+    if (cellNormals)
+    {
+      vtkSMPTools::For(0,
+        this->Tris.NumberOfCells,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType c = begin; c < end; ++c)
+          {
+            double n[3];
+            cellNormals->GetTuple(this->FirstSurfaceCell + c, n);
+            const dvec3 cellNormal = SafeNormalize(dvec3(n[0], n[1], n[2]));
+            for (vtkIdType t = this->Tris.FirstTriangle(c); t < this->Tris.FirstTriangle(c + 1);
+                 ++t)
+            {
+              weighted[t] = area[t] * cellNormal;
+            }
+          }
+        });
+    }
+    return AreaWeightedNormals(this->PointLinksOf(), weighted, empty);
+  }
+
+  /**
+   * Calls visit(t, frame, signedWeights) for every triangle t of [begin, end), in parallel, or in
+   * triangle order when `serial`: `signedWeights` are its corners' weights for `method` signed
+   * with the handedness the triangle gives their points' shading normals (CornerSign), which
+   * also go to CornerSides. Returns the number of triangles without a frame.
+   */
+  template<typename Visit>
+  vtkIdType VisitSignedFrames(TangentMethod method,
+    const ShadingNormals& normals,
+    vtkIdType begin,
+    vtkIdType end,
+    bool serial,
+    const Visit& visit)
+  {
+    std::atomic<vtkIdType> degenerate{ 0 };
+    this->VisitFrames(
+      serial,
+      [&](vtkIdType first, const TriangleBlock& b, int count)
+      {
+        signed char* sides = this->CornerSides.get() + 3 * first;
+        vtkIdType none = 0;
+        for (int i = 0; i < count; ++i)
+        {
+          const double weights[3] = {
+            b.SignedWeight[0][i], b.SignedWeight[1][i], b.SignedWeight[2][i]
+          };
+          for (int k = 0; k < 3; ++k)
+          {
+            sides[3 * i + k] = SideOf(weights[k]);
+          }
+          const TriangleFrame f = b.Frame(i);
+          visit(first + i, f, weights);
+          none += f.Orientation == 0 ? 1 : 0;
+        }
+        degenerate += none;
+      },
+      begin,
+      end,
+      &normals,
+      method);
+    return degenerate;
+  }
+
+  /**
+   * Every point's sums, added in triangle order (ScatteredSums), so that each point adds the same
+   * terms in the same order, hence the same bits, for any number of threads. With one thread (or
+   * one chunk of triangles or less), each block of frames goes to its points as soon as it is
+   * computed. With more, the frames of a chunk are computed in parallel and stored, then each
+   * owner of points goes through the chunk's corners and adds those of its points; a chunk's
+   * frames stay in the cache until they are added. With cell tangents every frame is stored (one
+   * chunk), for CellTangentArray. Counts the triangles without a frame in `degenerate`.
+   */
+  ScatteredSums SumFrames(TangentMethod method,
+    const ShadingNormals& normals,
+    bool cellTangents,
+    vtkIdType& degenerate)
+  {
+    constexpr vtkIdType ChunkSize = 16384;
+    const vtkIdType count = this->Tris.Count;
+    const vtkIdType* ids = this->Tris.Ids;
+    // One chunk or less is not worth the threads' two synchronizations: one thread adds it.
+    const int threads = count > ChunkSize ? vtkNormalMapping::detail::UsableThreads() : 1;
+    ScatteredSums sums(this->NumberOfPoints, threads);
+    const int owners = sums.Owners();
+    if (owners == 1 && !cellTangents)
+    {
+      degenerate += this->VisitSignedFrames(method,
+        normals,
+        0,
+        count,
+        true,
+        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            sums.Add(ids[3 * t + k], weights[k], f.Tangent);
+          }
+        });
+      return sums;
+    }
+
+    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
+    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
+    TriangleFrames& frames = *this->Frames;
+    for (vtkIdType begin = 0; begin < count; begin += chunk)
+    {
+      const vtkIdType end = std::min(begin + chunk, count);
+      degenerate += this->VisitSignedFrames(method,
+        normals,
+        begin,
+        end,
+        false,
+        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
+        { frames.Set(t - begin, f, weights); });
+      vtkSMPTools::For(0,
+        owners,
+        1,
+        [&](vtkIdType firstOwner, vtkIdType lastOwner)
+        {
+          for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+          {
+            sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
+          }
+        });
+    }
+    return sums;
+  }
+
+  /**
+   * The shading normals from a point normal array with `unusable` unusable normals: the float
+   * array itself when every normal is usable, else unit normals stored in `unit`, where the
+   * unusable ones take the area-weighted normal of their triangles.
+   */
+  ShadingNormals ShadingNormalsOf(vtkDataArray* array, vtkIdType unusable, Buffer<dvec3>& unit)
+  {
+    ShadingNormals normals;
+    auto* floats = vtkFloatArray::FastDownCast(array);
+    if (floats && unusable == 0)
+    {
+      normals.Float = floats->GetPointer(0);
+      normals.Unit = false;
+      return normals;
+    }
+    unit.reset(new dvec3[this->NumberOfPoints]);
+    DispatchArray<vtkArrayDispatch::Reals>(array, UnitNormals(), unit.get(), this->NumberOfPoints);
+    if (unusable > 0)
+    {
+      const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
+      for (vtkIdType p = 0; p < this->NumberOfPoints; ++p)
+      {
+        unit[p] = unit[p] == dvec3(0.0) ? geometric[p] : unit[p];
+      }
+    }
+    normals.Double = &unit[0].x;
+    return normals;
+  }
+
+  /// Smooth point normals (SmoothNormals, +z where a point has no area) as an output array.
+  template<typename OutT>
+  vtkSmartPointer<OutArray<OutT>> ComputedNormals()
+  {
+    const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
+    auto normals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
+    OutT* out = normals->GetPointer(0);
+    for (size_t p = 0; p < smooth.size(); ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        out[3 * p + c] = static_cast<OutT>(smooth[p][c]);
+      }
+    }
+    return normals;
+  }
+
+  /// The MikkTSpace method (RunMikkTSpace) with these normals, and its counts.
+  int RunMikkTSpaceMethod(vtkDataArray* normals, bool computed, bool doublePrecision)
+  {
+    vtkPolyDataTangentFrames* self = this->Self;
+    vtkNormalMapping::detail::MikkTSpaceRequest request;
+    request.Filter = self;
+    request.Input = this->Input;
+    request.TCoords = this->UVs;
+    request.Normals = normals;
+    request.ComputedNormals = computed;
+    request.DoublePrecision = doublePrecision;
+    request.GLTFSign = self->GLTFSignConvention;
+    request.Splitting = self->Splitting;
+    request.Bitangents = self->ComputeBitangents;
+    request.CellTangents = self->ComputeCellTangents;
+    vtkNormalMapping::detail::MikkTSpaceCounts counts;
+    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
+    self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
+    self->NumberOfFallbackPoints += counts.FallbackCorners;
+    self->NumberOfHandednessConflicts += counts.Conflicts;
+    self->NumberOfSplitPoints += counts.SplitPoints;
+    return result;
+  }
+
+  template<typename OutT>
+  int Run();
+  template<typename OutT>
+  int RunWeighted(TangentMethod method,
+    vtkSmartPointer<OutArray<OutT>> computedNormals,
+    const ShadingNormals& normals);
+
+  /// The split points' -1 frames, written after the input points, and the cells on their
+  /// mirrored side re-pointed to them in the output.
+  template<typename OutT>
+  void AppendSplitFrames(const std::vector<SplitPoint>& splits, const FrameArrays<OutT>& out)
+  {
+    const vtkIdType numSplits = static_cast<vtkIdType>(splits.size());
+    for (vtkIdType i = 0; i < numSplits; ++i)
+    {
+      out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
+    }
+    const auto repoint = MirroredCorners(
+      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
+    const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
+    const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;
+    this->Output->SetPolys(
+      vtkNormalMapping::detail::RepointCells(this->Cells[0], repoint, 0, polySize, maxId));
+    this->Output->SetStrips(
+      vtkNormalMapping::detail::RepointCells(this->Cells[1], repoint, polySize, stripSize, maxId));
+  }
+
+  /**
+   * The output: the input with the split points appended (their point data copied, the computed
+   * normals too) and their mirrored corners re-pointed, the point frames, and the cell tangents
+   * when asked for.
+   */
+  template<typename OutT>
+  void WriteOutput(const std::vector<SplitPoint>& splits,
+    OutputFrames<OutT>& frames,
+    vtkSmartPointer<OutArray<OutT>> computedNormals)
+  {
+    std::vector<vtkIdType> splitSource(splits.size());
+    std::transform(
+      splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
+    vtkNormalMapping::detail::CopyWithAppendedPoints(this->Input, this->Output, splitSource);
+    frames.Resize(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
+    if (!splits.empty())
+    {
+      if (computedNormals)
+      {
+        computedNormals = OutArray<OutT>::SafeDownCast(vtkNormalMapping::detail::ExtendPointArray(
+          computedNormals, this->NumberOfPoints, splitSource));
+      }
+      this->AppendSplitFrames(splits, StorageOf<OutT>(frames));
+    }
+    vtkPointData* outPD = this->Output->GetPointData();
+    if (computedNormals)
+    {
+      outPD->SetNormals(computedNormals);
+    }
+    frames.AddTo(outPD);
+    if (this->Self->ComputeCellTangents)
+    {
+      const vtkIdType numCells = this->Input->GetNumberOfCells();
+      auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
+      CellTangentArray(
+        this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
+      this->Output->GetCellData()->SetTangents(cellTangents);
+    }
+  }
+};
+
+template<typename OutT>
+int vtkPolyDataTangentFrames::Internals::Run()
+{
+  vtkPolyDataTangentFrames* self = this->Self;
+  vtkPolyData* input = this->Input;
+  this->NumberOfPoints = input->GetNumberOfPoints();
+  this->Cells[0] = input->GetPolys();
+  this->Cells[1] = input->GetStrips();
+  this->FirstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  const bool mikkTSpace = self->Method == MIKKTSPACE;
+
+  // Normals: the input's (unit, with geometric stand-ins where unusable), or computed.
+  vtkSmartPointer<OutArray<OutT>> computedNormals;
+  vtkIdType unusable = 0;
+  if (this->Normals)
+  {
+    DispatchArray<vtkArrayDispatch::Reals>(
+      this->Normals, CountUnusableNormals(), this->NumberOfPoints, unusable);
+    self->NumberOfInvalidNormals += unusable;
+  }
+  if (!mikkTSpace || !this->Normals)
+  {
+    if (!this->Prepare() || !this->Continue(0.2))
+    {
+      return 1;
+    }
+  }
+  if (!this->Normals)
+  {
+    computedNormals = this->ComputedNormals<OutT>();
+  }
+  if (mikkTSpace)
+  {
+    return this->RunMikkTSpaceMethod(computedNormals ? computedNormals.Get() : this->Normals,
+      computedNormals != nullptr,
+      std::is_same<OutT, double>::value);
+  }
+  // The frames follow the normals as stored.
+  Buffer<dvec3> unitNormals;
+  const ShadingNormals normals = this->ShadingNormalsOf(
+    computedNormals ? computedNormals.Get() : this->Normals, unusable, unitNormals);
+  return this->RunWeighted<OutT>(
+    static_cast<TangentMethod>(self->Method), computedNormals, normals);
+}
+
+template<typename OutT>
+int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
+  vtkSmartPointer<OutArray<OutT>> computedNormals,
+  const ShadingNormals& normals)
+{
+  vtkPolyDataTangentFrames* self = this->Self;
+  const vtkIdType numPoints = this->NumberOfPoints;
+
+  this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
+  const ScatteredSums sums =
+    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+
+  // Room for the split points' frames too: one per mirror-seam point when splitting.
+  OutputFrames<OutT> frames(
+    numPoints + (self->Splitting ? sums.SeamPoints() : 0), self->ComputeBitangents);
+  const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
+  Buffer<PointKind> kinds(new PointKind[numPoints]);
+  WriteFrames(numPoints, sumsOf, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
+  const std::vector<vtkIdType> conflicts =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
+  const std::vector<vtkIdType> fallbacks =
+    PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
+  self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());
+  self->NumberOfFallbackPoints += static_cast<vtkIdType>(fallbacks.size());
+  if (!this->Continue(0.7))
+  {
+    return 1;
+  }
+  if (!fallbacks.empty())
+  {
+    FillFallbacks(this->Tris,
+      this->CornerSides.get(),
+      normals,
+      kinds.get(),
+      fallbacks,
+      StorageOf<OutT>(frames));
+  }
+  const std::vector<SplitPoint> splits =
+    self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
+  if (!this->Continue(0.85))
+  {
+    return 1;
+  }
+  self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
+  this->WriteOutput<OutT>(splits, frames, computedNormals);
+  this->Continue(1.0);
+  return 1;
+}
+
+int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
+{
+  Internals run{ block, this };
+  const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
+  const int result = this->DoubleOutput(block.Input) ? run.Run<double>() : run.Run<float>();
+  const vtkIdType triangles = run.Tris.Count;
+  if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
+  {
+    // Not an error (the output is complete), but no frame came from the texture coordinates.
+    vtkWarningMacro("None of the " << triangles
+                                   << " triangles has a usable frame (zero area, zero texture-"
+                                      "coordinate area, or a height at the rounding noise of "
+                                      "coordinates far from the origin for their precision): "
+                                      "every point gets a fallback tangent. Check the texture "
+                                      "coordinates, or store the positions in double or nearer "
+                                      "the origin.");
+  }
+  return result;
+}
