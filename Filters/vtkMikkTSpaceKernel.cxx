@@ -397,7 +397,15 @@ struct Kernel
   void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
+  // Scratch of FloodGroup.
+  struct Flood
+  {
+    std::vector<Member> Members;
+    std::vector<uint64_t> Edges;
+    std::vector<Idx> Stack;
+  };
   void AdoptGroupWithAnyOrientation();
+  void FloodGroup(Idx c, Idx v, std::vector<uint8_t>& assigned, Flood& f);
   void ProcessVertices();
   void ProcessVertex(Idx v, Scratch& s);
   void CornerMath(Idx v, Scratch& s) const;
@@ -860,9 +868,7 @@ void Kernel::AdoptGroupWithAnyOrientation()
     }
   }
   std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
-  std::vector<Idx> stack;
-  std::vector<Member> m;
-  std::vector<uint64_t> edges;
+  Flood flood;
   for (Idx t = 0; t < NumTris; ++t)
   {
     if (Tris[size_t(t)].Flags & (kExcluded | kGWA))
@@ -872,39 +878,47 @@ void Kernel::AdoptGroupWithAnyOrientation()
     for (Idx c = 3 * t; c < 3 * t + 3; ++c)
     {
       const Idx v = WeldOf(c);
-      if (!gwaVertex[size_t(v)] || assigned[size_t(c)])
+      if (gwaVertex[size_t(v)] && !assigned[size_t(c)])
+      {
+        FloodGroup(c, v, assigned, flood);
+      }
+    }
+  }
+}
+
+// The reference's group flood from corner c at welded vertex v across the fan's paired edges,
+// through corners not assigned to a group yet: a GWA triangle none of whose corners has a group
+// takes the seed's orientation, and the flood goes on through corners of that orientation.
+void Kernel::FloodGroup(Idx c, Idx v, std::vector<uint8_t>& assigned, Flood& f)
+{
+  std::vector<Member>& m = f.Members;
+  GatherFan(v, m);
+  PairEdges(m, f.Edges);
+  const Idx* fan = Fan.data() + FanStart[size_t(v)];
+  const uint8_t orient = Tris[size_t(c / 3)].Flags & kOrient;
+  assigned[size_t(c)] = 1;
+  f.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
+  while (!f.Stack.empty())
+  {
+    const Idx j = f.Stack.back();
+    f.Stack.pop_back();
+    for (const Idx q : m[size_t(j)].Link)
+    {
+      if (q < 0 || assigned[size_t(fan[q])])
       {
         continue;
       }
-      GatherFan(v, m);
-      PairEdges(m, edges);
-      const Idx* fan = Fan.data() + FanStart[size_t(v)];
-      const uint8_t orient = Tris[size_t(t)].Flags & kOrient;
-      assigned[size_t(c)] = 1;
-      stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
-      while (!stack.empty())
+      const Idx tq = fan[q] / 3;
+      uint8_t& fq = Tris[size_t(tq)].Flags;
+      if ((fq & kGWA) && !assigned[3 * size_t(tq)] && !assigned[3 * size_t(tq) + 1] &&
+        !assigned[3 * size_t(tq) + 2])
       {
-        const Idx j = stack.back();
-        stack.pop_back();
-        for (const Idx q : m[size_t(j)].Link)
-        {
-          if (q < 0 || assigned[size_t(fan[q])])
-          {
-            continue;
-          }
-          const Idx tq = fan[q] / 3;
-          uint8_t& fq = Tris[size_t(tq)].Flags;
-          if ((fq & kGWA) && !assigned[3 * size_t(tq)] && !assigned[3 * size_t(tq) + 1] &&
-            !assigned[3 * size_t(tq) + 2])
-          {
-            fq = uint8_t((fq & ~kOrient) | orient);
-          }
-          if ((fq & kOrient) == orient)
-          {
-            assigned[size_t(fan[q])] = 1;
-            stack.push_back(q);
-          }
-        }
+        fq = uint8_t((fq & ~kOrient) | orient);
+      }
+      if ((fq & kOrient) == orient)
+      {
+        assigned[size_t(fan[q])] = 1;
+        f.Stack.push_back(q);
       }
     }
   }
@@ -978,15 +992,12 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   }
 }
 
-// Groups of vertex v and their frames. A member has at most one link per side and links are
-// symmetric (a.Link[0] == b exactly when b.Link[1] == a), so a group is the chain (or cycle)
-// walked both ways from its first member while the orientation stays the same.
-void Kernel::ProcessVertex(Idx v, Scratch& s)
+// Labels the members of a fan with their groups and returns how many there are. A member has at
+// most one link per side and links are symmetric (a.Link[0] == b exactly when b.Link[1] == a),
+// so a group is the chain (or cycle) walked both ways from its first member while the
+// orientation stays the same.
+Idx LabelGroups(std::vector<Member>& m)
 {
-  std::vector<Member>& m = s.M;
-  GatherFan(v, m);
-  PairEdges(m, s.Edges);
-  CornerMath(v, s);
   Idx numGroups = 0;
   for (Member& a : m)
   {
@@ -1009,7 +1020,19 @@ void Kernel::ProcessVertex(Idx v, Scratch& s)
       }
     }
   }
-  // members ordered by (group, triangle)
+  return numGroups;
+}
+
+// Groups of vertex v and their frames: each group's members, in triangle order, go to
+// ResolveGroup.
+void Kernel::ProcessVertex(Idx v, Scratch& s)
+{
+  std::vector<Member>& m = s.M;
+  GatherFan(v, m);
+  PairEdges(m, s.Edges);
+  CornerMath(v, s);
+  const Idx numGroups = LabelGroups(m);
+  // members ordered by (group, triangle): a counting sort by group
   s.Order.resize(m.size());
   if (numGroups == 1)
   {
