@@ -25,12 +25,10 @@ jobs="$(nproc)"
 # __tls_get_addr and guesses a block's size from a glibc 2.19 header when the block's address is
 # 16 past a page boundary; with Debian's glibc 2.36 that guess can read garbage, and the leak
 # check at exit then crashes in ScanRangeForPointers ("Tracer caught signal 11",
-# google/sanitizers#1322). TestNormalMapSettings hit it in every run once the filter's scan ran
-# on TBB's worker thread for that test's small meshes (41f1aa1): the crash was in
-# ScanRangeForPointers, at address 0xb08, after the test had passed; with VTK's STDThread or
-# Sequential backend, on one CPU, with use_tls=0 or with this option there was none. Without the
-# interception those blocks are ordinary heap blocks to LeakSanitizer, reachable through the
-# threads' own TLS, which it still scans.
+# google/sanitizers#1322). Tests whose filters run on TBB's worker threads (TestNormalMapSettings)
+# crash there after passing; with VTK's STDThread or Sequential backend, with use_tls=0 or with
+# this option they do not. Without the interception those blocks are ordinary heap blocks to
+# LeakSanitizer, reachable through the threads' own TLS, which it still scans.
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1:intercept_tls_get_addr=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$root/scripts/sanitizer/lsan.supp:print_suppressions=0"
