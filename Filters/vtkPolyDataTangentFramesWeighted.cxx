@@ -693,6 +693,18 @@ int CornerHandedness(const Triangles& tris, const signed char* sides, vtkIdType 
 }
 
 /**
+ * The triangles [first, last] of a cell with n points that hold its corner k, in the order
+ * ListCellTriangles lists them: a polygon's fan (0, j + 1, j + 2) has corner 0 in every triangle
+ * and corner k > 0 in triangles k - 2 and k - 1; strip triangle j holds corners j to j + 2.
+ */
+void TrianglesAtCorner(vtkIdType k, vtkIdType n, bool strip, vtkIdType& first, vtkIdType& last)
+{
+  first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
+  last =
+    strip ? std::min<vtkIdType>(k, n - 3) : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
+}
+
+/**
  * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
  * copy id), polygon positions first, then strip positions after the polygons' connectivity.
  * A corner's side is the majority handedness of its cell's triangles that hold it.
@@ -729,15 +741,13 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
             continue;
           }
           // The cell holding this entry (the last one starting at or before it: cells without
-          // points start where the next one does) and its triangles that hold the corner (see
-          // CellTriangle).
+          // points start where the next one does) and its triangles that hold the corner.
           const vtkIdType c = std::upper_bound(offsets, offsets + numCells + 1, pos) - offsets - 1;
           const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
           const vtkIdType k = pos - static_cast<vtkIdType>(offsets[c]);
           const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
-          const vtkIdType first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
-          const vtkIdType last = strip ? std::min<vtkIdType>(k, n - 3)
-                                       : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
+          vtkIdType first, last;
+          TrianglesAtCorner(k, n, strip, first, last);
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
