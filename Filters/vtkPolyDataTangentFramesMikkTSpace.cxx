@@ -647,6 +647,30 @@ std::vector<std::vector<long long>> StripDisagreements(const Surface& s,
 }
 
 /**
+ * The new point of point p that carries frame f: one of p's new points so far (`mine`), or a new
+ * one appended after them all.
+ */
+vtkIdType SplitPointOf(long long p,
+  const CornerFrame& f,
+  std::vector<vtkIdType>& mine,
+  vtkIdType numPoints,
+  Assignment& a)
+{
+  for (vtkIdType candidate : mine)
+  {
+    if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
+    {
+      return candidate;
+    }
+  }
+  const vtkIdType id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
+  a.SplitSource.push_back(static_cast<vtkIdType>(p));
+  a.SplitFrame.push_back(f);
+  mine.push_back(id);
+  return id;
+}
+
+/**
  * Every point's frame (FirstFrames), the points with corners of other frames (conflicts: the
  * corners FirstFrames found, and the strip corners whose triangles disagree), and with
  * `splitting` one new point per other frame of a point, with the corners of that frame re-pointed
@@ -692,25 +716,7 @@ void Assign(const Surface& s,
     {
       continue;
     }
-    const CornerFrame& f = FrameOf(s, frames, c);
-    std::vector<vtkIdType>& mine = extra[p];
-    vtkIdType id = -1;
-    for (vtkIdType candidate : mine)
-    {
-      if (SameFrame(a.SplitFrame[static_cast<size_t>(candidate - numPoints)], f))
-      {
-        id = candidate;
-        break;
-      }
-    }
-    if (id < 0)
-    {
-      id = numPoints + static_cast<vtkIdType>(a.SplitSource.size());
-      a.SplitSource.push_back(static_cast<vtkIdType>(p));
-      a.SplitFrame.push_back(f);
-      mine.push_back(id);
-    }
-    a.Repoint.emplace_back(c, id);
+    a.Repoint.emplace_back(c, SplitPointOf(p, FrameOf(s, frames, c), extra[p], numPoints, a));
   }
 }
 
