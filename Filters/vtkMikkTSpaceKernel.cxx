@@ -415,6 +415,7 @@ struct Kernel
   bool SameFace(Idx ta, Idx tb) const;
   void Write(const Member& m, const Frame& f, uint8_t orient, Idx key);
   void MergeMultiWriters();
+  void CopyToQuadCorner(Idx b, Idx t);
   void CopyDegenerates();
   void Finish(Result& res);
   template<typename Aborted>
@@ -1235,6 +1236,27 @@ void Kernel::MergeMultiWriters()
 }
 
 //------------------------------------------------------------------------------
+// In the quad of face corners from b on, split into triangles t and t + 1 of which one is
+// degenerate: the face corner missing from the good triangle copies the frame of the good
+// triangle's corner at the same position, if it has one.
+void Kernel::CopyToQuadCorner(Idx b, Idx t)
+{
+  const std::array<Idx, 3> gs = SlotsOf(t + ((Tris[size_t(t)].Flags & kDegenerate) ? 1 : 0));
+  Idx missing = b;
+  while (missing == gs[0] || missing == gs[1] || missing == gs[2])
+  {
+    ++missing;
+  }
+  const V3 dst = Pos(Idx(Conn[missing]));
+  const auto src =
+    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
+  if (src != gs.end())
+  {
+    Out[size_t(missing)] = Out[size_t(*src)];
+  }
+}
+
+//------------------------------------------------------------------------------
 // Degenerate triangles copy the frame of the first good corner with the same welded vertex;
 // in a quad with one degenerate triangle the corner missing from the good triangle copies the
 // good triangle's corner with the same position. Sources are always corners of good
@@ -1258,19 +1280,7 @@ void Kernel::CopyDegenerates()
           }
           if (n == 4 && (tri[0].Flags & kOneDegenQuad))
           {
-            const std::array<Idx, 3> gs = SlotsOf(t + ((tri[0].Flags & kDegenerate) ? 1 : 0));
-            Idx missing = Idx(b);
-            while (missing == gs[0] || missing == gs[1] || missing == gs[2])
-            {
-              ++missing;
-            }
-            const V3 dst = Pos(Idx(Conn[missing]));
-            const auto src = std::find_if(
-              gs.begin(), gs.end(), [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
-            if (src != gs.end())
-            {
-              Out[size_t(missing)] = Out[size_t(*src)];
-            }
+            CopyToQuadCorner(Idx(b), t);
             return;
           }
           // a degenerate fan triangle only fills face corners no good triangle covers
