@@ -199,48 +199,40 @@ struct Scratch
   std::vector<Frame> SubFrames;
 };
 
-// Links the members' half-edges as the reference pairs them: the half-edges of one undirected
-// edge (vertex, x) in triangle order, each unpaired one with the first later unpaired one of
-// opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
-// evaluated locally, member by member in triangle order. A small fan scans the later members;
-// a large one (a polygon of thousands of corners fan-triangulated around its first) looks
-// them up in `index`, its half-edges sorted by (x, member), so that the pairing stays
-// O(k log k).
-void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
+// PairEdges for a small fan: each member scans the later ones. Side 0 is the edge vertex->Next,
+// which pairs with a later member's edge Prev->vertex; side 1 the reverse.
+void PairEdgesByScan(std::vector<Member>& m)
 {
-  constexpr size_t kScanLimit = 32;
   const Idx k = Idx(m.size());
-  for (Member& a : m)
+  for (Idx j = 0; j < k; ++j)
   {
-    a.Link[0] = a.Link[1] = -1;
-  }
-  if (m.size() <= kScanLimit)
-  {
-    // side 0: the edge j->Next pairs with a later member's edge Prev->vertex; side 1 the reverse
-    for (Idx j = 0; j < k; ++j)
+    Member& a = m[size_t(j)];
+    for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
     {
-      Member& a = m[size_t(j)];
-      for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
+      Member& b = m[size_t(q)];
+      if (b.Prev == a.Next && b.Link[1] < 0)
       {
-        Member& b = m[size_t(q)];
-        if (b.Prev == a.Next && b.Link[1] < 0)
-        {
-          a.Link[0] = q;
-          b.Link[1] = j;
-        }
-      }
-      for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
-      {
-        Member& b = m[size_t(q)];
-        if (b.Next == a.Prev && b.Link[0] < 0)
-        {
-          a.Link[1] = q;
-          b.Link[0] = j;
-        }
+        a.Link[0] = q;
+        b.Link[1] = j;
       }
     }
-    return;
+    for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
+    {
+      Member& b = m[size_t(q)];
+      if (b.Next == a.Prev && b.Link[0] < 0)
+      {
+        a.Link[1] = q;
+        b.Link[0] = j;
+      }
+    }
   }
+}
+
+// PairEdges for a large fan: the later members with the opposite half-edge are looked up in
+// `index`, the half-edges sorted by (other vertex, member).
+void PairEdgesByIndex(std::vector<Member>& m, std::vector<uint64_t>& index)
+{
+  const Idx k = Idx(m.size());
   index.clear();
   for (Idx j = 0; j < k; ++j)
   {
@@ -268,6 +260,30 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
         }
       }
     }
+  }
+}
+
+// Links the members' half-edges as the reference pairs them: the half-edges of one undirected
+// edge (vertex, x) in triangle order, each unpaired one with the first later unpaired one of
+// opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
+// evaluated locally, member by member in triangle order. A small fan scans the later members;
+// a large one (a polygon of thousands of corners fan-triangulated around its first) looks
+// them up in `index`, its half-edges sorted by (x, member), so that the pairing stays
+// O(k log k).
+void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
+{
+  constexpr size_t kScanLimit = 32;
+  for (Member& a : m)
+  {
+    a.Link[0] = a.Link[1] = -1;
+  }
+  if (m.size() <= kScanLimit)
+  {
+    PairEdgesByScan(m);
+  }
+  else
+  {
+    PairEdgesByIndex(m, index);
   }
 }
 
