@@ -217,10 +217,11 @@ Comparison Compare(const Bench::PairingMesh& mesh, int rounds)
  * Small random meshes, for the corner by corner comparison: 4 to 12 points on a small integer
  * grid (mostly flat, some lifted by one), normals of a few directions, texture coordinates on a
  * half-integer grid, and 1 to 12 triangles or quads on random points (a point may repeat within a
- * face). So they hold what large meshes rarely do: folds, mirrored and zero UV areas, non-manifold
- * and repeated edges, degenerate triangles and quads. Each ends with an isolated triangle on
- * points of its own: the original leaves the edges of the largest welded index unsorted
- * (docs/mikktspace.md), and that triangle's edges are then the only ones there.
+ * face); one mesh in eight crowds 48 to 80 faces onto 4 to 6 points. So they hold what large meshes
+ * rarely do: folds, mirrored and zero UV areas, non-manifold and repeated edges, degenerate
+ * triangles and quads. Each ends with an isolated triangle on points of its own: the original
+ * leaves the edges of the largest welded index unsorted (docs/mikktspace.md), and that triangle's
+ * edges are then the only ones there.
  */
 class RandomMeshes
 {
@@ -228,7 +229,11 @@ public:
   NormalMappingTesting::KernelMesh Next()
   {
     NormalMappingTesting::KernelMesh m;
-    const int numPoints = this->Uniform(4, 12);
+    // One mesh in eight crowds many faces onto few points, so that some vertex has a fan of
+    // more than 32 corners: the kernel pairs the edges of such fans through a sorted index
+    // instead of a scan.
+    const bool crowded = this->Uniform(0, 7) == 0;
+    const int numPoints = crowded ? this->Uniform(4, 6) : this->Uniform(4, 12);
     for (int p = 0; p < numPoints; ++p)
     {
       const bool lifted = this->Uniform(0, 2) == 0;
@@ -248,7 +253,7 @@ public:
         normal,
         { 0.5f * float(this->Uniform(-3, 3)), 0.5f * float(this->Uniform(-3, 3)) });
     }
-    const int numFaces = this->Uniform(1, 12);
+    const int numFaces = crowded ? this->Uniform(48, 80) : this->Uniform(1, 12);
     for (int f = 0; f < numFaces; ++f)
     {
       const int corners = this->Uniform(0, 2) == 0 ? 3 : 4;
@@ -301,12 +306,14 @@ bool CompareRandomMeshes(long long count, std::ostringstream& md)
   std::cout << "random small meshes: " << count << " meshes, " << corners << " face corners, "
             << differing << " differing from mikktspace.c in " << meshesDiffering << " meshes"
             << (ok ? "" : " (A RUN FAILED)") << std::endl;
-  md << "Random small meshes (4 to 12 points on a small grid, 1 to 12 triangles and quads on them, "
-        "with folds, mirrored and zero UV areas, non-manifold and repeated edges, degenerate "
-        "faces; see `RandomMeshes` in `Testing/Benchmarks/BenchMikkTSpace.cxx`): "
-     << Bench::Count(count) << " meshes, " << Bench::Count(corners) << " face corners, of which "
-     << Bench::Count(differing) << " differ from the original's in any bit (in "
-     << Bench::Count(meshesDiffering) << " meshes).\n";
+  md
+    << "Random small meshes (4 to 12 points on a small grid, 1 to 12 triangles and quads on them, "
+       "or one mesh in eight 48 to 80 on 4 to 6 points, so that fans of more than 32 corners "
+       "occur; with folds, mirrored and zero UV areas, non-manifold and repeated edges, degenerate "
+       "faces; see `RandomMeshes` in `Testing/Benchmarks/BenchMikkTSpace.cxx`): "
+    << Bench::Count(count) << " meshes, " << Bench::Count(corners) << " face corners, of which "
+    << Bench::Count(differing) << " differ from the original's in any bit (in "
+    << Bench::Count(meshesDiffering) << " meshes).\n";
   return ok;
 }
 

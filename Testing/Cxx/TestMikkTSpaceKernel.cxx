@@ -554,6 +554,59 @@ TEST(MikkTSpaceKernel, FanPolygon)
   EXPECT_EQ(p.NumberOfDefaultCorners, 2);
 }
 
+// A dome of n triangles around an apex (point 0), its texture mirrored in u across x = 0: the
+// apex's corners form two groups (one per handedness) only if the fan's edges pair.
+Mesh MirroredDome(int n)
+{
+  Mesh m;
+  m.AddPoint({ 0, 0, 1 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  for (int i = 0; i < n; ++i)
+  {
+    const float a = 6.2831853f * (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
+    const float x = std::cos(a), y = std::sin(a);
+    m.AddPoint(
+      { x, y, 0.5f }, { 0.6f * x, 0.6f * y, 0.8f }, { 0.5f + 0.4f * std::abs(x), 0.5f + 0.4f * y });
+  }
+  for (long long i = 0; i < n; ++i)
+  {
+    m.AddFace({ 0, 1 + i, 1 + (i + 1) % n });
+  }
+  return m;
+}
+
+// The kernel pairs the edges of a small fan by scanning and those of a fan of more than 32
+// corners through a sorted index; both give every apex corner of one handedness the same frame,
+// the group's, and the two halves different ones. Without pairing each corner keeps its own
+// triangle's direction, which differs from its neighbours' on this curved dome.
+TEST(MikkTSpaceKernel, LargeAndSmallFansPairTheirEdges)
+{
+  for (const int n : { 16, 96 })
+  {
+    const Mesh m = MirroredDome(n);
+    const mikk::Result r = RunKernel(m);
+    ASSERT_EQ(r.Corners.size(), static_cast<size_t>(3 * n));
+    std::array<const mikk::CornerFrame*, 2> first = { nullptr, nullptr };
+    int mismatched = 0;
+    for (int t = 0; t < n; ++t)
+    {
+      // The triangles whose both rim points lie on one side of x = 0 have one handedness;
+      // the two straddling x = 0 (u's fold) are left out.
+      const float x0 = m.P[3 * (1 + t)], x1 = m.P[3 * (1 + (t + 1) % n)];
+      if ((x0 < 0) != (x1 < 0))
+      {
+        continue;
+      }
+      const mikk::CornerFrame& apex = r.Corners[static_cast<size_t>(3 * t)];
+      const mikk::CornerFrame*& group = first[x0 < 0 ? 1 : 0];
+      group = group ? group : &apex;
+      mismatched += BitEqual(apex, *group) ? 0 : 1;
+    }
+    ASSERT_TRUE(first[0] && first[1]);
+    EXPECT_EQ(mismatched, 0) << n << " triangles";
+    EXPECT_NE(first[0]->Sign, first[1]->Sign) << n << " triangles";
+  }
+}
+
 // Point ids outside [0, NumberOfPoints) skip the face (default corners), leaving the rest of
 // the mesh as if the face were absent.
 TEST(MikkTSpaceKernel, OutOfRangeIds)
