@@ -728,6 +728,60 @@ TEST(PolyDataTangentFrames, ZeroUVAreaTriangleFallsBackToNeighbours)
   EXPECT_LT(AngleDeg(t4, { 1, 0, 0 }), 1e-5); // float output rounding, as above
 }
 
+TEST(PolyDataTangentFrames, FallbackPointTakesItsNeighboursMajoritySign)
+{
+  // The mesh above with u mirrored (u -> -u): every good triangle has handedness -1, so the
+  // fallback point 4 takes sign -1 and its neighbours' tangent (-1, 0, 0).
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 1, 1, 0 }, { 2, 0.5, 0 } },
+    { { 0, 0 }, { -1, 0 }, { 0, 1 }, { -1, 1 }, { -1, 0 } },
+    { { 0, 1, 2 }, { 1, 3, 2 }, { 1, 4, 3 } },
+    std::vector<Vec>(5, Vec{ 0, 0, 1 }));
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(mesh);
+  filter->Update();
+  auto out = filter->GetOutput();
+  ExpectValidFrames(out);
+  ASSERT_EQ(filter->GetNumberOfFallbackPoints(), 1);
+  vtkDataArray* signs = out->GetPointData()->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+  for (vtkIdType p = 0; p < 5; ++p)
+  {
+    EXPECT_EQ(signs->GetComponent(p, 0), -1.0) << "point " << p;
+  }
+  EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetTangents(), 4), { -1, 0, 0 }), 1e-5);
+}
+
+TEST(PolyDataTangentFrames, WithoutSplittingATieGoesToThePositiveSide)
+{
+  // Two triangles mirrored across x = 0 with u = |x|: the seam points 0 and 1 get the same
+  // weight from both sides, bit for bit (the mirrored edges give the same dot and cross
+  // products). Without splitting they take the +1 side: sign +1 and the right triangle's
+  // tangent (1, 0, 0).
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 0, 1, 0 }, { 1, 0, 0 }, { -1, 0, 0 } },
+    { { 0, 0 }, { 0, 1 }, { 1, 0 }, { 1, 0 } },
+    { { 0, 2, 1 }, { 0, 1, 3 } },
+    std::vector<Vec>(4, Vec{ 0, 0, 1 }));
+  for (int method : { vtkPolyDataTangentFrames::UNWEIGHTED,
+         vtkPolyDataTangentFrames::AREA_WEIGHTED,
+         vtkPolyDataTangentFrames::ANGLE_WEIGHTED })
+  {
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->SplittingOff();
+    filter->Update();
+    auto out = filter->GetOutput();
+    ExpectValidFrames(out);
+    EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
+    vtkDataArray* signs = out->GetPointData()->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+    for (vtkIdType p = 0; p < 2; ++p)
+    {
+      EXPECT_EQ(signs->GetComponent(p, 0), 1.0) << "method " << method << " point " << p;
+      EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), p), (Vec{ 1, 0, 0 }))
+        << "method " << method << " point " << p;
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, OnlyDegenerateTrianglesUseTheFixedRule)
 {
   // All triangles zero-area or zero-UV-area: every point falls back to the fixed rule.
