@@ -1064,6 +1064,49 @@ TEST(PolyDataTangentFramesMikkTSpace, NonFiniteInputGivesFiniteOutput)
 // The filter's contract for MikkTSpace: finite unit tangents perpendicular to the normal, where
 // the kernel (like the reference) gives a zero tangent (cancelled), the default (1,0,0) whatever
 // the normal, or a tangent off perpendicular because the normal is not unit.
+// Normals a little off unit length, as real files store them: the kernel projects with the
+// normal as given, leaving |T.N| of about 2 (|N| - 1) (N.dP/du). Up to 1e-4 the filter keeps
+// the kernel's bits (the reference's tangents); beyond, it makes the tangent perpendicular.
+TEST(PolyDataTangentFramesMikkTSpace, SlightlyNonUnitNormalsKeepOrCorrectTheKernelFrame)
+{
+  const float c = 0.6f, z = 0.8f;
+  // |N| = 1.005: |T.N| about 0.0075; |N| = 1 + 4e-5: about 4e-5.
+  for (const float length : { 1.005f, 1.00004f })
+  {
+    SCOPED_TRACE(length);
+    TestMesh m;
+    m.AddPoint({ 0, 0, 0 }, { length * c, 0, length * z }, { 0, 0 });
+    m.AddPoint({ 1, 0, 0 }, { length * c, 0, length * z }, { 1, 0 });
+    m.AddPoint({ 0, 1, 0 }, { length * c, 0, length * z }, { 0, 1 });
+    m.Polys.push_back({ 0, 1, 2 });
+    vtkSmartPointer<vtkPolyData> input = m.Build();
+    const ExpectedFrames e = ComputeExpected(input);
+    const FilterRun run = RunFilter(input, [](vtkPolyDataTangentFrames*) {});
+    ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
+    vtkDataArray* t = run.Output->GetPointData()->GetTangents();
+    for (vtkIdType p = 0; p < 3; ++p)
+    {
+      const mikk::CornerFrame& k = e.Kernel.Corners[static_cast<size_t>(p)];
+      const glm::dvec3 n = glm::normalize(glm::dvec3(c, 0.0, z));
+      const double kernelTN =
+        std::abs(glm::dot(glm::dvec3(k.Tangent[0], k.Tangent[1], k.Tangent[2]), n));
+      glm::dvec3 tv;
+      t->GetTuple(p, &tv[0]);
+      if (length > 1.001f)
+      {
+        ASSERT_GT(kernelTN, 1e-3) << "point " << p << ": the kernel's tangent was expected off";
+        // Float output: a unit vector rounded to float is perpendicular within ~2e-7.
+        EXPECT_NEAR(glm::dot(tv, n), 0.0, 1e-6) << "point " << p;
+      }
+      else
+      {
+        ASSERT_GT(kernelTN, 1e-5) << "point " << p << ": the kernel's tangent was expected off";
+        EXPECT_TRUE(BitEqual(PointFrame(run.Output, p), k)) << "point " << p;
+      }
+    }
+  }
+}
+
 TEST(PolyDataTangentFramesMikkTSpace, FrameContractWhereTheReferenceBreaksIt)
 {
   TestMesh m;
