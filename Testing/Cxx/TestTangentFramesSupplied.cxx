@@ -189,6 +189,44 @@ TEST(TangentFramesSupplied, EachDefectIsCountedAndReplaced)
   }
 }
 
+TEST(TangentFramesSupplied, DefectsAreJudgedAtTheDocumentedTolerances)
+{
+  // The documented tolerances (vtkTangentFrameChecks.h, docs/filter.md), written out so that
+  // a change of the defaults fails here: 1e-2 for | |T| - 1 | and | |w| - 1 |, 2e-2 for
+  // |T.N| / |T|. Each with a frame 1.5 times beyond it (replaced) and one half within it (kept
+  // as supplied, its w written as its sign).
+  const double unitTolerance = 1e-2, perpendicularTolerance = 2e-2, signTolerance = 1e-2;
+  const double tilt = 1.5 * perpendicularTolerance, inTilt = 0.5 * perpendicularTolerance;
+  struct Case
+  {
+    const char* Name;
+    std::array<double, 4> Frame;
+    bool Replaced;
+  };
+  const Case cases[] = {
+    { "long", { 1.0 + 1.5 * unitTolerance, 0.0, 0.0, 1.0 }, true },
+    { "slightly long", { 1.0 + 0.5 * unitTolerance, 0.0, 0.0, 1.0 }, false },
+    { "tilted", { std::sqrt(1.0 - tilt * tilt), 0.0, tilt, 1.0 }, true },
+    { "slightly tilted", { std::sqrt(1.0 - inTilt * inTilt), 0.0, inTilt, 1.0 }, false },
+    { "w off", { 1.0, 0.0, 0.0, 1.0 + 1.5 * signTolerance }, true },
+    { "w slightly off", { 1.0, 0.0, 0.0, 1.0 + 0.5 * signTolerance }, false },
+  };
+  for (const Case& k : cases)
+  {
+    SCOPED_TRACE(k.Name);
+    auto mesh = Plane(false);
+    auto supplied = SuppliedVec4(mesh, 0.0, false);
+    const vtkIdType bad = 4 * 9 + 4; // the grid's centre point (9 points per column)
+    supplied->SetTuple(bad, k.Frame.data());
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+    run.Update();
+    EXPECT_EQ(k.Replaced ? 1 : 0, run.Filter->GetNumberOfReplacedTangents());
+    const std::array<double, 4> kept = { k.Frame[0], k.Frame[1], k.Frame[2], 1.0 };
+    EXPECT_TRUE(
+      HasFrame(run, bad, k.Replaced ? std::array<double, 4>{ 1.0, 0.0, 0.0, 1.0 } : kept));
+  }
+}
+
 TEST(TangentFramesSupplied, SignsOfVDownCoordinatesWithoutTheFlipAreAllReplaced)
 {
   // Signs computed on v-down coordinates without negating them: every w is the opposite of
