@@ -706,6 +706,62 @@ TEST(TangentFramesStability, MikkTSpaceAtAnyScaleAndFarFromTheOrigin)
   }
 }
 
+TEST(TangentFramesStability, MikkTSpaceTinyFloatMeshFarAlongOneAxis)
+{
+  // A float torus squashed to 2^-16.1 across in x and z, at y = 0 and at y = 2^113 (float
+  // input is not centred: the reference rounds nothing, so neither does the filter). The kernel
+  // brings a mesh this small to unit extent (x 2^16), which would take the second's y past
+  // float's largest value and make every frame the default; it scales that one by 2^13 only,
+  // which leaves y below 2^127. y is the same at every point, so the edges, and with them every
+  // frame, are those of the mesh at y = 0, bit for bit: the two scales differ by a power of two
+  // and leave the edges far inside float's range. A smaller scale would not do: below an extent
+  // of about 2^-16 the kernel's own products of edges underflow and change frames.
+  vtkNormalMapping::TorusOptions options;
+  options.U = 16;
+  options.V = 8;
+  options.DoublePrecision = true;
+  const auto torus = vtkNormalMapping::MakeTorus(options);
+  const double squash = std::ldexp(1.0, -16) / 2.7 / 1.08; // the torus is 2.7 across
+  const auto place = [&](float y)
+  {
+    auto out = vtkSmartPointer<vtkPolyData>::New();
+    out->DeepCopy(torus);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToFloat();
+    points->SetNumberOfPoints(torus->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < torus->GetNumberOfPoints(); ++p)
+    {
+      double x[3];
+      torus->GetPoint(p, x);
+      points->SetPoint(p, squash * x[0], y, squash * x[2]);
+    }
+    out->SetPoints(points);
+    return out;
+  };
+  vtkNew<vtkPolyDataTangentFrames> near, far;
+  near->SetInputData(place(0.0f));
+  far->SetInputData(place(std::ldexp(1.0f, 113)));
+  for (vtkPolyDataTangentFrames* f : { near.Get(), far.Get() })
+  {
+    f->SetMethodToMikkTSpace();
+    f->Update();
+  }
+  vtkPolyData* a = near->GetOutput();
+  vtkPolyData* b = far->GetOutput();
+  ExpectValid(b, 1e-4);
+  ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+  EXPECT_LT(far->GetNumberOfFallbackPoints(), b->GetNumberOfPoints() / 10);
+  EXPECT_EQ(far->GetNumberOfFallbackPoints(), near->GetNumberOfFallbackPoints());
+  vtkDataArray* ta = a->GetPointData()->GetTangents();
+  vtkDataArray* tb = b->GetPointData()->GetTangents();
+  vtkIdType differing = 0;
+  for (vtkIdType p = 0; p < a->GetNumberOfPoints(); ++p)
+  {
+    differing += Get3(ta, p) == Get3(tb, p) ? 0 : 1;
+  }
+  EXPECT_EQ(differing, 0);
+}
+
 TEST(TangentFramesStability, TriangleFacingAwayFromTheNormalKeepsTheTextureHandedness)
 {
   // A flat 2 x 2 grid, u = x / 2, v = y / 2, point normals +z, with one triangle wound the
