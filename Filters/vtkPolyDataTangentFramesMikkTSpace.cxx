@@ -263,9 +263,9 @@ const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>&
   // The exponent for the extent, limited so that no coordinate reaches 2^127, float's largest
   // power of two (float input far from the origin compared with its extent, which stays where
   // it is). Coordinate differences stay within the scaled extent, so only the coordinates
-  // themselves can overflow. Within [2^-16, 2^16] no
-  // product of up to four position differences leaves float's normal range, so scaling could
-  // not change a bit and is skipped (float input is then read without a copy).
+  // themselves can overflow. Within [2^-16, 2^16] no product of up to four position differences
+  // leaves float's normal range, so scaling could not change a bit and is skipped (float input
+  // is then read without a copy).
   const bool ordinary = extent >= 0x1p-16 && extent <= 0x1p16;
   const int k =
     centred || !ordinary ? std::min(UnitExponent(extent), UnitExponent(reach) + 127) : 0;
