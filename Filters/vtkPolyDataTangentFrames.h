@@ -64,8 +64,8 @@
  * with a warning, and the counts below are the sums over the blocks.
  *
  * The work runs on vtkSMPTools and is deterministic: the output is bit-identical for any number
- * of threads, because each point sums its triangles in a fixed order through a point-to-triangle
- * table. Progress is reported and AbortExecute honoured between parallel passes; an aborted
+ * of threads, because each point adds its triangles in triangle order, whatever thread computed
+ * them. Progress is reported and AbortExecute honoured between parallel passes; an aborted
  * execution leaves an empty output.
  */
 #ifndef vtkPolyDataTangentFrames_h
