@@ -929,6 +929,52 @@ TEST(PolyDataTangentFrames, VerticesLinesPolygonsAndStripsTogether)
   }
 }
 
+TEST(PolyDataTangentFrames, CellTangentsAreAreaWeightedOverTheCellsTriangles)
+{
+  // A quad folded along its diagonal (0, 2): triangle (0, 1, 2) of area 2 in z = 0 with
+  // dP/du = +x, and triangle (0, 2, 3), of another area and plane, whose texture coordinates
+  // give dP/du = (1, 0.25, -0.125). The cell tangent (docs/filter.md) is the area-weighted sum
+  // of the triangles' unit tangents, made perpendicular to the sum of their cross products,
+  // normalised: computed here from those two triangles, for every weighted method.
+  const std::vector<Vec> p = { { 0, 0, 0 }, { 4, 0, 0 }, { 2, 1, 0 }, { 0, 1, 0.5 } };
+  auto mesh = MakeTriangles(p, { { 0, 0 }, { 4, 0 }, { 2, 1 }, { 0, 2 } }, { { 0, 1, 2, 3 } });
+  const auto minus = [](const Vec& a, const Vec& b) {
+    return Vec{ a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  };
+  const auto scaled = [](double s, const Vec& a) { return Vec{ s * a[0], s * a[1], s * a[2] }; };
+  const Vec cross1 = Cross(minus(p[1], p[0]), minus(p[2], p[0]));
+  const Vec cross2 = Cross(minus(p[2], p[0]), minus(p[3], p[0]));
+  const Vec tangent1 = { 1, 0, 0 };
+  const Vec tangent2 = scaled(1.0 / Norm({ 1, 0.25, -0.125 }), { 1, 0.25, -0.125 });
+  const double area1 = 0.5 * Norm(cross1), area2 = 0.5 * Norm(cross2);
+  Vec t, n;
+  for (int k = 0; k < 3; ++k)
+  {
+    t[k] = area1 * tangent1[k] + area2 * tangent2[k];
+    n[k] = cross1[k] + cross2[k];
+  }
+  n = scaled(1.0 / Norm(n), n);
+  const Vec perpendicular = minus(t, scaled(Dot(t, n), n));
+  const Vec expected = scaled(1.0 / Norm(perpendicular), perpendicular);
+  for (int method : AllMethods)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->ComputeCellTangentsOn();
+    filter->Update();
+    vtkDataArray* ct = filter->GetOutput()->GetCellData()->GetTangents();
+    ASSERT_NE(ct, nullptr);
+    const Vec actual = Get3(ct, 0);
+    for (int k = 0; k < 3; ++k)
+    {
+      // Float output: a unit vector rounded once (6e-8 per component).
+      EXPECT_NEAR(actual[k], expected[k], 1e-6) << "component " << k;
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, OutOfRangeIdsAreAnErrorAndPassThrough)
 {
   auto mesh = MakeTriangles(

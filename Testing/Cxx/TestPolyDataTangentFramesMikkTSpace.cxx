@@ -1107,6 +1107,93 @@ TEST(PolyDataTangentFramesMikkTSpace, SlightlyNonUnitNormalsKeepOrCorrectTheKern
   }
 }
 
+//------------------------------------------------------------------------------
+// Cell tangents (docs/filter.md): per polygon or strip, the sum of the kernel frames of its
+// faces' corners, leaving out the corners MikkTSpace leaves at its default, made perpendicular to
+// the sum of its faces' cross products (fanned from each face's first corner) and normalised;
+// with nothing left to sum, the fixed perpendicular FallbackTangent of that normal.
+TEST(PolyDataTangentFramesMikkTSpace, CellTangentsSumTheCornerFramesOfEachCell)
+{
+  TestMesh m;
+  // Cell 0: a quad folded along its diagonal, with texture coordinates no affine map gives, so
+  // that its corners' frames differ and its two triangles' normals too.
+  m.AddPoint({ 0, 0, 0 }, { 0, 0, 1 }, { 0, 0 });
+  m.AddPoint({ 4, 0, 0 }, { 0, 0, 1 }, { 4, 0 });
+  m.AddPoint({ 2, 1, 0 }, { 0, 0, 1 }, { 2, 1 });
+  m.AddPoint({ 0, 1, 0.5f }, { 0, 0, 1 }, { 0, 2 });
+  m.Polys.push_back({ 0, 1, 2, 3 });
+  // Cell 1: a triangle of zero UV area in a plane whose normal n = (0.48, 0.36, 0.8) has a y
+  // component, so that its fallback (Duff et al.'s basis of n) differs from the default (1,0,0)
+  // made perpendicular to n. Edges a and n x a.
+  const float nx = 0.48f, ny = 0.36f, nz = 0.8f;
+  m.AddPoint({ 10, 0, 0 }, { nx, ny, nz }, { 0.5f, 0.5f });
+  m.AddPoint({ 10.8f, 0, -0.48f }, { nx, ny, nz }, { 0.5f, 0.5f });
+  m.AddPoint({ 10 - 0.1728f, 0.8704f, -0.288f }, { nx, ny, nz }, { 0.5f, 0.5f });
+  m.Polys.push_back({ 4, 5, 6 });
+  // Cell 2: a strip of two triangles, (7, 8, 9) and (9, 8, 10), one lifted corner.
+  m.AddPoint({ 20, 0, 0 }, { 0, 0, 1 }, { 0, 0 });
+  m.AddPoint({ 21, 0, 0 }, { 0, 0, 1 }, { 1, 0 });
+  m.AddPoint({ 20, 1, 0 }, { 0, 0, 1 }, { 0, 1 });
+  m.AddPoint({ 21, 1, 0.3f }, { 0, 0, 1 }, { 1.5f, 1 });
+  m.Strips.push_back({ 7, 8, 9, 10 });
+  vtkSmartPointer<vtkPolyData> input = m.Build();
+  const ExpectedFrames e = ComputeExpected(input);
+  // The kernel's faces, as the filter builds them: the polygons, then the strip's triangles.
+  const std::vector<std::vector<vtkIdType>> faces = {
+    { 0, 1, 2, 3 }, { 4, 5, 6 }, { 7, 8, 9 }, { 9, 8, 10 }
+  };
+  const std::vector<std::vector<size_t>> cellFaces = { { 0 }, { 1 }, { 2, 3 } };
+  ASSERT_EQ(e.Kernel.Corners.size(), 13u);
+  for (size_t k = 4; k < 7; ++k)
+  {
+    ASSERT_TRUE(IsDefault(e.Kernel.Corners[k])) << "corner " << k << " was expected default";
+  }
+  ASSERT_FALSE(BitEqual(e.Kernel.Corners[0], e.Kernel.Corners[1]));
+
+  const FilterRun run =
+    RunFilter(input, [](vtkPolyDataTangentFrames* f) { f->ComputeCellTangentsOn(); });
+  ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
+  vtkDataArray* cellTangents = run.Output->GetCellData()->GetTangents();
+  ASSERT_NE(cellTangents, nullptr);
+  ASSERT_EQ(cellTangents->GetNumberOfTuples(), 3);
+  size_t corner = 0;
+  for (vtkIdType c = 0; c < 3; ++c)
+  {
+    glm::dvec3 t(0.0), n(0.0);
+    for (const size_t f : cellFaces[static_cast<size_t>(c)])
+    {
+      const std::vector<vtkIdType>& ids = faces[f];
+      const auto point = [&](size_t i)
+      {
+        const std::array<float, 3>& q = m.P[static_cast<size_t>(ids[i])];
+        return glm::dvec3(q[0], q[1], q[2]);
+      };
+      for (size_t i = 0; i < ids.size(); ++i, ++corner)
+      {
+        const mikk::CornerFrame& k = e.Kernel.Corners[corner];
+        if (!IsDefault(k))
+        {
+          t += glm::dvec3(k.Tangent[0], k.Tangent[1], k.Tangent[2]);
+        }
+      }
+      for (size_t i = 1; i + 1 < ids.size(); ++i)
+      {
+        n += glm::cross(point(i) - point(0), point(i + 1) - point(0));
+      }
+    }
+    const glm::dvec3 expected =
+      vtkNormalMapping::PerpendicularTangent(vtkNormalMapping::SafeNormalize(n), t);
+    double actual[3];
+    cellTangents->GetTuple(c, actual);
+    for (int k = 0; k < 3; ++k)
+    {
+      // Float output: the double result rounded once (6e-8); the sums above add the same terms
+      // in the same order as the filter's.
+      EXPECT_NEAR(actual[k], expected[k], 1e-6) << "cell " << c << ", component " << k;
+    }
+  }
+}
+
 TEST(PolyDataTangentFramesMikkTSpace, FrameContractWhereTheReferenceBreaksIt)
 {
   TestMesh m;
