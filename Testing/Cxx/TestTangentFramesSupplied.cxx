@@ -6,6 +6,7 @@
 #include "vtkPolyDataTangentFrames.h"
 #include "vtkTangentFrameChecks.h"
 
+#include "vtkCellData.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkMultiBlockDataSet.h"
@@ -297,6 +298,7 @@ TEST(TangentFramesSupplied, KeepUsesFramesAsTheyAreAndReplacesOnlyNonFinite)
   const double c = std::cos(Pi / 4);
   supplied->SetTuple4(10, c, 0.0, c, 1.0); // not perpendicular: kept as it is
   supplied->SetTuple4(11, std::numeric_limits<double>::infinity(), 0.0, 0.0, 1.0);
+  supplied->SetTuple4(12, 1.0, 0.0, 0.0, -1.0); // against the winding: KEEP does not look
   SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP);
   run.Filter->ComputeBitangentsOn();
   run.Update();
@@ -311,8 +313,78 @@ TEST(TangentFramesSupplied, KeepUsesFramesAsTheyAreAndReplacesOnlyNonFinite)
   run.Output->GetPointData()->GetArray("Bitangents")->GetTuple(10, b);
   EXPECT_NEAR(c, b[1], 1e-6);
   EXPECT_NEAR(0.0, b[0], 1e-6);
+  // The kept sign -1 turns the bitangent: -cross(z, x) = (0, -1, 0).
+  EXPECT_TRUE(HasFrame(run, 12, { 1.0, 0.0, 0.0, -1.0 }));
+  run.Output->GetPointData()->GetArray("Bitangents")->GetTuple(12, b);
+  EXPECT_NEAR(-1.0, b[1], 1e-6);
   EXPECT_EQ(vtkPolyDataTangentFrames::TangentsArrayName(),
     std::string(run.Output->GetPointData()->GetTangents()->GetName()));
+}
+
+TEST(TangentFramesSupplied, CellTangentsAreComputedWhenEveryFrameIsKept)
+{
+  // Every supplied frame passes, so no point frame is computed; the cell tangents asked for
+  // are still computed, as without supplied tangents.
+  auto mesh = Plane(false);
+  auto supplied = SuppliedVec4(mesh, Turn, false);
+  SuppliedRun keep(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+  keep.Filter->ComputeCellTangentsOn();
+  keep.Update();
+  EXPECT_EQ(0, keep.Filter->GetNumberOfReplacedTangents());
+  SuppliedRun recompute(mesh, vtkPolyDataTangentFrames::RECOMPUTE);
+  recompute.Filter->ComputeCellTangentsOn();
+  recompute.Update();
+  vtkDataArray* kept = keep.Output->GetCellData()->GetTangents();
+  vtkDataArray* computed = recompute.Output->GetCellData()->GetTangents();
+  ASSERT_NE(kept, nullptr);
+  ASSERT_NE(computed, nullptr);
+  ASSERT_EQ(kept->GetNumberOfTuples(), mesh->GetNumberOfCells());
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_EQ(computed->GetComponent(c, k), kept->GetComponent(c, k)) << "cell " << c;
+    }
+  }
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    EXPECT_TRUE(HasFrame(keep, p, Supplied(supplied, p)));
+  }
+}
+
+TEST(TangentFramesSupplied, CheckCountsSignsAndLargestErrors)
+{
+  // The counts `normalmap check` reports: the points with a positive sign, and the largest
+  // length error and |cos| to the normal over the finite tangents; a point whose normal is zero
+  // cannot be checked for perpendicularity and counts as not perpendicular.
+  auto mesh = Plane(true);
+  auto supplied = SuppliedVec4(mesh, 0.0, true); // right frames: -1 on the mirrored half
+  vtkIdType positive = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    positive += supplied->GetComponent(p, 3) > 0.0 ? 1 : 0;
+  }
+  ASSERT_GT(positive, 0);
+  ASSERT_LT(positive, mesh->GetNumberOfPoints());
+  const double longer = 1.004, tilt = 0.01; // both within the default tolerances
+  supplied->SetTuple4(10, longer, 0.0, 0.0, 1.0);
+  supplied->SetTuple4(11, std::sqrt(1.0 - tilt * tilt), 0.0, tilt, 1.0);
+  supplied->SetTuple4(12, std::numeric_limits<double>::quiet_NaN(), 0.0, 5.0, 1.0); // not measured
+  mesh->GetPointData()->GetNormals()->SetTuple3(13, 0.0, 0.0, 0.0);
+  std::string problem;
+  const auto arrays = vtkNormalMapping::FindSuppliedFrames(mesh, "TANGENT", problem);
+  ASSERT_TRUE(arrays.IsUsable()) << problem;
+  const auto check = vtkNormalMapping::CheckSuppliedFrames(
+    mesh, mesh->GetPointData()->GetNormals(), nullptr, arrays, false);
+  // 10 to 13 are on the +1 half (s < 1/2); 12 is not finite and not counted.
+  EXPECT_EQ(positive - 1, check.Counts.PositiveSigns);
+  // The supplied array is float: each component is rounded by up to 6e-8.
+  EXPECT_NEAR(longer - 1.0, check.Counts.MaxLengthError, 1e-7);
+  EXPECT_NEAR(tilt, check.Counts.MaxCosineToNormal, 1e-7);
+  EXPECT_EQ(vtkNormalMapping::DefectNotPerpendicular, check.Defects[13]);
+  EXPECT_EQ(1, check.Counts.NotPerpendicular);
+  EXPECT_EQ(vtkNormalMapping::DefectNonFinite, check.Defects[12]);
+  EXPECT_EQ(2, check.Counts.Failed);
 }
 
 TEST(TangentFramesSupplied, ThreeComponentsWithSignArray)
