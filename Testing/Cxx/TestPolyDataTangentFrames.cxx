@@ -738,6 +738,35 @@ TEST(PolyDataTangentFrames, ZeroUVAreaTriangleFallsBackToNeighbours)
   }
 }
 
+TEST(PolyDataTangentFrames, AFallbackPointBetweenOppositeSignsTakesThePositiveSign)
+{
+  // Point 0's only triangle (0, 1, 2) has zero UV area. Its neighbours: point 1, in a +1
+  // triangle with tangent +x, and point 2, in a mirrored (-1) triangle with tangent -x. The
+  // vote is a tie, which goes to +1; the neighbours' tangents cancel, which leaves Duff et al.'s
+  // basis of the normal +z: +x.
+  auto mesh = MakeTriangles(
+    { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 2, 0, 0 }, { 1, 1, 0 }, { 1, 1, 0 }, { 0, 2, 0 } },
+    { { 0, 0 }, { 0, 0 }, { 0, 0 }, { 1, 0 }, { 0, 1 }, { -1, 0 }, { 0, 1 } },
+    { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 5, 6 } },
+    std::vector<Vec>(7, Vec{ 0, 0, 1 }));
+  for (int method : AllMethods)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->SetMethod(method);
+    filter->Update();
+    auto out = filter->GetOutput();
+    ExpectValidFrames(out);
+    ASSERT_EQ(filter->GetNumberOfFallbackPoints(), 1);
+    vtkDataArray* signs = out->GetPointData()->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+    ASSERT_EQ(signs->GetComponent(1, 0), 1.0);
+    ASSERT_EQ(signs->GetComponent(2, 0), -1.0);
+    EXPECT_EQ(signs->GetComponent(0, 0), 1.0);
+    EXPECT_EQ(Get3(out->GetPointData()->GetTangents(), 0), (Vec{ 1, 0, 0 }));
+  }
+}
+
 TEST(PolyDataTangentFrames, WithoutSplittingATieGoesToThePositiveSide)
 {
   // Two triangles mirrored across x = 0 with u = |x|: the seam points 0 and 1 get the same
@@ -907,7 +936,9 @@ TEST(PolyDataTangentFrames, VerticesLinesPolygonsAndStripsTogether)
   {
     if (p == 10 || p == 11)
     {
-      continue; // not in any polygon or strip: fallback (neighbourless) points
+      // Not in any polygon or strip: fallback points without neighbours, sign +1.
+      EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetComponent(p, 0), 1.0);
+      continue;
     }
     EXPECT_LT(AngleDeg(Get3(out->GetPointData()->GetTangents(), p), { 1, 0, 0 }), 1e-5) << p;
     EXPECT_EQ(out->GetPointData()->GetArray("TangentSigns")->GetComponent(p, 0), 1.0);
