@@ -1627,6 +1627,97 @@ TEST(PolyDataTangentFrames, MissingNormalsAreComputedAndCellNormalsUsed)
   }
 }
 
+TEST(PolyDataTangentFrames, ComputedNormalsAreAreaWeighted)
+{
+  // Point 0 is in triangle (0, 1, 2), cross product (0, 0, 2), and triangle (0, 2, 3), cross
+  // product (1, 0, 1): of other areas and planes. Point 4 is in no triangle. Computed normals
+  // (docs/filter.md) are the area-weighted sums of the triangles' unit normals, or of the given
+  // cell normals, normalized; +z for a point in no triangle.
+  auto mesh = MakeTriangles({ { 0, 0, 0 }, { 2, 0, 0 }, { 0, 1, 0 }, { -1, 0, 1 }, { 5, 5, 5 } },
+    { { 0, 0 }, { 2, 0 }, { 0, 1 }, { -1, 0 }, { 0, 0 } },
+    { { 0, 1, 2 }, { 0, 2, 3 } });
+  const double area0 = 1.0, area1 = std::sqrt(2.0) / 2;
+  // Float output: unit vectors rounded once (6e-8 per component).
+  const auto expectNear = [](const Vec& actual, const Vec& expected, const char* what)
+  {
+    const double length = Norm(expected);
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_NEAR(actual[k], expected[k] / length, 1e-6) << what << ", component " << k;
+    }
+  };
+  {
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(mesh);
+    filter->Update();
+    vtkDataArray* n = filter->GetOutput()->GetPointData()->GetNormals();
+    ASSERT_NE(n, nullptr);
+    // area0 (0, 0, 1) + area1 (1, 0, 1) / sqrt(2)
+    expectNear(
+      Get3(n, 0), { area1 / std::sqrt(2.0), 0, area0 + area1 / std::sqrt(2.0) }, "point 0");
+    expectNear(Get3(n, 4), { 0, 0, 1 }, "point 4");
+  }
+  {
+    // Cell normals that are not the triangles' own, the first one unnormalized.
+    vtkNew<vtkPolyData> withCellNormals;
+    withCellNormals->DeepCopy(mesh);
+    vtkNew<vtkFloatArray> cn;
+    cn->SetNumberOfComponents(3);
+    cn->InsertNextTuple3(0, 0, 2);
+    cn->InsertNextTuple3(1, 0, 0);
+    withCellNormals->GetCellData()->SetNormals(cn);
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetInputData(withCellNormals);
+    filter->Update();
+    vtkDataArray* n = filter->GetOutput()->GetPointData()->GetNormals();
+    ASSERT_NE(n, nullptr);
+    expectNear(Get3(n, 0), { area1, 0, area0 }, "point 0, cell normals");
+    expectNear(Get3(n, 4), { 0, 0, 1 }, "point 4, cell normals");
+  }
+}
+
+TEST(PolyDataTangentFrames, AZeroNormalIsReplacedByTheGeometricNormal)
+{
+  // A coarse torus, so that the sum of a point's triangle tangents leaves its tangent plane by
+  // far more than the rounding; one point's normal zeroed. Its tangent is made perpendicular to
+  // the area-weighted normal of its triangles (the sum of their cross products), computed here.
+  vtkNormalMapping::TorusOptions options;
+  options.U = 12;
+  options.V = 6;
+  auto mesh = vtkNormalMapping::MakeTorus(options);
+  const vtkIdType zeroed = 7;
+  mesh->GetPointData()->GetNormals()->SetTuple3(zeroed, 0, 0, 0);
+  Vec geometric{ 0, 0, 0 };
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
+  {
+    mesh->GetCellPoints(c, ids);
+    if (ids->IsId(zeroed) < 0)
+    {
+      continue;
+    }
+    Vec p[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      mesh->GetPoint(ids->GetId(k), p[k].data());
+    }
+    const Vec cross = Cross({ p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] },
+      { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] });
+    for (int k = 0; k < 3; ++k)
+    {
+      geometric[k] += cross[k];
+    }
+  }
+  for (int method : AllMethods)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    auto out = RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
+    const Vec t = Get3(out->GetPointData()->GetTangents(), zeroed);
+    // Float output: |T.N| of a unit vector rounded once, a few 1e-8.
+    EXPECT_NEAR(Dot(t, geometric) / Norm(geometric), 0.0, 1e-6);
+  }
+}
+
 // ------------------------------------------------------------------ VTK's sources
 
 TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
