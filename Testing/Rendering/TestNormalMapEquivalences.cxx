@@ -2,9 +2,12 @@
 // image, and the shader must hold only what each scene needs.
 #include "NormalMapTestScenes.h"
 
+#include "vtkDataArray.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkPointData.h"
 #include "vtkProperty.h" // VTK_FLAT, VTK_GOURAUD, VTK_PBR
 
+#include <functional>
 #include <iostream>
 
 namespace
@@ -148,6 +151,75 @@ int TestNormalMapEquivalences(int, char*[])
     check(toHalf.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
         toPlain.MaxChannel < Between(plain, reference, 0).MaxChannel,
       "strength 0.5 perturbs less than strength 1");
+  }
+  // Object space at strength 0.5: the normal blended halfway from the surface's to the map's,
+  // so the image lies between the unmapped one and strength 1.
+  {
+    const auto plain = render(nullptr, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC);
+    const auto full = render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 1.0);
+    const auto half = render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 0.5);
+    const auto toFull = Between(full, half, 0), toPlain = Between(plain, half, 0);
+    std::cout << "object space at strength 0.5: max difference to strength 1: " << toFull.MaxChannel
+              << ", to strength 0: " << toPlain.MaxChannel << std::endl;
+    check(toFull.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
+        toPlain.MaxChannel < Between(plain, full, 0).MaxChannel,
+      "object space: strength 0.5 perturbs less than strength 1");
+  }
+  // Point tangents off the tangent plane and off unit length: the shader makes them
+  // perpendicular to the normal per fragment, so they render as their projections, which are
+  // the reference's tangents (1 level: float rounding of the projection).
+  {
+    auto tilted = vtkSmartPointer<vtkPolyData>::New();
+    tilted->DeepCopy(quad);
+    vtkDataArray* tangents = tilted->GetPointData()->GetTangents();
+    vtkDataArray* normals = tilted->GetPointData()->GetNormals();
+    for (vtkIdType p = 0; p < tangents->GetNumberOfTuples(); ++p)
+    {
+      double t[3], n[3];
+      tangents->GetTuple(p, t);
+      normals->GetTuple(p, n);
+      tangents->SetTuple3(p, 2 * t[0] + n[0], 2 * t[1] + n[1], 2 * t[2] + n[2]);
+    }
+    nmtest::FlatActor a;
+    a.Mesh = tilted;
+    a.NormalTexture = openGL;
+    const auto d = Between(reference, nmtest::RenderFlat(setup, { a }), 1);
+    Report("tangents off the tangent plane vs unit perpendicular tangents", d, 1);
+    check(d.WithinFraction == 1.0, "tangents off the tangent plane render as their projections");
+  }
+  // The shader follows changes of the texture between renders of the same actor: its sRGB flag
+  // (then decoded back to the stored values) and its number of components (a two-channel image
+  // under an RGB encoding is read as a two-channel map, "ra" of VTK's luminance-alpha upload).
+  // Both describe the same surface as before the change, within the bounds of the sRGB test in
+  // TestNormalMapBadInput (3 levels) and of the two-channel comparison above (2 levels); a
+  // shader left as it was reads the new texture wrongly.
+  {
+    const auto beforeAndAfter = [&](vtkTexture* texture, const std::function<void()>& change)
+    {
+      nmtest::FlatActor a;
+      a.Mesh = quad;
+      a.NormalTexture = texture;
+      auto window = nmtest::MakeFlatScene(setup, { a });
+      window->Render();
+      std::vector<std::vector<unsigned char>> images{ nmtest::ReadPixels(window) };
+      change();
+      window->Render();
+      images.push_back(nmtest::ReadPixels(window));
+      return images;
+    };
+    // vtkProperty refuses a texture marked sRGB, but the flag can be turned on afterwards.
+    auto texture = image(nmtest::Storage::OpenGL);
+    const auto srgb = beforeAndAfter(texture, [&]() { texture->UseSRGBColorSpaceOn(); });
+    const auto toSRGB = Between(srgb[0], srgb[1], 3);
+    Report("texture marked sRGB after a render vs before", toSRGB, 3);
+    check(toSRGB.WithinFraction == 1.0, "the shader follows the texture's sRGB flag");
+
+    auto rgb = image(nmtest::Storage::OpenGL);
+    auto twoChannel = image(nmtest::Storage::TwoChannel);
+    const auto channels = beforeAndAfter(rgb, [&]() { rgb->SetInputData(twoChannel->GetInput()); });
+    const auto toTwoChannel = Between(channels[0], channels[1], 2);
+    Report("RGB image replaced by a two-channel one after a render vs before", toTwoChannel, 2);
+    check(toTwoChannel.WithinFraction == 1.0, "the shader follows the texture's components");
   }
   // Every lighting model shows the map: with it the image differs from without it, by more
   // than rounding (Flat: the face normal from derivatives is perturbed; Gouraud is lit per
