@@ -2405,7 +2405,33 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
       [](vtkPolyData* m) { m->GetPointData()->GetNormals()->SetNumberOfTuples(3); },
       "",
       "Ignoring the point normals: point array 'Normals' has 3 tuples for 4 points" },
+    // vtkDataSetAttributes refuses normals of other than 3 components, but an array can be
+    // changed after it is set.
+    { "point normals of 2 components",
+      [](vtkPolyData* m)
+      {
+        vtkDataArray* normals = m->GetPointData()->GetNormals();
+        normals->SetNumberOfComponents(2);
+        normals->SetNumberOfTuples(m->GetNumberOfPoints());
+        normals->Fill(0.5);
+      },
+      "",
+      "Ignoring the point normals: point normals have 2 components instead of 3" },
     { "no normals", removeNormals, "", "no point normals; computing" },
+    { "cell normals of 2 components only",
+      [&](vtkPolyData* m)
+      {
+        removeNormals(m);
+        vtkNew<vtkFloatArray> cn;
+        cn->SetNumberOfComponents(3);
+        cn->SetNumberOfTuples(m->GetNumberOfCells());
+        m->GetCellData()->SetNormals(cn);
+        cn->SetNumberOfComponents(2);
+        cn->SetNumberOfTuples(m->GetNumberOfCells());
+        cn->Fill(0.5);
+      },
+      "",
+      "The input has no point normals; computing" },
     { "cell normals only",
       [&](vtkPolyData* m)
       {

@@ -443,6 +443,66 @@ TEST(TangentFramesSupplied, MissingOrUnusableSuppliedArraysWarnAndCompute)
   }
 }
 
+TEST(TangentFramesSupplied, SuppliedArraysOfTheWrongShapeWarnAndCompute)
+{
+  // Tangents of 2 components, and 3-component tangents whose TangentSigns has 3 components:
+  // not readable as frames, so warned about and every frame computed.
+  for (const bool signs : { false, true })
+  {
+    SCOPED_TRACE(signs ? "signs of 3 components" : "tangents of 2 components");
+    auto mesh = Plane(false);
+    vtkNew<vtkFloatArray> tangents;
+    tangents->SetName("TANGENT");
+    tangents->SetNumberOfComponents(signs ? 3 : 2);
+    tangents->SetNumberOfTuples(mesh->GetNumberOfPoints());
+    tangents->Fill(0.0);
+    tangents->FillComponent(0, std::cos(Turn));
+    tangents->FillComponent(1, std::sin(Turn));
+    mesh->GetPointData()->AddArray(tangents);
+    if (signs)
+    {
+      vtkNew<vtkFloatArray> wide;
+      wide->SetName("TangentSigns");
+      wide->SetNumberOfComponents(3);
+      wide->SetNumberOfTuples(mesh->GetNumberOfPoints());
+      wide->Fill(1.0);
+      mesh->GetPointData()->AddArray(wide);
+    }
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+    run.Update();
+    const std::string expected = signs
+      ? "the supplied signs 'TangentSigns' has 3 components instead of 1"
+      : "the supplied tangents 'TANGENT' have 2 components instead of 3 or 4";
+    EXPECT_NE(std::string::npos, run.Messages->GetWarningMessage().find(expected))
+      << run.Messages->GetWarningMessage();
+    EXPECT_TRUE(HasFrame(run, 0, { 1.0, 0.0, 0.0, 1.0 })); // computed, not the supplied one
+  }
+}
+
+TEST(TangentFramesSupplied, TheActiveTangentsComeBeforeAnArrayNamedTangents)
+{
+  // Without a name the filter reads the active tangents attribute (3 components, with the
+  // point array TangentSigns), and only without one a point array named Tangents.
+  auto mesh = Plane(false);
+  auto named = SuppliedVec4(mesh, 2 * Turn, false);
+  named->SetName("Tangents");
+  vtkNew<vtkFloatArray> active, signs;
+  active->SetName("T3");
+  active->SetNumberOfComponents(3);
+  signs->SetName("TangentSigns");
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    active->InsertNextTuple3(std::cos(Turn), std::sin(Turn), 0.0);
+    signs->InsertNextValue(1.0f);
+  }
+  mesh->GetPointData()->SetTangents(active);
+  mesh->GetPointData()->AddArray(signs);
+  SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, "");
+  run.Update();
+  EXPECT_EQ(0, run.Filter->GetNumberOfReplacedTangents());
+  EXPECT_TRUE(HasFrame(run, 0, { std::cos(Turn), std::sin(Turn), 0.0, 1.0 }));
+}
+
 TEST(TangentFramesSupplied, KeptSignsFollowTheOutputConvention)
 {
   // glTF-convention input (v down) with correct glTF signs: MikkTSpace's output convention is
