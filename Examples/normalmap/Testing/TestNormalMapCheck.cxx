@@ -4,10 +4,21 @@
 //                                (their defects as measured in gltf-external/README.md);
 //                                exit code 125 (skipped) when the data is absent
 //   TestNormalMapCheck json DIR  the JSON report of DIR/quad_flipped_w.vtk, parsed
+//   TestNormalMapCheck verdicts  the verdict names each defect planted in a small plane
 // Every failed expectation is printed; the exit code is 1 when there is any.
 #include "NormalMapCheck.h"
 
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
 #include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <limits>
 
 #include <cstdlib>
 #include <functional>
@@ -186,6 +197,89 @@ int Json(const std::string& dataDir)
     "verdict: " + p.at("verdict").get<std::string>());
   return Failures ? 1 : 0;
 }
+
+/**
+ * A 3 x 3 point plane in z = 0 of four quads, normals +z, u along x and v along y, with glTF-style
+ * supplied tangents "TANGENT" (1, 0, 0, +1): right everywhere.
+ */
+vtkSmartPointer<vtkPolyData> GoodPlane()
+{
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> normals, uvs, tangents;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  uvs->SetName("TCoords");
+  uvs->SetNumberOfComponents(2);
+  tangents->SetName("TANGENT");
+  tangents->SetNumberOfComponents(4);
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      points->InsertNextPoint(i, j, 0);
+      normals->InsertNextTuple3(0, 0, 1);
+      uvs->InsertNextTuple2(0.5 * i, 0.5 * j);
+      tangents->InsertNextTuple4(1, 0, 0, 1);
+    }
+  }
+  vtkNew<vtkCellArray> quads;
+  for (vtkIdType j = 0; j < 2; ++j)
+  {
+    for (vtkIdType i = 0; i < 2; ++i)
+    {
+      const vtkIdType quad[4] = { 3 * j + i, 3 * j + i + 1, 3 * j + i + 4, 3 * j + i + 3 };
+      quads->InsertNextCell(4, quad);
+    }
+  }
+  mesh->SetPoints(points);
+  mesh->SetPolys(quads);
+  mesh->GetPointData()->SetNormals(normals);
+  mesh->GetPointData()->SetTCoords(uvs);
+  mesh->GetPointData()->AddArray(tangents);
+  return mesh;
+}
+
+int Verdicts()
+{
+  struct Case
+  {
+    const char* Name;
+    std::function<void(vtkPolyData*)> Plant;
+    const char* Verdict; // a part of the verdict
+  };
+  const auto setTangent = [](vtkIdType p, double x, double y, double z, double w)
+  {
+    return [=](vtkPolyData* mesh)
+    { mesh->GetPointData()->GetArray("TANGENT")->SetTuple4(p, x, y, z, w); };
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Case> cases = {
+    { "NaN", setTangent(4, nan, 0, 0, 1), "NaN or infinite tangents on 11.1% of vertices" },
+    { "w of 0.5", setTangent(4, 1, 0, 0, 0.5), "w is not +1 or -1 on 11.1% of vertices" },
+    { "length 1.5",
+      setTangent(4, 1.5, 0, 0, 1),
+      "tangents not normalized on 11.1% of vertices (|T| off 1 by up to 0.500)" },
+    { "one w against the winding",
+      setTangent(4, 1, 0, 0, -1),
+      "w against the UV winding and MikkTSpace on 11.1% of vertices" },
+    { "no normals",
+      [](vtkPolyData* mesh) { mesh->GetPointData()->SetNormals(nullptr); },
+      "tangents without normals" },
+  };
+  const NormalMapCheck::Report good =
+    NormalMapCheck::CheckMesh(GoodPlane(), "good", "", "TANGENT", false);
+  Expect(good.Ok, "the good plane is OK: " + good.Verdict);
+  for (const Case& c : cases)
+  {
+    auto mesh = GoodPlane();
+    c.Plant(mesh);
+    const NormalMapCheck::Report r = NormalMapCheck::CheckMesh(mesh, c.Name, "", "TANGENT", false);
+    Expect(!r.Ok && Contains(r.Verdict, c.Verdict),
+      std::string(c.Name) + ": '" + c.Verdict + "' expected in '" + r.Verdict + "'");
+  }
+  return Failures ? 1 : 0;
+}
 }
 
 int main(int argc, char* argv[])
@@ -195,10 +289,14 @@ int main(int argc, char* argv[])
   {
     return Khronos();
   }
+  if (mode == "verdicts")
+  {
+    return Verdicts();
+  }
   if (mode == "json" && argc > 2)
   {
     return Json(argv[2]);
   }
-  std::cerr << "usage: TestNormalMapCheck khronos | json DATA_DIR\n";
+  std::cerr << "usage: TestNormalMapCheck khronos | json DATA_DIR | verdicts\n";
   return 2;
 }
