@@ -990,12 +990,13 @@ TEST(PolyDataTangentFrames, CellTangentsAreAreaWeightedOverTheCellsTriangles)
   for (int method : AllMethods)
   {
     SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
-    vtkNew<vtkPolyDataTangentFrames> filter;
-    filter->SetInputData(mesh);
-    filter->SetMethod(method);
-    filter->ComputeCellTangentsOn();
-    filter->Update();
-    vtkDataArray* ct = filter->GetOutput()->GetCellData()->GetTangents();
+    auto out = RunFrames(mesh,
+      [&](vtkPolyDataTangentFrames* f)
+      {
+        f->SetMethod(method);
+        f->ComputeCellTangentsOn();
+      });
+    vtkDataArray* ct = out->GetCellData()->GetTangents();
     ASSERT_NE(ct, nullptr);
     const Vec actual = Get3(ct, 0);
     for (int k = 0; k < 3; ++k)

@@ -128,6 +128,20 @@ int TestNormalMapEquivalences(int, char*[])
     nmtest::RenderFlat(setup, { a });
     check(noTangentsApplied == Mapper::APPLIED_DERIVATIVES, "no tangents: derivative frame");
   }
+  // A strength-0.5 image lies between the unmapped one and the strength-1 one: it differs from
+  // both, and from the unmapped one by less than strength 1 does.
+  const auto checkBetween = [&](const std::vector<unsigned char>& plain,
+                              const std::vector<unsigned char>& half,
+                              const std::vector<unsigned char>& full,
+                              const std::string& what)
+  {
+    const auto toFull = Between(full, half, 0), toPlain = Between(plain, half, 0);
+    std::cout << what << " at strength 0.5: max difference to strength 1: " << toFull.MaxChannel
+              << ", to strength 0: " << toPlain.MaxChannel << std::endl;
+    check(toFull.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
+        toPlain.MaxChannel < Between(plain, full, 0).MaxChannel,
+      what + ": strength 0.5 perturbs less than strength 1");
+  };
   // Strength 0 is exactly the unmapped image, ours and VTK's; strength 0.5 lies in between.
   {
     std::string zeroShaders;
@@ -144,26 +158,18 @@ int TestNormalMapEquivalences(int, char*[])
     check(zeroShaders.find("nmNormal") == std::string::npos &&
         plainShaders.find("nm") == std::string::npos,
       "no normal-map code at strength 0 or without a normal texture");
-    const auto half = render(openGL, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 0.5);
-    const auto toHalf = Between(reference, half, 0), toPlain = Between(plain, half, 0);
-    std::cout << "strength 0.5: max difference to strength 1: " << toHalf.MaxChannel
-              << ", to strength 0: " << toPlain.MaxChannel << std::endl;
-    check(toHalf.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
-        toPlain.MaxChannel < Between(plain, reference, 0).MaxChannel,
-      "strength 0.5 perturbs less than strength 1");
+    checkBetween(plain,
+      render(openGL, Mapper::TANGENT_SPACE_OPENGL, Mapper::AUTOMATIC, 0.5),
+      reference,
+      "tangent space");
   }
   // Object space at strength 0.5: the normal blended halfway from the surface's to the map's,
   // so the image lies between the unmapped one and strength 1.
   {
-    const auto plain = render(nullptr, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC);
-    const auto full = render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 1.0);
-    const auto half = render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 0.5);
-    const auto toFull = Between(full, half, 0), toPlain = Between(plain, half, 0);
-    std::cout << "object space at strength 0.5: max difference to strength 1: " << toFull.MaxChannel
-              << ", to strength 0: " << toPlain.MaxChannel << std::endl;
-    check(toFull.MaxChannel > 0 && toPlain.MaxChannel > 0 &&
-        toPlain.MaxChannel < Between(plain, full, 0).MaxChannel,
-      "object space: strength 0.5 perturbs less than strength 1");
+    checkBetween(render(nullptr, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC),
+      render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 0.5),
+      render(openGL, Mapper::OBJECT_SPACE, Mapper::AUTOMATIC, 1.0),
+      "object space");
   }
   // Point tangents off the tangent plane and off unit length: the shader makes them
   // perpendicular to the normal per fragment, so they render as their projections, which are
