@@ -44,14 +44,16 @@ enum class TangentMethod : int
   AngleWeighted = 2,
 };
 
-/// Relative thresholds below which a triangle is degenerate. Position and UV are "shape"
-/// ratios, 2*area / (longest edge)^2, in position space and in UV space; below a few units of
-/// the stored type's epsilon the rounding of the stored coordinates alone decides the frame.
-/// PositionNoise bounds the height of a triangle relative to its largest coordinate
-/// (IsRoundingNoise).
+/**
+ * Relative thresholds below which a triangle is degenerate. UV is a "shape" ratio in UV space,
+ * 2*area / (longest edge)^2: below a few units of the stored type's epsilon the rounding of the
+ * stored texture coordinates alone decides the frame. PositionNoise bounds the height of a
+ * triangle relative to its largest coordinate (IsRoundingNoise); in position space that bound
+ * also covers the shape ratio, which it puts at 64 epsilon * m / L >= 18 epsilon at least (L the
+ * longest edge, m >= L / (2 sqrt(3)) the largest coordinate magnitude of two corners L apart).
+ */
 struct DegeneracyTolerance
 {
-  double Position = 4.0 * FLT_EPSILON;
   double UV = 4.0 * FLT_EPSILON;
   double PositionNoise = 64.0 * FLT_EPSILON;
 
@@ -59,7 +61,6 @@ struct DegeneracyTolerance
   static DegeneracyTolerance ForEpsilons(double positionEpsilon, double uvEpsilon)
   {
     DegeneracyTolerance tol;
-    tol.Position = 4.0 * positionEpsilon;
     tol.UV = 4.0 * uvEpsilon;
     tol.PositionNoise = 64.0 * positionEpsilon;
     return tol;
@@ -300,11 +301,9 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   t = Select(det < 0.0, -t, t);
   const double tLength = glm::length(t);
 
-  // Degeneracy, decided here only. Position: |n| > tol * longest^2, squared (no square root),
-  // and a height above the rounding noise of the coordinates (IsRoundingNoise);
-  // UV: |det| > tol * longestUV^2. NaN fails all three.
-  const bool hasArea = (twiceArea2 > tol.Position * tol.Position * longest2 * longest2) &
-    !IsRoundingNoise(twiceArea2, longest2, maxCoordinate, tol.PositionNoise);
+  // Degeneracy, decided here only. Position: a height above the rounding noise of the
+  // coordinates (IsRoundingNoise); UV: |det| > tol * longestUV^2. NaN fails both.
+  const bool hasArea = !IsRoundingNoise(twiceArea2, longest2, maxCoordinate, tol.PositionNoise);
   const bool hasUVArea = std::abs(det) > tol.UV * longestUV2;
   const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0) & (tLength <= DBL_MAX);
 

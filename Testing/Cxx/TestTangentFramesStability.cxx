@@ -514,10 +514,10 @@ void Extent(vtkPolyData* mesh, double& largest, double& smallestHeight)
 TEST(TangentFramesStability, SliverAtTheRoundingNoiseIsDegenerate)
 {
   // The seam sliver of vtkParametricTorus: two points 31 epsilon * M apart (M = 1.5, the largest
-  // coordinate) joined to a third 0.1 away, with full-size UVs. Its shape ratio (1e-13) passes
-  // the shape test; its height is within 64 epsilon * M, so it has no frame. The same sliver
+  // coordinate) joined to a third 0.1 away, with full-size UVs. Its shape ratio (1e-13) is far
+  // above 4 epsilon; its height is within 64 epsilon * M, so it has no frame. The same sliver
   // 128 epsilon * M high is a real (thin) triangle, and with the noise bound at 0 the seam
-  // sliver would get a frame: the rule, not the shape test, classifies it.
+  // sliver would get a frame: the height rule classifies it.
   using vtkNormalMapping::ComputeTriangleFrame;
   using vtkNormalMapping::DegeneracyTolerance;
   const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(DBL_EPSILON, FLT_EPSILON);
