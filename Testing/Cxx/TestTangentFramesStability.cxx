@@ -345,6 +345,32 @@ TEST(TangentFramesStability, NearDegenerateSliversAndNeedles)
   }
 }
 
+TEST(TangentFramesStability, TheUVThresholdFollowsTheUVPrecision)
+{
+  // A UV triangle of shape ratio 1e-10: below 4 float epsilon (4.8e-7), far above 4 double
+  // epsilon (8.9e-16). Stored in double it is a real (thin) UV triangle; stored in float its
+  // shape is within the rounding of its coordinates, and it is degenerate.
+  const auto mesh = WithTestTriangle(
+    { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } } }, { { { 0, 0 }, { 1, 0 }, { 0.5, 1e-10 } } });
+  vtkNew<vtkFloatArray> floatUV;
+  floatUV->DeepCopy(mesh->GetPointData()->GetTCoords());
+  auto withFloatUV = vtkSmartPointer<vtkPolyData>::New();
+  withFloatUV->DeepCopy(mesh);
+  withFloatUV->GetPointData()->SetTCoords(floatUV);
+  for (int method : WeightedMethods)
+  {
+    for (const bool doubleUV : { true, false })
+    {
+      SCOPED_TRACE(doubleUV ? "double UVs" : "float UVs");
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      filter->SetInputData(doubleUV ? mesh.Get() : withFloatUV.Get());
+      filter->SetMethod(method);
+      filter->Update();
+      EXPECT_EQ(filter->GetNumberOfDegenerateTriangles(), doubleUV ? 0 : 1);
+    }
+  }
+}
+
 TEST(TangentFramesStability, VertexSharedByHundredThousandTriangles)
 {
   // A disk fanned around its centre with 100,000 triangles and a planar map u = x: the centre's
