@@ -305,6 +305,98 @@ TEST(NormalMapGLTF, WritesValidGltfAndGlbKeepingMaterialAndImages)
   EXPECT_EQ(files, 3); // out.gltf, out.bin, sub/out.glb
 }
 
+// Tangents written to glTF are unit and finite whatever the frames hold: a zero tangent becomes
+// (1, 0, 0), MikkTSpace's default, and a tangent off unit length is normalized.
+TEST(NormalMapGLTF, WrittenTangentsAreUnit)
+{
+  TempDir tmp;
+  Document doc = ReadOrFail(DataDir + "/quad.gltf");
+  vtkSmartPointer<vtkPolyData> out = Frames(ToPolyData(doc), vtkPolyDataTangentFrames::MIKKTSPACE);
+  ASSERT_TRUE(out);
+  vtkDataArray* tangents = out->GetPointData()->GetTangents();
+  tangents->SetTuple3(0, 0.0, 0.0, 0.0);
+  tangents->SetTuple3(1, 0.0, 3.0, 4.0);
+  std::string error;
+  ASSERT_TRUE(NormalMapGLTF::UpdatePrimitive(doc, First, out, error)) << error;
+  ASSERT_TRUE(NormalMapGLTF::WriteDocument(doc, tmp / "out.gltf", error)) << error;
+  const std::vector<float> written = CheckedTangents(ReadOrFail(tmp / "out.gltf"));
+  ASSERT_EQ(written.size(), 16u);
+  EXPECT_EQ(written[0], 1.0f);
+  EXPECT_EQ(written[1], 0.0f);
+  EXPECT_EQ(written[2], 0.0f);
+  // (0, 3, 4) / 5, rounded to float.
+  EXPECT_NEAR(written[5], 0.6, kUnitTol);
+  EXPECT_NEAR(written[6], 0.8, kUnitTol);
+}
+
+// Attributes stored as normalized integers (KHR_mesh_quantization's encodings) are read as the
+// glTF specification dequantizes them: c / 127 and c / 32767 for signed bytes and shorts,
+// clamped to -1 (so -128 and -32768 read as -1), c / 255 and c / 65535 for unsigned ones.
+TEST(NormalMapGLTF, ReadsNormalizedIntegerAttributes)
+{
+  std::string bytes;
+  const auto put = [&bytes](const auto& value)
+  { bytes.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
+  for (const float p : { 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f })
+  {
+    put(p); // POSITION, offset 0, 36 bytes
+  }
+  for (const int8_t n : { 0, 0, 127, 0, -128, 0, 0, 0, 0, 127, 0, 0 })
+  {
+    put(n); // NORMAL, byte3 with a stride of 4, offset 36, 12 bytes
+  }
+  for (const uint16_t uv : { 0, 0, 65535, 0, 0, 65535 })
+  {
+    put(uv); // TEXCOORD_0, unsigned short2, offset 48, 12 bytes
+  }
+  for (const int16_t t : { 32767, 0, 0, 32767, 0, -32768, 0, -32768, 0, 0, 32767, 32767 })
+  {
+    put(t); // TANGENT, short4, offset 60, 24 bytes
+  }
+  ASSERT_EQ(bytes.size(), 84u);
+  const std::string json = R"({
+  "asset": { "version": "2.0" },
+  "buffers": [ { "uri": "q.bin", "byteLength": 84 } ],
+  "bufferViews": [
+    { "buffer": 0, "byteOffset": 0, "byteLength": 36 },
+    { "buffer": 0, "byteOffset": 36, "byteLength": 12, "byteStride": 4 },
+    { "buffer": 0, "byteOffset": 48, "byteLength": 12 },
+    { "buffer": 0, "byteOffset": 60, "byteLength": 24 } ],
+  "accessors": [
+    { "bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+      "min": [ 0, 0, 0 ], "max": [ 1, 1, 0 ] },
+    { "bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3" },
+    { "bufferView": 2, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC2" },
+    { "bufferView": 3, "componentType": 5122, "normalized": true, "count": 3, "type": "VEC4" } ],
+  "meshes": [ { "primitives": [ { "attributes":
+    { "POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2, "TANGENT": 3 } } ] } ],
+  "nodes": [ { "mesh": 0 } ],
+  "scenes": [ { "nodes": [ 0 ] } ]
+})";
+  TempDir tmp;
+  std::ofstream(tmp / "q.bin", std::ios::binary) << bytes;
+  std::ofstream(tmp / "q.gltf") << json;
+  vtkSmartPointer<vtkPolyData> mesh = ToPolyData(ReadOrFail(tmp / "q.gltf"));
+  ASSERT_TRUE(mesh);
+  const auto tuple = [](vtkDataArray* a, vtkIdType i)
+  {
+    std::vector<double> v(static_cast<size_t>(a->GetNumberOfComponents()));
+    a->GetTuple(i, v.data());
+    return v;
+  };
+  vtkPointData* pd = mesh->GetPointData();
+  EXPECT_EQ(tuple(pd->GetNormals(), 0), (std::vector<double>{ 0, 0, 1 }));
+  EXPECT_EQ(tuple(pd->GetNormals(), 1), (std::vector<double>{ -1, 0, 0 }));
+  EXPECT_EQ(tuple(pd->GetTCoords(), 1), (std::vector<double>{ 1, 0 }));
+  EXPECT_EQ(tuple(pd->GetTCoords(), 2), (std::vector<double>{ 0, 1 }));
+  EXPECT_EQ(tuple(pd->GetTangents(), 0), (std::vector<double>{ 1, 0, 0 }));
+  EXPECT_EQ(tuple(pd->GetTangents(), 1), (std::vector<double>{ 0, -1, 0 }));
+  vtkDataArray* signs = Array(mesh, "TangentSigns");
+  ASSERT_NE(signs, nullptr);
+  EXPECT_EQ(signs->GetComponent(0, 0), 1.0);
+  EXPECT_EQ(signs->GetComponent(1, 0), -1.0);
+}
+
 // A mirror seam shared by two triangles fans: MikkTSpace splits its points, and every
 // attribute, including a normalized UNSIGNED_BYTE COLOR_0 that needs a padded stride, follows
 // its source vertex.
