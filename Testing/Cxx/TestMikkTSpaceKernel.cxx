@@ -377,6 +377,29 @@ TEST(MikkTSpaceKernel, QuadSplitRule)
   }
 }
 
+// A quad whose two triangles have opposite UV orientations takes one orientation for both, the
+// reference's rule: that of the triangle with the larger UV area, the first on a tie. Here the
+// quad splits on its shorter UV diagonal 0-2 into (0, 1, 2) and (0, 2, 3), whose UV areas are
+// equal: every corner takes the first triangle's sign, +1, or -1 with u mirrored.
+TEST(MikkTSpaceKernel, QuadOfOppositeOrientationsTakesTheFirstOnATie)
+{
+  for (const float mirror : { 1.0f, -1.0f })
+  {
+    Mesh m;
+    m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+    m.AddPoint({ 1, 0, 0 }, kUp, { mirror * 0.5f, -1 });
+    m.AddPoint({ 1, 1, 0 }, kUp, { mirror * 1, 0 });
+    m.AddPoint({ 0, 1, 0 }, kUp, { mirror * 3, -1 });
+    m.AddFace({ 0, 1, 2, 3 });
+    const mikk::Result res = RunKernel(m);
+    ASSERT_EQ(res.Corners.size(), 4u);
+    for (size_t k = 0; k < 4; ++k)
+    {
+      EXPECT_EQ(res.Corners[k].Sign, mirror) << "corner " << k << ", mirror " << mirror;
+    }
+  }
+}
+
 // Two triangles sharing an edge, u mirrored about x = 0: opposite signs, no averaging across.
 TEST(MikkTSpaceKernel, MirroredPairSigns)
 {
@@ -395,6 +418,60 @@ TEST(MikkTSpaceKernel, MirroredPairSigns)
     ExpectTangent(res.Corners[3 + k], 1, 0, 0, 1, "unmirrored triangle");
   }
   EXPECT_EQ(res.NumberOfDefaultCorners, 0);
+}
+
+// The kernel welds points whose eight values (position, normal, texture coordinates) are equal,
+// as the reference does: -0 equals +0, and points that differ in any value, as the two copies
+// of a UV seam do, stay apart. Two triangles side by side, each with its own copies of the shared
+// edge's points.
+TEST(MikkTSpaceKernel, WeldingComparesEveryValueWithSignedZerosEqual)
+{
+  // A UV seam: the right triangle's texture is turned by 90 degrees (tangent +y, the left
+  // one's +x). The seam copies differ only in UVs, so every corner keeps its own triangle's
+  // frame; welded, the seam corners would average +x and +y.
+  {
+    Mesh m;
+    const long long a = m.AddPoint({ -1, 0, 0 }, kUp, { 0, 0 });
+    const long long b0 = m.AddPoint({ 0, 0, 0 }, kUp, { 1, 0 });
+    const long long b1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
+    const long long c0 = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+    const long long r = m.AddPoint({ 1, 0, 0 }, kUp, { 0, -1 });
+    const long long c1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 0 });
+    m.AddFace({ a, b0, b1 });
+    m.AddFace({ c0, r, c1 });
+    const mikk::Result res = RunKernel(m);
+    ASSERT_EQ(res.Corners.size(), 6u);
+    for (int k = 0; k < 3; ++k)
+    {
+      ExpectTangent(res.Corners[k], 1, 0, 0, 1, "left triangle");
+      ExpectTangent(res.Corners[3 + k], 0, 1, 0, 1, "right triangle");
+    }
+  }
+  // The same edge with equal UVs on both sides, and tangents +x and (1, -0.5, 0) / |.|: the seam
+  // copies weld and their corners average the two. One copy of the origin stored as -0 must
+  // give the same bits as +0.
+  std::vector<mikk::CornerFrame> frames[2];
+  for (const float zero : { 0.0f, -0.0f })
+  {
+    Mesh m;
+    const long long a = m.AddPoint({ -1, 0, 0 }, kUp, { 0, 0 });
+    const long long b0 = m.AddPoint({ 0, 0, 0 }, kUp, { 1, 0 });
+    const long long b1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
+    const long long c0 = m.AddPoint({ zero, 0, 0 }, kUp, { 1, 0 });
+    const long long r = m.AddPoint({ 1, 0, 0 }, kUp, { 2, 0.5f });
+    const long long c1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
+    m.AddFace({ a, b0, b1 });
+    m.AddFace({ c0, r, c1 });
+    frames[std::signbit(zero) ? 1 : 0] = RunKernel(m).Corners;
+  }
+  ASSERT_EQ(frames[0].size(), 6u);
+  ASSERT_EQ(frames[1].size(), 6u);
+  EXPECT_TRUE(BitEqual(frames[0][1], frames[0][3])) << "the welded origin has one frame";
+  EXPECT_LT(frames[0][1].Tangent[1], 0.0f) << "the seam corner averages in the right triangle";
+  for (size_t k = 0; k < 6; ++k)
+  {
+    EXPECT_TRUE(BitEqual(frames[0][k], frames[1][k])) << "corner " << k;
+  }
 }
 
 // A face corner that two triangles of a quad write keeps the first frame only when the two agree
