@@ -426,51 +426,49 @@ TEST(MikkTSpaceKernel, MirroredPairSigns)
 // edge's points.
 TEST(MikkTSpaceKernel, WeldingComparesEveryValueWithSignedZerosEqual)
 {
-  // A UV seam: the right triangle's texture is turned by 90 degrees (tangent +y, the left
-  // one's +x). The seam copies differ only in UVs, so every corner keeps its own triangle's
-  // frame; welded, the seam corners would average +x and +y.
+  // Left: (-1, 0, 0), (0, 0, 0), (0, 1, 0) with UVs (0, 0), (1, 0), (1, 1) (tangent +x). Right:
+  // (x0, 0, 0), (1, 0, 0), (0, 1, 0) with the given UVs, x0 being +0 or -0.
+  const auto sideBySide = [](const std::array<std::array<float, 2>, 3>& right, float x0)
   {
     Mesh m;
-    const long long a = m.AddPoint({ -1, 0, 0 }, kUp, { 0, 0 });
-    const long long b0 = m.AddPoint({ 0, 0, 0 }, kUp, { 1, 0 });
-    const long long b1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
-    const long long c0 = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
-    const long long r = m.AddPoint({ 1, 0, 0 }, kUp, { 0, -1 });
-    const long long c1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 0 });
-    m.AddFace({ a, b0, b1 });
-    m.AddFace({ c0, r, c1 });
-    const mikk::Result res = RunKernel(m);
-    ASSERT_EQ(res.Corners.size(), 6u);
-    for (int k = 0; k < 3; ++k)
+    const std::array<std::array<float, 3>, 6> p = {
+      { { -1, 0, 0 }, { 0, 0, 0 }, { 0, 1, 0 }, { x0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }
+    };
+    const std::array<std::array<float, 2>, 6> uv = {
+      { { 0, 0 }, { 1, 0 }, { 1, 1 }, right[0], right[1], right[2] }
+    };
+    for (size_t i = 0; i < 6; ++i)
     {
-      ExpectTangent(res.Corners[k], 1, 0, 0, 1, "left triangle");
-      ExpectTangent(res.Corners[3 + k], 0, 1, 0, 1, "right triangle");
+      m.AddPoint(p[i], kUp, uv[i]);
     }
+    m.AddFace({ 0, 1, 2 });
+    m.AddFace({ 3, 4, 5 });
+    return RunKernel(m).Corners;
+  };
+  // A UV seam: the right triangle's texture is turned by 90 degrees (tangent +y). The seam
+  // copies differ only in UVs, so every corner keeps its own triangle's frame; welded, the seam
+  // corners would average +x and +y.
+  const std::vector<mikk::CornerFrame> seam =
+    sideBySide({ { { 0, 0 }, { 0, -1 }, { 1, 0 } } }, 0.0f);
+  ASSERT_EQ(seam.size(), 6u);
+  for (size_t k = 0; k < 3; ++k)
+  {
+    ExpectTangent(seam[k], 1, 0, 0, 1, "left triangle");
+    ExpectTangent(seam[3 + k], 0, 1, 0, 1, "right triangle");
   }
   // The same edge with equal UVs on both sides, and tangents +x and (1, -0.5, 0) / |.|: the seam
-  // copies weld and their corners average the two. One copy of the origin stored as -0 must
-  // give the same bits as +0.
-  std::vector<mikk::CornerFrame> frames[2];
-  for (const float zero : { 0.0f, -0.0f })
-  {
-    Mesh m;
-    const long long a = m.AddPoint({ -1, 0, 0 }, kUp, { 0, 0 });
-    const long long b0 = m.AddPoint({ 0, 0, 0 }, kUp, { 1, 0 });
-    const long long b1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
-    const long long c0 = m.AddPoint({ zero, 0, 0 }, kUp, { 1, 0 });
-    const long long r = m.AddPoint({ 1, 0, 0 }, kUp, { 2, 0.5f });
-    const long long c1 = m.AddPoint({ 0, 1, 0 }, kUp, { 1, 1 });
-    m.AddFace({ a, b0, b1 });
-    m.AddFace({ c0, r, c1 });
-    frames[std::signbit(zero) ? 1 : 0] = RunKernel(m).Corners;
-  }
-  ASSERT_EQ(frames[0].size(), 6u);
-  ASSERT_EQ(frames[1].size(), 6u);
-  EXPECT_TRUE(BitEqual(frames[0][1], frames[0][3])) << "the welded origin has one frame";
-  EXPECT_LT(frames[0][1].Tangent[1], 0.0f) << "the seam corner averages in the right triangle";
+  // copies weld and their corners average the two. The right copy of the origin stored as -0
+  // must give the same bits as +0.
+  const std::array<std::array<float, 2>, 3> continuous = { { { 1, 0 }, { 2, 0.5f }, { 1, 1 } } };
+  const std::vector<mikk::CornerFrame> plus = sideBySide(continuous, 0.0f);
+  const std::vector<mikk::CornerFrame> minus = sideBySide(continuous, -0.0f);
+  ASSERT_EQ(plus.size(), 6u);
+  ASSERT_EQ(minus.size(), 6u);
+  EXPECT_TRUE(BitEqual(plus[1], plus[3])) << "the welded origin has one frame";
+  EXPECT_LT(plus[1].Tangent[1], 0.0f) << "the seam corner averages in the right triangle";
   for (size_t k = 0; k < 6; ++k)
   {
-    EXPECT_TRUE(BitEqual(frames[0][k], frames[1][k])) << "corner " << k;
+    EXPECT_TRUE(BitEqual(plus[k], minus[k])) << "corner " << k;
   }
 }
 
