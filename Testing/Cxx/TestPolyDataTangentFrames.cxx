@@ -72,6 +72,14 @@ double Norm(const Vec& a)
 {
   return std::sqrt(Dot(a, a));
 }
+Vec Minus(const Vec& a, const Vec& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+Vec Scaled(double s, const Vec& a)
+{
+  return { s * a[0], s * a[1], s * a[2] };
+}
 double AngleDeg(const Vec& a, const Vec& b)
 {
   return std::atan2(Norm(Cross(a, b)), Dot(a, b)) * 180.0 / Pi;
@@ -969,14 +977,10 @@ TEST(PolyDataTangentFrames, CellTangentsAreAreaWeightedOverTheCellsTriangles)
   // normalised: computed here from those two triangles, for every weighted method.
   const std::vector<Vec> p = { { 0, 0, 0 }, { 4, 0, 0 }, { 2, 1, 0 }, { 0, 1, 0.5 } };
   auto mesh = MakeTriangles(p, { { 0, 0 }, { 4, 0 }, { 2, 1 }, { 0, 2 } }, { { 0, 1, 2, 3 } });
-  const auto minus = [](const Vec& a, const Vec& b) {
-    return Vec{ a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-  };
-  const auto scaled = [](double s, const Vec& a) { return Vec{ s * a[0], s * a[1], s * a[2] }; };
-  const Vec cross1 = Cross(minus(p[1], p[0]), minus(p[2], p[0]));
-  const Vec cross2 = Cross(minus(p[2], p[0]), minus(p[3], p[0]));
+  const Vec cross1 = Cross(Minus(p[1], p[0]), Minus(p[2], p[0]));
+  const Vec cross2 = Cross(Minus(p[2], p[0]), Minus(p[3], p[0]));
   const Vec tangent1 = { 1, 0, 0 };
-  const Vec tangent2 = scaled(1.0 / Norm({ 1, 0.25, -0.125 }), { 1, 0.25, -0.125 });
+  const Vec tangent2 = Scaled(1.0 / Norm({ 1, 0.25, -0.125 }), { 1, 0.25, -0.125 });
   const double area1 = 0.5 * Norm(cross1), area2 = 0.5 * Norm(cross2);
   Vec t, n;
   for (int k = 0; k < 3; ++k)
@@ -984,9 +988,9 @@ TEST(PolyDataTangentFrames, CellTangentsAreAreaWeightedOverTheCellsTriangles)
     t[k] = area1 * tangent1[k] + area2 * tangent2[k];
     n[k] = cross1[k] + cross2[k];
   }
-  n = scaled(1.0 / Norm(n), n);
-  const Vec perpendicular = minus(t, scaled(Dot(t, n), n));
-  const Vec expected = scaled(1.0 / Norm(perpendicular), perpendicular);
+  n = Scaled(1.0 / Norm(n), n);
+  const Vec perpendicular = Minus(t, Scaled(Dot(t, n), n));
+  const Vec expected = Scaled(1.0 / Norm(perpendicular), perpendicular);
   for (int method : AllMethods)
   {
     SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
@@ -1648,10 +1652,8 @@ TEST(PolyDataTangentFrames, ComputedNormalsAreAreaWeighted)
     }
   };
   {
-    vtkNew<vtkPolyDataTangentFrames> filter;
-    filter->SetInputData(mesh);
-    filter->Update();
-    vtkDataArray* n = filter->GetOutput()->GetPointData()->GetNormals();
+    const auto out = RunFrames(mesh);
+    vtkDataArray* n = out->GetPointData()->GetNormals();
     ASSERT_NE(n, nullptr);
     // area0 (0, 0, 1) + area1 (1, 0, 1) / sqrt(2)
     expectNear(
@@ -1667,10 +1669,8 @@ TEST(PolyDataTangentFrames, ComputedNormalsAreAreaWeighted)
     cn->InsertNextTuple3(0, 0, 2);
     cn->InsertNextTuple3(1, 0, 0);
     withCellNormals->GetCellData()->SetNormals(cn);
-    vtkNew<vtkPolyDataTangentFrames> filter;
-    filter->SetInputData(withCellNormals);
-    filter->Update();
-    vtkDataArray* n = filter->GetOutput()->GetPointData()->GetNormals();
+    const auto out = RunFrames(withCellNormals);
+    vtkDataArray* n = out->GetPointData()->GetNormals();
     ASSERT_NE(n, nullptr);
     expectNear(Get3(n, 0), { area1, 0, area0 }, "point 0, cell normals");
     expectNear(Get3(n, 4), { 0, 0, 1 }, "point 4, cell normals");
@@ -1702,8 +1702,7 @@ TEST(PolyDataTangentFrames, AZeroNormalIsReplacedByTheGeometricNormal)
     {
       mesh->GetPoint(ids->GetId(k), p[k].data());
     }
-    const Vec cross = Cross({ p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] },
-      { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] });
+    const Vec cross = Cross(Minus(p[1], p[0]), Minus(p[2], p[0]));
     for (int k = 0; k < 3; ++k)
     {
       geometric[k] += cross[k];

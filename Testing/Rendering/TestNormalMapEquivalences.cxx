@@ -221,8 +221,8 @@ int TestNormalMapEquivalences(int, char*[])
     check(toSRGB.WithinFraction == 1.0, "the shader follows the texture's sRGB flag");
 
     auto rgb = image(nmtest::Storage::OpenGL);
-    auto twoChannel = image(nmtest::Storage::TwoChannel);
-    const auto channels = beforeAndAfter(rgb, [&]() { rgb->SetInputData(twoChannel->GetInput()); });
+    auto twoChannel = nmtest::MakeNormalMapImage(pattern, 128, nmtest::Storage::TwoChannel);
+    const auto channels = beforeAndAfter(rgb, [&]() { rgb->SetInputData(twoChannel); });
     const auto toTwoChannel = Between(channels[0], channels[1], 2);
     Report("RGB image replaced by a two-channel one after a render vs before", toTwoChannel, 2);
     check(toTwoChannel.WithinFraction == 1.0, "the shader follows the texture's components");

@@ -7,22 +7,19 @@
 //   TestNormalMapCheck verdicts  the verdict names each defect planted in a small plane
 // Every failed expectation is printed; the exit code is 1 when there is any.
 #include "NormalMapCheck.h"
+#include "NormalMappingGrid.h"
 
-#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 
 #include <nlohmann/json.hpp>
 
-#include <cmath>
-#include <limits>
-
 #include <cstdlib>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -199,43 +196,30 @@ int Json(const std::string& dataDir)
 }
 
 /**
- * A 3 x 3 point plane in z = 0 of four quads, normals +z, u along x and v along y, with glTF-style
- * supplied tangents "TANGENT" (1, 0, 0, +1): right everywhere.
+ * A 3 x 3 point plane in z = 0 (point 4 in its middle), normals +z, u along x and v along y,
+ * with glTF-style supplied tangents "TANGENT" (1, 0, 0, +1): right everywhere.
  */
 vtkSmartPointer<vtkPolyData> GoodPlane()
 {
-  auto mesh = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> normals, uvs, tangents;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  uvs->SetName("TCoords");
-  uvs->SetNumberOfComponents(2);
+  auto mesh = NormalMappingTesting::MakeGrid(
+    2,
+    2,
+    [](double s, double t) {
+      return std::array<double, 3>{ 2 * s, 2 * t, 0 };
+    },
+    [](double, double) {
+      return std::array<double, 3>{ 0, 0, 1 };
+    },
+    [](double s, double t) {
+      return std::array<double, 2>{ s, t };
+    });
+  vtkNew<vtkFloatArray> tangents;
   tangents->SetName("TANGENT");
   tangents->SetNumberOfComponents(4);
-  for (int j = 0; j < 3; ++j)
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
   {
-    for (int i = 0; i < 3; ++i)
-    {
-      points->InsertNextPoint(i, j, 0);
-      normals->InsertNextTuple3(0, 0, 1);
-      uvs->InsertNextTuple2(0.5 * i, 0.5 * j);
-      tangents->InsertNextTuple4(1, 0, 0, 1);
-    }
+    tangents->InsertNextTuple4(1, 0, 0, 1);
   }
-  vtkNew<vtkCellArray> quads;
-  for (vtkIdType j = 0; j < 2; ++j)
-  {
-    for (vtkIdType i = 0; i < 2; ++i)
-    {
-      const vtkIdType quad[4] = { 3 * j + i, 3 * j + i + 1, 3 * j + i + 4, 3 * j + i + 3 };
-      quads->InsertNextCell(4, quad);
-    }
-  }
-  mesh->SetPoints(points);
-  mesh->SetPolys(quads);
-  mesh->GetPointData()->SetNormals(normals);
-  mesh->GetPointData()->SetTCoords(uvs);
   mesh->GetPointData()->AddArray(tangents);
   return mesh;
 }
