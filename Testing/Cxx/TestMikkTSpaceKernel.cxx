@@ -400,6 +400,30 @@ TEST(MikkTSpaceKernel, QuadOfOppositeOrientationsTakesTheFirstOnATie)
   }
 }
 
+// A quad whose second triangle is "group with any" keeps the first triangle's orientation even
+// when the second has the larger UV area (the reference's rule). Split on its shorter UV
+// diagonal 0-2: A = (0, 1, 2) is left-handed with UV determinant -0.3; B = (0, 2, 3) has
+// collinear positions, so its dP/du vanishes and it groups with any, while its UV determinant
+// is +2. A's corners are those of A alone, sign -1; taking B's orientation would make them +1.
+TEST(MikkTSpaceKernel, QuadKeepsTheFirstOrientationWhenTheSecondGroupsWithAny)
+{
+  Mesh quad;
+  quad.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  quad.AddPoint({ 1, 0, 0 }, kUp, { 0, 0.6f });
+  quad.AddPoint({ 1, 1, 0 }, kUp, { 0.5f, 0.5f });
+  quad.AddPoint({ 2, 2, 0 }, kUp, { -3, 1 }); // on the line through points 0 and 2
+  quad.AddFace({ 0, 1, 2, 3 });
+  const mikk::Result q = RunKernel(quad);
+  const mikk::Result a = RunKernel(AsTriangles(quad, { { 0, 1, 2 } }));
+  ASSERT_EQ(q.Corners.size(), 4u);
+  EXPECT_EQ(q.NumberOfGroupWithAnyTriangles, 1);
+  for (size_t k = 0; k < 3; ++k)
+  {
+    EXPECT_EQ(q.Corners[k].Sign, -1.0f) << "corner " << k;
+    EXPECT_TRUE(BitEqual(q.Corners[k], a.Corners[k])) << "corner " << k;
+  }
+}
+
 // Two triangles sharing an edge, u mirrored about x = 0: opposite signs, no averaging across.
 TEST(MikkTSpaceKernel, MirroredPairSigns)
 {
