@@ -615,6 +615,48 @@ TEST(MikkTSpaceKernel, GroupWithAnyAdoption)
   }
 }
 
+// Within one group, the reference averages a member only with the members whose projected
+// directions are not exactly opposite to its own (its sub-group). Five triangles around a centre,
+// ring point k at 45k degrees with its texture coordinates at 90k degrees (the map z -> z^2,
+// which keeps the orientation), make one group: the first member's dP/du is +x and dP/dv
+// (-1, 1), every other member's are within 90 degrees of those, yet the group holds pairs of
+// exactly opposite directions (dP/du +y and -y). Each member's sub-group differs, so the five
+// corners at the centre differ; averaging the group as a whole, as when every member is close to
+// the first, would give them one frame.
+TEST(MikkTSpaceKernel, OppositeMembersOfAGroupAreNotAveraged)
+{
+  const float h = 0.70710677f;
+  const std::array<std::array<float, 3>, 8> ring = { { { 1, 0, 0 },
+    { h, h, 0 },
+    { 0, 1, 0 },
+    { -h, h, 0 },
+    { -1, 0, 0 },
+    { -h, -h, 0 },
+    { 0, -1, 0 },
+    { h, -h, 0 } } };
+  const std::array<std::array<float, 2>, 4> uv = { { { 1, 0 }, { 0, 1 }, { -1, 0 }, { 0, -1 } } };
+  Mesh m;
+  m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  for (size_t k = 0; k < ring.size(); ++k)
+  {
+    m.AddPoint(ring[k], kUp, uv[k % 4]);
+  }
+  for (const long long k : { 7, 0, 1, 5, 6 }) // the triangles between ring points k and k + 1
+  {
+    m.AddFace({ 0, 1 + k, 1 + (k + 1) % 8 });
+  }
+  const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), 15u);
+  EXPECT_EQ(res.NumberOfDefaultCorners, 0);
+  for (size_t a = 0; a < 15; a += 3)
+  {
+    for (size_t b = a + 3; b < 15; b += 3)
+    {
+      EXPECT_FALSE(BitEqual(res.Corners[a], res.Corners[b])) << "centre corners " << a << ", " << b;
+    }
+  }
+}
+
 // Faces with more than 4 corners are fan-triangulated; their corners equal those of the
 // explicit fan. Faces with fewer than 3 corners are skipped with default corners.
 TEST(MikkTSpaceKernel, FanPolygon)
