@@ -305,7 +305,8 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   // coordinates (IsRoundingNoise); UV: |det| > tol * longestUV^2. NaN fails both.
   const bool hasArea = !IsRoundingNoise(twiceArea2, longest2, maxCoordinate, tol.PositionNoise);
   const bool hasUVArea = std::abs(det) > tol.UV * longestUV2;
-  const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0) & (tLength <= DBL_MAX);
+  // With edges and UV deltas in the safe range, tLength is finite: only its zero needs a test.
+  const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0);
 
   const double sine = std::sqrt(twiceArea2);
   TriangleFrame frame;
