@@ -1192,9 +1192,13 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
     const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
     this->Frames.reset(new TriangleFrames(chunk, cellTangents));
-    TriangleFrames& frames = *this->Frames;
+    // Chunks alternate between two frame buffers: the threads computing a chunk's frames then
+    // do not write over the cache lines that other threads have just read to add the previous
+    // chunk. With cell tangents there is one chunk.
+    TriangleFrames alternate(chunk < count ? chunk : 0, false);
     for (vtkIdType begin = 0; begin < count; begin += chunk)
     {
+      TriangleFrames& frames = (begin / chunk) % 2 == 0 ? *this->Frames : alternate;
       const vtkIdType end = std::min(begin + chunk, count);
       degenerate += this->VisitSignedFrames(method,
         normals,
