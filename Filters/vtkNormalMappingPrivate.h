@@ -19,6 +19,8 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <algorithm>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -147,12 +149,15 @@ inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* arra
 
 /**
  * The output's structure and cell data from the input; its points and point data from the
- * input's with source.size() points appended (ExtendPointArray), attributes kept. The caller
- * re-points the cells to the new points.
+ * input's with source.size() points appended (ExtendPointArray), attributes kept. A point array
+ * named in `replaced` is not extended: the caller adds its own array of that name, which takes
+ * the input array's place, so until then the input's array stands there. The caller re-points
+ * the cells to the new points.
  */
 inline void CopyWithAppendedPoints(vtkPolyData* input,
   vtkPolyData* output,
-  const std::vector<vtkIdType>& source)
+  const std::vector<vtkIdType>& source,
+  const std::vector<std::string>& replaced)
 {
   output->CopyStructure(input);
   output->GetCellData()->PassData(input->GetCellData());
@@ -171,7 +176,12 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
   outPD->Initialize();
   for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
   {
-    outPD->AddArray(ExtendPointArray(inPD->GetAbstractArray(k), numIn, source));
+    vtkAbstractArray* array = inPD->GetAbstractArray(k);
+    const char* name = array->GetName();
+    const bool isReplaced =
+      name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
+    outPD->AddArray(isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
+                               : ExtendPointArray(array, numIn, source));
     const int attribute = inPD->IsArrayAnAttribute(k);
     if (attribute >= 0)
     {
@@ -222,6 +232,20 @@ struct OutputFrames
         array->SetNumberOfTuples(tuples);
       }
     }
+  }
+
+  /// Their names, the point arrays AddTo replaces.
+  std::vector<std::string> Names() const
+  {
+    std::vector<std::string> names;
+    for (ArrayT* array : { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
+    {
+      if (array)
+      {
+        names.emplace_back(array->GetName());
+      }
+    }
+    return names;
   }
 
   /// Adds them to `pd`, the tangents as its active tangents.

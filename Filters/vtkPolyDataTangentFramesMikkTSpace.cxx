@@ -858,7 +858,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
   vtkPolyData* input = request.Input;
   const vtkIdType numIn = input->GetNumberOfPoints();
   const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
-  CopyWithAppendedPoints(input, output, a.SplitSource);
+  const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
+  CopyWithAppendedPoints(input, output, a.SplitSource, arrays.Names());
   if (numSplits > 0)
   {
     const vtkIdType maxId = numIn + numSplits - 1;
@@ -872,7 +873,6 @@ void WriteOutput(const MikkTSpaceRequest& request,
         RepointCells(input->GetStrips(), a.Repoint, s.PolyCorners, s.StripCorners, maxId));
     }
   }
-  const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
   WritePointFrames(request, contractNormals, a, numIn, arrays);
   vtkPointData* outPD = output->GetPointData();
   if (request.ComputedNormals)

@@ -1332,7 +1332,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     std::vector<vtkIdType> splitSource(splits.size());
     std::transform(
       splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
-    vtkNormalMapping::detail::CopyWithAppendedPoints(this->Input, this->Output, splitSource);
+    vtkNormalMapping::detail::CopyWithAppendedPoints(
+      this->Input, this->Output, splitSource, frames.Names());
     frames.Resize(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
     if (!splits.empty())
     {

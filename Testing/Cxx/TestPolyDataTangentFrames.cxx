@@ -618,6 +618,72 @@ TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
   }
 }
 
+TEST(PolyDataTangentFrames, SplitOutputPutsItsFrameArraysWhereTheUnsplitOutputDoes)
+{
+  // The input already has arrays of the names the filter writes (a glTF file's tangents read
+  // back, say), one of them the active scalars. Splitting does not copy them (the filter's own
+  // arrays replace them), yet the output must list the same arrays in the same order, with the
+  // same attributes, as without splitting, where the input's arrays pass through and are
+  // replaced in place.
+  auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
+  const vtkIdType numIn = mesh->GetNumberOfPoints();
+  const auto named = [numIn](const char* name, int components)
+  {
+    vtkNew<vtkFloatArray> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(components);
+    array->SetNumberOfTuples(numIn);
+    array->Fill(7.0);
+    return vtkSmartPointer<vtkFloatArray>(array);
+  };
+  vtkPointData* pd = mesh->GetPointData();
+  pd->AddArray(named("Before", 1));
+  pd->AddArray(named(vtkPolyDataTangentFrames::TangentsArrayName(), 3));
+  pd->SetScalars(named(vtkPolyDataTangentFrames::SignsArrayName(), 1));
+  pd->AddArray(named(vtkPolyDataTangentFrames::BitangentsArrayName(), 3));
+  pd->AddArray(named("After", 1));
+
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    for (bool bitangents : { false, true })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (bitangents ? ", bitangents" : ""));
+      std::vector<std::string> layout[2]; // array names, then the scalars' name
+      for (bool splitting : { false, true })
+      {
+        vtkSmartPointer<vtkPolyData> out = RunFrames(mesh,
+          [&](vtkPolyDataTangentFrames* f)
+          {
+            f->SetMethod(method);
+            f->SetSplitting(splitting);
+            f->SetComputeBitangents(bitangents);
+          });
+        ASSERT_EQ(out->GetNumberOfPoints() > numIn, splitting);
+        vtkPointData* outPD = out->GetPointData();
+        for (int k = 0; k < outPD->GetNumberOfArrays(); ++k)
+        {
+          vtkAbstractArray* array = outPD->GetAbstractArray(k);
+          layout[splitting].emplace_back(array->GetName());
+          EXPECT_EQ(array->GetNumberOfTuples(), out->GetNumberOfPoints()) << array->GetName();
+        }
+        ASSERT_NE(outPD->GetScalars(), nullptr);
+        layout[splitting].emplace_back(outPD->GetScalars()->GetName());
+        // The frame arrays are the filter's: a sign is +1 or -1, never the input's 7.
+        auto* signs = outPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+        ASSERT_NE(signs, nullptr);
+        EXPECT_EQ(std::abs(signs->GetComponent(out->GetNumberOfPoints() - 1, 0)), 1.0);
+        // Without bitangents the input's array of that name is point data like any other.
+        auto* b = outPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName());
+        ASSERT_NE(b, nullptr);
+        EXPECT_EQ(b->GetComponent(out->GetNumberOfPoints() - 1, 0) == 7.0, !bitangents);
+      }
+      EXPECT_EQ(layout[1], layout[0]);
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, RepeatedUpdatesGiveTheSameBits)
 {
   // Re-executing reuses memory the previous execution freed (glibc hands the per-point sums'
