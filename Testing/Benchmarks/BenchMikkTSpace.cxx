@@ -170,7 +170,7 @@ Comparison Compare(const Bench::PairingMesh& mesh, int rounds)
   filter->SetMethodToMikkTSpace();
   filter->SetInputData(mesh.Mesh);
   bool referenceOk = true;
-  std::vector<std::vector<double>> seconds;
+  Bench::Rounds seconds;
   // One thread for the whole measurement: the kernel then runs with the scope's thread count
   // (numThreads 0), as the filter does, so that neither time includes entering a thread scope
   // (VTK's TBB backend makes a task arena for each).
@@ -332,7 +332,9 @@ bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
               << c.Kernel.Cells() << "; filter " << Bench::Format(c.Filter.MedianMilliseconds(1))
               << " ms, x mikktspace.c " << c.Filter.Cells() << "; corners differing from "
               << "mikktspace.c: " << c.DifferingBits << " in bits, " << c.DifferingValues
-              << " in value, of " << c.Corners << (c.Ok ? "" : " (A RUN FAILED)") << std::endl;
+              << " in value, of " << c.Corners << "; page faults per run: mikktspace.c "
+              << c.Kernel.MedianFaults(0) << ", kernel " << c.Kernel.MedianFaults(1) << ", filter "
+              << c.Filter.MedianFaults(1) << (c.Ok ? "" : " (A RUN FAILED)") << std::endl;
   }
   if (!note.empty())
   {
@@ -367,6 +369,16 @@ bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
        << Bench::Count(c.DifferingBits) << " / " << Bench::Count(c.DifferingValues) << " / "
        << Bench::Count(c.Corners) << " |\n";
     ok = ok && c.Ok;
+  }
+  md << "\n"
+     << Bench::PageFaultText << "\n\n"
+     << "| mesh | `mikktspace.c` | kernel | filter |\n"
+     << "|---|---:|---:|---:|\n";
+  for (const Comparison& c : comparisons)
+  {
+    md << "| " << c.Name << " | " << Bench::FaultCount(c.Kernel.MedianFaults(0)) << " | "
+       << Bench::FaultCount(c.Kernel.MedianFaults(1)) << " | "
+       << Bench::FaultCount(c.Filter.MedianFaults(1)) << " |\n";
   }
   if (!note.empty())
   {

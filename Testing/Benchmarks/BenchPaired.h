@@ -19,8 +19,11 @@
 #include "vtkTexturedSphereSource.h"
 #include "vtkTriangleFilter.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -36,7 +39,10 @@ struct Paired
   std::vector<double> Ratios;     // the first subject's time / the second's, one per round
   double FastestRatio = 0.0;      // the first's fastest run / the second's fastest run
   std::vector<double> Seconds[2]; // the first's and the second's times, one per round
+  std::vector<double> Faults[2];  // the first's and the second's page faults, one per round
   double Quantile(double q) const { return Bench::Quantile(this->Ratios, q); }
+  /// The median number of page faults of one run of subject `which` (0: first, 1: second).
+  double MedianFaults(int which) const { return Bench::Quantile(this->Faults[which], 0.5); }
   /// The median time of subject `which` (0: first, 1: second), in milliseconds.
   double MedianMilliseconds(int which) const
   {
@@ -59,40 +65,77 @@ inline double TimedUpdate(vtkPolyDataAlgorithm* f)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+/// The page faults this process has taken so far that needed no disk read: each is the first
+/// touch of a page of memory the process got from the system (zeroed by the kernel).
+inline double MinorPageFaults()
+{
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_minflt);
+}
+
+/// A median page fault count as a table cell.
+inline std::string FaultCount(double faults)
+{
+  return Count(static_cast<long long>(std::llround(faults)));
+}
+
+/// What the page fault tables of the paired runs show.
+constexpr const char* PageFaultText =
+  "Page faults per run (medians over the same runs): each is the first touch of a 4 KiB page "
+  "that the process got from the system, which the kernel zeroes. Memory a run frees goes "
+  "back to glibc, which returns large blocks, and the top of its heap beyond a threshold, to "
+  "the system; a run that allocates them again faults them in again. The counts depend on "
+  "what the process allocated and freed before, and each fault's time (zeroing and mapping the "
+  "page) is part of the times above.";
+
+/// What RunRounds measures: per subject, one entry per round.
+struct Rounds
+{
+  std::vector<std::vector<double>> Seconds;
+  std::vector<std::vector<double>> Faults; // MinorPageFaults during the run
+};
+
 /**
  * `rounds` rounds of the timed runs `runs` (each returns its seconds), run back to back, after one
  * warm-up run each; the subject that goes first rotates from round to round (with two: the
- * order alternates). Returns each subject's times, one per round. The runs of a round are close
- * in time, so a change of the machine's speed (other virtual machines, frequency) mostly hits all
- * of them: a ratio within a round is steadier than the ratio of medians over repetitions that
- * are seconds apart.
+ * order alternates). Returns each subject's times and page faults, one per round. The runs of a
+ * round are close in time, so a change of the machine's speed (other virtual machines,
+ * frequency) mostly hits all of them: a ratio within a round is steadier than the ratio of
+ * medians over repetitions that are seconds apart.
  */
-inline std::vector<std::vector<double>> RunRounds(const std::vector<std::function<double()>>& runs,
-  int rounds)
+inline Rounds RunRounds(const std::vector<std::function<double()>>& runs, int rounds)
 {
   for (const auto& run : runs)
   {
     run();
   }
-  std::vector<std::vector<double>> seconds(runs.size());
+  Rounds result;
+  result.Seconds.resize(runs.size());
+  result.Faults.resize(runs.size());
   for (int i = 0; i < rounds; ++i)
   {
     for (size_t j = 0; j < runs.size(); ++j)
     {
       const size_t which = (static_cast<size_t>(i) + j) % runs.size();
-      seconds[which].push_back(runs[which]());
+      const double faults = MinorPageFaults();
+      result.Seconds[which].push_back(runs[which]());
+      result.Faults[which].push_back(MinorPageFaults() - faults);
     }
   }
-  return seconds;
+  return result;
 }
 
-/// Subject a's time / subject b's in each round of `seconds` (RunRounds' result), and the
+/// Subject a's time / subject b's in each round of `rounds` (RunRounds' result), and the
 /// ratio of their fastest runs.
-inline Paired PairedRatios(const std::vector<std::vector<double>>& seconds, size_t a, size_t b)
+inline Paired PairedRatios(const Rounds& rounds, size_t a, size_t b)
 {
+  const std::vector<std::vector<double>>& seconds = rounds.Seconds;
   Paired result;
   result.Seconds[0] = seconds[a];
   result.Seconds[1] = seconds[b];
+  result.Faults[0] = rounds.Faults[a];
+  result.Faults[1] = rounds.Faults[b];
   for (size_t i = 0; i < seconds[a].size(); ++i)
   {
     result.Ratios.push_back(seconds[a][i] / seconds[b][i]);

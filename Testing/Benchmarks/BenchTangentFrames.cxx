@@ -414,7 +414,9 @@ int PrintPairedRuns(int pairs)
     {
       const Paired p = MeasurePaired(angleWeighted, m.Mesh, threads, pairs);
       std::cout << m.Name << " (" << m.Mesh->GetNumberOfPolys() << " triangles), " << threads
-                << " thread" << (threads > 1 ? "s" : "") << ": x VTK " << p.Cells() << std::endl;
+                << " thread" << (threads > 1 ? "s" : "") << ": x VTK " << p.Cells()
+                << "; page faults per update: VTK " << p.MedianFaults(0) << ", ours "
+                << p.MedianFaults(1) << std::endl;
     }
     const Paired scaling = MeasureScaling(angleWeighted, m.Mesh, pairs);
     std::cout << m.Name << ", two threads against one: " << scaling.Cells() << " (median "
@@ -565,7 +567,7 @@ int main(int argc, char** argv)
   std::cout << "paired runs in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
             << " s" << std::endl;
-  // Two threads against one, each filter alone (memory reused).
+  // Two threads against one, each filter alone.
   std::vector<Paired> scaling;
   const auto scalingStart = std::chrono::steady_clock::now();
   for (const Bench::TangentFilter& f : Bench::TangentFilters())
@@ -686,8 +688,9 @@ int main(int argc, char** argv)
         "alternately, "
      << pairs
      << " pairs after one warm-up Update each, the order within a pair alternating (wall-clock "
-        "time, memory reused). A pair's two runs are milliseconds apart, so a change in the "
-        "machine's speed mostly hits both. Each cell: the median over the pairs of "
+        "time, the same two filter objects throughout). A pair's two runs are milliseconds "
+        "apart, so a change in the machine's speed mostly hits both. Each cell: the median over "
+        "the pairs of "
         "`vtkPolyDataTangents`' time / AngleWeighted's (above 1: faster than VTK's), with the "
         "first and third quartiles, and the ratio of the two filters' fastest runs.\n\n"
      << "| mesh | triangles | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
@@ -698,6 +701,15 @@ int main(int argc, char** argv)
     md << "| " << pairingMeshes[i].Name << " | "
        << Bench::Count(pairingMeshes[i].Mesh->GetNumberOfPolys()) << " | " << paired[i][0].Cells()
        << " | " << paired[i][1].Cells() << " |\n";
+  }
+  md << "\n"
+     << Bench::PageFaultText << " One thread:\n\n"
+     << "| mesh | vtkPolyDataTangents | AngleWeighted |\n"
+     << "|---|---:|---:|\n";
+  for (size_t i = 0; i < pairingMeshes.size(); ++i)
+  {
+    md << "| " << pairingMeshes[i].Name << " | " << Bench::FaultCount(paired[i][0].MedianFaults(0))
+       << " | " << Bench::FaultCount(paired[i][0].MedianFaults(1)) << " |\n";
   }
   if (!pairingNote.empty())
   {
@@ -711,9 +723,10 @@ int main(int argc, char** argv)
         "set before an untimed Update that precedes each timed one, so that the time does not "
         "include the change of thread count), "
      << pairs
-     << " pairs after one warm-up Update each, the order within a pair alternating, memory "
-        "reused (wall-clock time). Each cell: the median over the pairs of the one-thread time / "
-        "the two-thread time (the speed-up of the second thread; 2 is perfect scaling, below 1 "
+     << " pairs after one warm-up Update each, the order within a pair alternating, the same "
+        "filter object throughout (wall-clock time). Each cell: the median over the pairs of the "
+        "one-thread time / the two-thread time (the speed-up of the second thread; 2 is perfect "
+        "scaling, below 1 "
         "slower), with the first and third quartiles, and the ratio of the fastest runs.\n\n"
      << "| filter | two threads against one: median [quartiles] | fastest runs |\n"
      << "|---|---:|---:|\n";
