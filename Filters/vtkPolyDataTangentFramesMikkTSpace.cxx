@@ -843,12 +843,13 @@ void WritePointFrames(const MikkTSpaceRequest& request,
 /**
  * The output: the input with the split points appended (their point data copied, the computed
  * normals too) and the corners of their frames re-pointed, the point frames, and the cell
- * tangents when asked for.
+ * tangents when asked for. The corner frames are freed once the cell tangents are made, before
+ * the point data is copied, so that their memory can hold the copies.
  */
 template<typename OutArray>
 void WriteOutput(const MikkTSpaceRequest& request,
   const Surface& s,
-  const std::vector<CornerFrame>& frames,
+  std::vector<CornerFrame>& frames,
   const float* positions,
   const ContractNormals& contractNormals,
   const Assignment& a,
@@ -858,6 +859,17 @@ void WriteOutput(const MikkTSpaceRequest& request,
   vtkPolyData* input = request.Input;
   const vtkIdType numIn = input->GetNumberOfPoints();
   const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
+  vtkSmartPointer<OutArray> cellTangents;
+  if (request.CellTangents)
+  {
+    const vtkIdType numCells = input->GetNumberOfCells();
+    cellTangents = NewArray<OutArray>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
+    OutT* cOut = cellTangents->GetPointer(0);
+    std::fill(cOut, cOut + 3 * numCells, OutT(0));
+    const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
+    CellTangents(s, frames, positions, cOut + 3 * firstSurface);
+  }
+  std::vector<CornerFrame>().swap(frames);
   const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
   CopyWithAppendedPoints(input, output, a.SplitSource, arrays.Names());
   if (numSplits > 0)
@@ -883,15 +895,8 @@ void WriteOutput(const MikkTSpaceRequest& request,
       numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
   }
   arrays.AddTo(outPD);
-  if (request.CellTangents)
+  if (cellTangents)
   {
-    const vtkIdType numCells = input->GetNumberOfCells();
-    auto cellTangents =
-      NewArray<OutArray>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
-    OutT* cOut = cellTangents->GetPointer(0);
-    std::fill(cOut, cOut + 3 * numCells, OutT(0));
-    const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    CellTangents(s, frames, positions, cOut + 3 * firstSurface);
     output->GetCellData()->SetTangents(cellTangents);
   }
 }

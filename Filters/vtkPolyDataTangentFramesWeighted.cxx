@@ -26,6 +26,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -1415,13 +1416,13 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   const vtkIdType numPoints = this->NumberOfPoints;
 
   this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
-  const ScatteredSums sums =
-    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles);
+  std::optional<ScatteredSums> sums(
+    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
   // Room for the split points' frames too: one per mirror-seam point when splitting.
   OutputFrames<OutT> frames(
-    numPoints + (self->Splitting ? sums.SeamPoints() : 0), self->ComputeBitangents);
-  const auto sumsOf = [&](vtkIdType p) { return sums.Of(p); };
+    numPoints + (self->Splitting ? sums->SeamPoints() : 0), self->ComputeBitangents);
+  const auto sumsOf = [&](vtkIdType p) { return sums->Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, sumsOf, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
   const std::vector<vtkIdType> conflicts =
@@ -1450,6 +1451,10 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     return 1;
   }
   self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
+  // Freed before the output copies the point data and the connectivity, the sums' and kinds'
+  // memory can hold those copies.
+  sums.reset();
+  kinds.reset();
   this->WriteOutput<OutT>(splits, frames, computedNormals);
   this->Continue(1.0);
   return 1;
