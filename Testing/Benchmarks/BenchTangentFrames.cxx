@@ -690,9 +690,9 @@ int main(int argc, char** argv)
      << " pairs after one warm-up Update each, the order within a pair alternating (wall-clock "
         "time, the same two filter objects throughout). A pair's two runs are milliseconds "
         "apart, so a change in the machine's speed mostly hits both. Each cell: the median over "
-        "the pairs of "
-        "`vtkPolyDataTangents`' time / AngleWeighted's (above 1: faster than VTK's), with the "
-        "first and third quartiles, and the ratio of the two filters' fastest runs.\n\n"
+        "the pairs of `vtkPolyDataTangents`' time / AngleWeighted's (above 1: faster than "
+        "VTK's), with the first and third quartiles, and the ratio of the two filters' fastest "
+        "runs.\n\n"
      << "| mesh | triangles | 1 thread: median [quartiles] | fastest runs | 2 threads: median "
         "[quartiles] | fastest runs |\n"
      << "|---|---:|---:|---:|---:|---:|\n";
@@ -726,8 +726,8 @@ int main(int argc, char** argv)
      << " pairs after one warm-up Update each, the order within a pair alternating, the same "
         "filter object throughout (wall-clock time). Each cell: the median over the pairs of the "
         "one-thread time / the two-thread time (the speed-up of the second thread; 2 is perfect "
-        "scaling, below 1 "
-        "slower), with the first and third quartiles, and the ratio of the fastest runs.\n\n"
+        "scaling, below 1 slower), with the first and third quartiles, and the ratio of the "
+        "fastest runs.\n\n"
      << "| filter | two threads against one: median [quartiles] | fastest runs |\n"
      << "|---|---:|---:|\n";
   for (const Paired& p : scaling)
