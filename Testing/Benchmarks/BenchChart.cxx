@@ -1,5 +1,5 @@
 // The speed-versus-accuracy chart of docs/benchmarks.md, drawn with VTK's charts (vtkChartXY in
-// a vtkContextView, rendered offscreen: run it under Testing/Rendering/RunHeadless.sh).
+// a vtkContextActor, rendered offscreen: run it under Testing/Rendering/RunHeadless.sh).
 //
 //   BenchChart [--out DIR] [--surface NAME] [--resolution N]
 //
@@ -19,9 +19,9 @@
 #include "vtkChartLegend.h"
 #include "vtkChartXY.h"
 #include "vtkContext2D.h"
+#include "vtkContextActor.h"
 #include "vtkContextItem.h"
 #include "vtkContextScene.h"
-#include "vtkContextView.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageAppend.h"
@@ -237,7 +237,7 @@ vtkSmartPointer<vtkTable> Table(const std::vector<std::pair<double, double>>& xy
  * higherXIsBetter for throughput, false for time. `verticalLine` > 0: a labelled vertical line
  * at that x (the floor).
  */
-vtkSmartPointer<vtkContextView> Panel(const std::string& title,
+vtkSmartPointer<vtkRenderWindow> Panel(const std::string& title,
   std::vector<Point> points,
   bool higherXIsBetter,
   const std::string& xTitle,
@@ -245,12 +245,18 @@ vtkSmartPointer<vtkContextView> Panel(const std::string& title,
   double verticalLine,
   const std::string& verticalLabel)
 {
-  auto view = vtkSmartPointer<vtkContextView>::New();
-  view->GetRenderWindow()->SetSize(760, 560);
-  view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+  // A context actor in a plain renderer: vtkContextView would do the same, but its module
+  // (ViewsContext2D) pulls in VTK's widgets and volume rendering.
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetSize(760, 560);
+  window->SetOffScreenRendering(1);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(1.0, 1.0, 1.0);
+  window->AddRenderer(renderer);
+  vtkNew<vtkContextActor> actor;
+  renderer->AddActor(actor);
   vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
+  actor->GetScene()->AddItem(chart);
   chart->SetTitle(title);
   chart->GetTitleProperties()->SetFontSize(16);
   chart->SetShowLegend(true);
@@ -349,9 +355,9 @@ vtkSmartPointer<vtkContextView> Panel(const std::string& title,
   vtkNew<PointLabels> labels;
   labels->Chart = chart;
   labels->Points = points;
-  view->GetScene()->AddItem(labels);
-  view->GetRenderWindow()->Render();
-  return view;
+  actor->GetScene()->AddItem(labels);
+  window->Render();
+  return window;
 }
 }
 
@@ -473,10 +479,10 @@ int main(int argc, char* argv[])
   vtkNew<vtkImageAppend> append;
   append->SetAppendAxis(0);
   std::vector<vtkSmartPointer<vtkWindowToImageFilter>> grabs;
-  for (vtkContextView* view : { left.Get(), right.Get() })
+  for (vtkRenderWindow* window : { left.Get(), right.Get() })
   {
     auto grab = vtkSmartPointer<vtkWindowToImageFilter>::New();
-    grab->SetInput(view->GetRenderWindow());
+    grab->SetInput(window);
     grab->SetInputBufferTypeToRGB();
     grab->ReadFrontBufferOff();
     grab->Update();
