@@ -1,9 +1,11 @@
 # ctest BenchmarkSmoke: runs scripts/bench.sh --smoke (tiny meshes, few repetitions) into
 # WORK_DIR and checks that it wrote benchmarks.md with every section and every table complete
 # (the expected number of rows, every row as wide as its header, no empty, NaN or infinite
-# cell) and a PNG chart. It checks no timing and no accuracy: the unit tests do that.
+# cell) and a PNG chart, or, when the build has no BenchChart (CHART OFF: a VTK without 2D
+# charts), no chart and a line that says so. It checks no timing and no accuracy: the unit tests
+# do that.
 # Inputs: ROOT (the project), BIN (the build's bin folder), WORK_DIR, HEADLESS_MODE (offscreen or
-# xvfb: how the build's VTK renders, as Testing/Rendering decided).
+# xvfb: how the build's VTK renders, as Testing/Rendering decided), CHART (ON or OFF).
 file(REMOVE_RECURSE "${WORK_DIR}")
 get_filename_component(build "${BIN}" DIRECTORY)
 execute_process(COMMAND bash "${ROOT}/scripts/bench.sh" --smoke --out "${WORK_DIR}"
@@ -18,22 +20,32 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "scripts/bench.sh --smoke failed (exit status ${rc})")
 endif()
 
-# The chart: a PNG file of some size.
-set(png "${WORK_DIR}/benchmarks.png")
-if(NOT EXISTS "${png}")
-  message(FATAL_ERROR "no chart: ${png}")
-endif()
-file(READ "${png}" signature LIMIT 8 HEX)
-file(SIZE "${png}" png_size)
-if(NOT signature STREQUAL "89504e470d0a1a0a" OR png_size LESS 10000)
-  message(FATAL_ERROR "${png} is not a chart (signature ${signature}, ${png_size} bytes)")
-endif()
-
 set(md "${WORK_DIR}/benchmarks.md")
 if(NOT EXISTS "${md}")
   message(FATAL_ERROR "no ${md}")
 endif()
 file(READ "${md}" text)
+
+# The chart: a PNG file of some size, linked from benchmarks.md; without BenchChart, neither.
+set(png "${WORK_DIR}/benchmarks.png")
+string(FIND "${text}" "](benchmarks.png)" linked)
+if(CHART)
+  if(NOT EXISTS "${png}" OR linked EQUAL -1)
+    message(FATAL_ERROR "no chart, or benchmarks.md does not show it: ${png}")
+  endif()
+  file(READ "${png}" signature LIMIT 8 HEX)
+  file(SIZE "${png}" png_size)
+  if(NOT signature STREQUAL "89504e470d0a1a0a" OR png_size LESS 10000)
+    message(FATAL_ERROR "${png} is not a chart (signature ${signature}, ${png_size} bytes)")
+  endif()
+  set(chart_result "chart ${png_size} bytes")
+else()
+  string(FIND "${text}" "No chart: this build's VTK has no 2D charts" said)
+  if(EXISTS "${png}" OR NOT linked EQUAL -1 OR said EQUAL -1)
+    message(FATAL_ERROR "a build without BenchChart wrote or linked a chart, or did not say why")
+  endif()
+  set(chart_result "no chart: this VTK has no 2D charts, BenchChart is not built")
+endif()
 foreach(heading
     "## Filter: throughput and peak memory" "### Summary:" "### Paired runs:"
     "### Two threads against one:"
@@ -121,4 +133,4 @@ if(NOT found STREQUAL expected)
   message(FATAL_ERROR "table rows: expected ${expected}, found ${found}")
 endif()
 list(LENGTH found tables)
-message("benchmarks.md: ${tables} complete tables (rows ${found}); chart ${png_size} bytes")
+message("benchmarks.md: ${tables} complete tables (rows ${found}); ${chart_result}")
