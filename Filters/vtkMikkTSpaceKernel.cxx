@@ -1328,7 +1328,8 @@ void Kernel::Finish(Result& res)
 {
   constexpr vtkIdType kChunk = 65536;
   const vtkIdType numChunks = (vtkIdType(NumSlots) + kChunk - 1) / kChunk;
-  std::vector<long long> defaults(size_t(numChunks), 0), nonFinite(size_t(numChunks), 0);
+  std::vector<long long> defaults(size_t(numChunks), 0), nonFinite(size_t(numChunks), 0),
+    cancelled(size_t(numChunks), 0);
   vtkSMPTools::For(0,
     numChunks,
     1,
@@ -1346,6 +1347,10 @@ void Kernel::Finish(Result& res)
             ++defaults[size_t(c)];
             nonFinite[size_t(c)] += unwritten ? 0 : 1;
           }
+          else
+          {
+            cancelled[size_t(c)] += IsCancelled(*o) ? 1 : 0;
+          }
         }
       }
     });
@@ -1353,6 +1358,7 @@ void Kernel::Finish(Result& res)
   {
     res.NumberOfDefaultCorners += defaults[size_t(c)];
     res.NumberOfNonFiniteCorners += nonFinite[size_t(c)];
+    res.NumberOfCancelledCorners += cancelled[size_t(c)];
   }
 }
 

@@ -85,6 +85,7 @@ struct Result
   long long NumberOfDegenerateTriangles = 0;   ///< triangles with two equal corner positions
   long long NumberOfDefaultCorners = 0;        ///< corners left at the default (1,0,0), -1
   long long NumberOfNonFiniteCorners = 0;      ///< of those, corners whose result was not finite
+  long long NumberOfCancelledCorners = 0;      ///< corners whose tangent is not unit (IsCancelled)
   long long NumberOfGroupWithAnyTriangles = 0; ///< zero UV area / zero derivative triangles
   long long NumberOfSkippedFaces = 0;          ///< faces with fewer than 3 corners
   long long NumberOfInvalidFaces = 0;          ///< faces with bad point ids or offsets
@@ -94,6 +95,21 @@ struct Result
 
 /// Default frame of a corner that no group reached (the reference's initial value).
 constexpr CornerFrame DefaultCornerFrame = { { 1.0f, 0.0f, 0.0f }, -1.0f };
+
+/**
+ * Whether a corner's tangent is not unit: where a group's tangents cancel, the reference returns
+ * their sum unnormalized (zero, or below about 1e-19). A normalized tangent is unit within a few
+ * float ulps; the bound, |length - 1| <= 1e-6, is what the weighted methods' float output meets.
+ */
+inline bool IsCancelled(const CornerFrame& f)
+{
+  constexpr double tolerance = 1e-6;
+  constexpr double lowest = (1.0 - tolerance) * (1.0 - tolerance);
+  constexpr double highest = (1.0 + tolerance) * (1.0 + tolerance);
+  const double tt = double(f.Tangent[0]) * f.Tangent[0] + double(f.Tangent[1]) * f.Tangent[1] +
+    double(f.Tangent[2]) * f.Tangent[2];
+  return !(tt >= lowest && tt <= highest);
+}
 
 /**
  * Compute MikkTSpace tangents for every face corner.

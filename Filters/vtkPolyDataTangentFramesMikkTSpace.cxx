@@ -55,7 +55,6 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -72,6 +71,7 @@ namespace detail
 namespace
 {
 using mikk::CornerFrame;
+using mikk::IsCancelled;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
@@ -92,11 +92,6 @@ bool IsDefault(const CornerFrame& f)
   return SameFrame(f, mikk::DefaultCornerFrame);
 }
 
-/// |length - 1| allowed before a kernel tangent counts as cancelled. The kernel normalises in
-/// float: a unit vector within a few float ulps (below 1e-7 on the shared reference meshes),
-/// whereas a cancelled sum is below ~1e-19; 1e-6 is what the weighted methods' float output
-/// meets.
-constexpr double kUnitTolerance = 1e-6;
 /// |T.N| (unit N) allowed before a kernel tangent is Gram-Schmidt-ed. MikkTSpace projects with
 /// the normal as given, so a normal off unit length by e leaves T.N of about 2e. Normals in real
 /// files are not unit to float precision: on the shared reference meshes |N| - 1 reaches 4.4e-5
@@ -104,16 +99,6 @@ constexpr double kUnitTolerance = 1e-6;
 /// 1/127 rad step of an 8-bit normal map) keeps all of those bit for bit, as the reference
 /// gives them, and corrects the default (1,0,0) and clearly non-unit normals.
 constexpr double kPerpendicularTolerance = 1e-4;
-
-/// True when a kernel tangent is not unit: the reference's unnormalised sum that cancelled.
-bool IsCancelled(const CornerFrame& f)
-{
-  const double tt = double(f.Tangent[0]) * f.Tangent[0] + double(f.Tangent[1]) * f.Tangent[1] +
-    double(f.Tangent[2]) * f.Tangent[2];
-  constexpr double lowest = (1.0 - kUnitTolerance) * (1.0 - kUnitTolerance);
-  constexpr double highest = (1.0 + kUnitTolerance) * (1.0 + kUnitTolerance);
-  return !(tt >= lowest && tt <= highest);
-}
 
 /// The kernel frame `f` of a point with normal `n` (as given, any length; zero or non-finite:
 /// none) made to meet the filter's contract (see the rules at the top). The common case, a
@@ -306,24 +291,6 @@ struct ContractNormals
                        : glm::dvec3(this->Wide[i], this->Wide[i + 1], this->Wide[i + 2]);
   }
 };
-
-/// Number of kernel corners whose tangent cancelled.
-vtkIdType CountCancelled(const std::vector<CornerFrame>& frames)
-{
-  std::atomic<vtkIdType> count(0);
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(frames.size()),
-    [&](vtkIdType b, vtkIdType e)
-    {
-      vtkIdType local = 0;
-      for (vtkIdType c = b; c < e; ++c)
-      {
-        local += IsCancelled(frames[c]) ? 1 : 0;
-      }
-      count += local;
-    });
-  return count.load();
-}
 
 /// The kernel's faces built from the polygons and strips, and the map from output corners
 /// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
@@ -992,8 +959,7 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
   counts.DefaultCorners = result.NumberOfDefaultCorners;
   const ContractNormals contractNormals(request.Normals, numPoints, normals);
-  const vtkIdType cancelled = CountCancelled(result.Corners);
-  counts.FallbackCorners = counts.DefaultCorners + cancelled;
+  counts.FallbackCorners = counts.DefaultCorners + result.NumberOfCancelledCorners;
 
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, request.Splitting, assignment);

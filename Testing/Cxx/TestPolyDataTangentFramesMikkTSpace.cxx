@@ -1230,6 +1230,9 @@ TEST(PolyDataTangentFramesMikkTSpace, FrameContractWhereTheReferenceBreaksIt)
     const mikk::CornerFrame& g = e.Kernel.Corners[static_cast<size_t>(6 + k)];
     EXPECT_GT(std::abs(c * g.Tangent[0] + z * g.Tangent[2]), 0.5) << "corner " << 6 + k;
   }
+  // Triangle 1's corners cancelled; the default corners and triangle 3's unit tangents did not.
+  EXPECT_EQ(e.Kernel.NumberOfCancelledCorners, 3);
+  EXPECT_EQ(e.Kernel.NumberOfDefaultCorners, 3);
 
   for (bool splitting : { true, false })
   {
