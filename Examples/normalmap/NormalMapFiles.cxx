@@ -468,6 +468,11 @@ bool WriteVTP(vtkPolyData* mesh, const std::string& path, std::string& error)
   VTKMessageCapture messages;
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(mesh);
+  // Arrays inline (base64, compressed), not in VTK's default appended section: the XML reader of
+  // ParaView 5.11 (VTK 9.2) stops expat at that section, which fails ("junk after document
+  // element", or an empty mesh) with the libexpat1 of Debian bookworm's security updates, whose
+  // reparse deferral holds back the parser's callbacks.
+  writer->SetDataModeToBinary();
   writer->SetFileName(path.c_str());
   const int ok = writer->Write();
   if (!ok || !messages.Errors().empty())

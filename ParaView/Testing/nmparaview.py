@@ -110,6 +110,9 @@ def write_mirrored_quads():
     path = os.path.join(WORK, "mirrored.vtp")
     writer = vtkXMLPolyDataWriter()
     writer.SetInputData(mirrored_quads())
+    # Inline arrays: ParaView 5.11's reader fails on an appended data section with the libexpat1
+    # of Debian bookworm's security updates (see the normalmap tool's WriteVTP).
+    writer.SetDataModeToBinary()
     writer.SetFileName(path)
     writer.Write()
     return path
