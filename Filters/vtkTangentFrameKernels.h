@@ -318,13 +318,13 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
 }
 
 /// The corner angles of a triangle whose edges FrameFromEdges took and whose frame it gave:
-/// zero when it is degenerate in position (its Normal is zero).
+/// zero when it is degenerate in position (its Area is zero).
 inline void FrameCornerAngles(const glm::dvec3& e1,
   const glm::dvec3& e2,
   const TriangleFrame& f,
   double angles[3])
 {
-  const double sine = std::sqrt(glm::dot(f.Normal, f.Normal)); // |e1 x e2|, or 0
+  const double sine = 2.0 * f.Area; // |e1 x e2| (FrameFromEdges halves it exactly), or 0
   CornerAnglesFromEdges(e1, e2, e2 - e1, sine, angles);
   for (int k = 0; k < 3; ++k)
   {
