@@ -13,6 +13,38 @@ int vtkNormalMapping::detail::UsableThreads()
   return std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
 }
 
+vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::WithPlainCellStorage(vtkPolyData* input)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  using Setter = void (vtkPolyData::*)(vtkCellArray*);
+  const std::pair<vtkCellArray*, Setter> cellArrays[] = { { input->GetVerts(),
+                                                            &vtkPolyData::SetVerts },
+    { input->GetLines(), &vtkPolyData::SetLines },
+    { input->GetPolys(), &vtkPolyData::SetPolys },
+    { input->GetStrips(), &vtkPolyData::SetStrips } };
+  vtkSmartPointer<vtkPolyData> plain = input;
+  for (const auto& cells : cellArrays)
+  {
+    if (!cells.first || cells.first->IsStorage64Bit() || cells.first->IsStorage32Bit())
+    {
+      continue;
+    }
+    if (plain == input)
+    {
+      plain = vtkSmartPointer<vtkPolyData>::New();
+      plain->ShallowCopy(input);
+    }
+    vtkNew<vtkCellArray> copy;
+    copy->DeepCopy(cells.first);
+    copy->ConvertTo64BitStorage();
+    (plain->*cells.second)(copy);
+  }
+  return plain;
+#else
+  return input; // VTK 9.1 to 9.5 store cells only as 32- or 64-bit arrays
+#endif
+}
+
 vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArray* cells,
   const std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
   vtkIdType base,

@@ -18,6 +18,7 @@
 #include "vtkPolyDataTangentFrames.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
+#include "vtkVersionMacros.h"
 
 #include <algorithm>
 #include <string>
@@ -90,11 +91,28 @@ void DispatchArray(vtkDataArray* array, Worker&& worker, Args&&... args)
   }
 }
 
-/// Returns f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit),
-/// so that cells are read without a virtual call per cell.
+/**
+ * `input` itself when each of its cell arrays stores 32- or 64-bit offsets and connectivity
+ * arrays; else a shallow copy of it whose other cell arrays are 64-bit copies. From VTK 9.6 a
+ * cell array can also store fixed-size cells (no offsets array) or arrays of other types; the
+ * filter reads only the first two storages (WithCellStorage).
+ */
+vtkSmartPointer<vtkPolyData> WithPlainCellStorage(vtkPolyData* input);
+
+/// Returns f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit:
+/// see WithPlainCellStorage), so that cells are read without a virtual call per cell.
 template<typename F>
 decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
 {
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  if (cells->IsStorage64Bit())
+  {
+    return f(cells->GetOffsetsAOSArray64()->GetPointer(0),
+      cells->GetConnectivityAOSArray64()->GetPointer(0));
+  }
+  return f(cells->GetOffsetsAOSArray32()->GetPointer(0),
+    cells->GetConnectivityAOSArray32()->GetPointer(0));
+#else
   if (cells->IsStorage64Bit())
   {
     return f(
@@ -102,6 +120,7 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
   }
   return f(
     cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
+#endif
 }
 
 /**

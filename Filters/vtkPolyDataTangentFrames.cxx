@@ -371,11 +371,14 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   return 1;
 }
 
-int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* input,
+int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   vtkPolyData* output,
   double progressBegin,
   double progressEnd)
 {
+  const vtkSmartPointer<vtkPolyData> plain =
+    vtkNormalMapping::detail::WithPlainCellStorage(inputAsGiven);
+  vtkPolyData* input = plain;
   const auto passThrough = [&]()
   {
     output->ShallowCopy(input);

@@ -489,8 +489,15 @@ bool BuildSurface(vtkCellArray* polys,
   if (s.NumStrips == 0 && s.NumPolys > 0 && polys->IsStorage64Bit())
   {
     // Shared: the kernel reads the polygon storage directly.
-    s.FaceOffsets = polys->GetOffsetsArray64()->GetPointer(0);
-    s.FaceConnectivity = polys->GetConnectivityArray64()->GetPointer(0);
+    WithCellStorage(polys,
+      [&](const auto* offsets, const auto* conn)
+      {
+        if constexpr (std::is_same<std::decay_t<decltype(*conn)>, long long>::value)
+        {
+          s.FaceOffsets = offsets;
+          s.FaceConnectivity = conn;
+        }
+      });
     return true;
   }
   s.OffsetStore.resize(static_cast<size_t>(s.NumFaces) + 1);

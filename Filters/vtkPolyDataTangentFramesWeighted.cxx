@@ -114,17 +114,16 @@ bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
 void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
 {
   out.Count = polys->GetNumberOfCells();
-  if (polys->IsStorage64Bit() &&
-    std::is_same<vtkCellArray::ArrayType64::ValueType, vtkIdType>::value)
-  {
-    out.Ids = reinterpret_cast<const vtkIdType*>(polys->GetConnectivityArray64()->GetPointer(0));
-    return;
-  }
-  out.Storage.reset(new vtkIdType[3 * out.Count]);
-  out.Ids = out.Storage.get();
   WithCellStorage(polys,
     [&](const auto*, const auto* conn)
     {
+      if constexpr (std::is_same<std::decay_t<decltype(*conn)>, vtkIdType>::value)
+      {
+        out.Ids = conn;
+        return;
+      }
+      out.Storage.reset(new vtkIdType[3 * out.Count]);
+      out.Ids = out.Storage.get();
       vtkSMPTools::For(0,
         3 * out.Count,
         [&](vtkIdType begin, vtkIdType end)
