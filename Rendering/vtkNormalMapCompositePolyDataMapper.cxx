@@ -1,9 +1,14 @@
 #include "vtkNormalMapCompositePolyDataMapper.h"
 
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+#include "vtkOpenGLBatchedPolyDataMapper.h"
+#include "vtkOpenGLCompositePolyDataMapperDelegator.h"
+#else
 // GLenum, which vtkCompositeMapperHelper2.h uses without including its declaration.
 #include "vtk_glew.h"
 
 #include "vtkCompositeMapperHelper2.h"
+#endif
 #include "vtkFloatArray.h"
 #include "vtkNormalMapShading.h"
 #include "vtkObjectFactory.h"
@@ -30,20 +35,59 @@ std::string BlockNames(std::vector<unsigned int> flatIndices)
   }
   return names + ": ";
 }
+
+/*
+ * What differs between VTK's two composite designs: up to VTK 9.2 a helper
+ * (vtkCompositeMapperHelper2) draws the blocks of one signature, each block a
+ * vtkCompositeMapperHelperData; from VTK 9.3 a batched mapper (vtkOpenGLBatchedPolyDataMapper,
+ * held by a delegator) draws them, each block a GLBatchElement. The helper below is written once
+ * against these names.
+ */
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+using HelperBase = vtkOpenGLBatchedPolyDataMapper;
+using BlockData = vtkOpenGLCompositePolyDataMapperDelegator::GLBatchElement;
+vtkPolyData*& PolyDataOf(BlockData* block)
+{
+  return block->Parent.PolyData;
+}
+unsigned int FlatIndexOf(const BlockData& block)
+{
+  return block.Parent.FlatIndex;
+}
+bool IsVisible(const BlockData& block)
+{
+  return block.Parent.Visibility;
+}
+#else
+using HelperBase = vtkCompositeMapperHelper2;
+using BlockData = vtkCompositeMapperHelperData;
+vtkPolyData*& PolyDataOf(BlockData* block)
+{
+  return block->Data;
+}
+unsigned int FlatIndexOf(const BlockData& block)
+{
+  return block.FlatIndex;
+}
+bool IsVisible(const BlockData& block)
+{
+  return block.Visibility;
+}
+#endif
 }
 
 /**
- * The per-block helper: VTK's composite helper (which draws every block with the same
+ * The per-block helper: VTK's helper or batched mapper (which draws every block with the same
  * signature from one vertex buffer group) with the normal mapping of vtkNormalMapShading.
  * Each block appends its tangents (4 floats per point, the sign in w) the way the superclass
  * appends its other point attributes; blocks without tangents append zeros and a per-block
  * uniform gives them the derivative frame.
  */
-class vtkNormalMapCompositeMapperHelper : public vtkCompositeMapperHelper2
+class vtkNormalMapCompositeMapperHelper : public HelperBase
 {
 public:
   static vtkNormalMapCompositeMapperHelper* New();
-  vtkTypeMacro(vtkNormalMapCompositeMapperHelper, vtkCompositeMapperHelper2);
+  vtkTypeMacro(vtkNormalMapCompositeMapperHelper, HelperBase);
 
   /// The parent's settings, and the shading state the parent keeps across its helpers.
   void Configure(const vtkNormalMapShading::Settings& settings, vtkNormalMapShading* shading)
@@ -61,7 +105,7 @@ public:
   {
     for (const auto& block : this->BlockTangents)
     {
-      frames[block.first->FlatIndex] = this->AppliedFrame(*block.first, block.second.Use);
+      frames[FlatIndexOf(*block.first)] = this->AppliedFrame(*block.first, block.second.Use);
     }
   }
 
@@ -76,28 +120,29 @@ protected:
     this->BlockTangents.clear();
     this->Frames = vtkNormalMapShading::FrameMix();
     bool allUnsigned = true;
-    for (const auto& block : this->Data)
-    {
-      auto tangents = vtkNormalMapShading::FindTangents(block.first, actor, this->Settings);
-      const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
-      this->Frames.PointTangents = this->Frames.PointTangents || has;
-      this->Frames.Derivatives = this->Frames.Derivatives || !has;
-      allUnsigned =
-        allUnsigned && (!has || tangents.Use == vtkNormalMapShading::TangentUse::Unsigned);
-      this->BlockTangents[block.second] = tangents;
-    }
+    this->ForEachBlock(
+      [&](BlockData* block)
+      {
+        auto tangents = vtkNormalMapShading::FindTangents(PolyDataOf(block), actor, this->Settings);
+        const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
+        this->Frames.PointTangents = this->Frames.PointTangents || has;
+        this->Frames.Derivatives = this->Frames.Derivatives || !has;
+        allUnsigned =
+          allUnsigned && (!has || tangents.Use == vtkNormalMapShading::TangentUse::Unsigned);
+        this->BlockTangents[block] = tangents;
+      });
     this->Frames.Unsigned = this->Frames.PointTangents && allUnsigned;
     this->Superclass::BuildBufferObjects(ren, actor);
   }
 
   void AppendOneBufferObject(vtkRenderer* ren,
     vtkActor* actor,
-    vtkCompositeMapperHelperData* hdata,
+    BlockData* hdata,
     vtkIdType& voffset,
     std::vector<unsigned char>& colors,
     std::vector<float>& normals) override
   {
-    vtkPoints* points = hdata->Data->GetPoints();
+    vtkPoints* points = PolyDataOf(hdata)->GetPoints();
     vtkIdType reusedOffset = 0;
     vtkIdType appendedBefore = 0;
     if (points && points->GetNumberOfPoints() > 0)
@@ -106,14 +151,14 @@ protected:
     }
     // VTK's own code appends the block's active Tangents (tangentMC) whenever they exist; it
     // sees a copy without them unless its shader reads them.
-    vtkPolyData* block = hdata->Data;
+    vtkPolyData* block = PolyDataOf(hdata);
     const auto forVTK = vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
     if (forVTK)
     {
-      hdata->Data = forVTK;
+      PolyDataOf(hdata) = forVTK;
     }
     this->Superclass::AppendOneBufferObject(ren, actor, hdata, voffset, colors, normals);
-    hdata->Data = block;
+    PolyDataOf(hdata) = block;
     // Nothing appended (no points), or the block reuses vertices appended for an earlier block
     // with the same point arrays (then it also has that block's tangents).
     if (!points || points->GetNumberOfPoints() == 0 || voffset != appendedBefore ||
@@ -156,10 +201,7 @@ protected:
       return;
     }
     std::vector<unsigned int> flatIndices;
-    for (const auto& block : this->Data)
-    {
-      flatIndices.push_back(block.second->FlatIndex);
-    }
+    this->ForEachBlock([&](BlockData* block) { flatIndices.push_back(FlatIndexOf(*block)); });
     vtkNormalMapShading::ShaderContext context;
     context.Reporter = this->Parent;
     context.Actor = actor;
@@ -178,7 +220,7 @@ protected:
           actor,
           block.second,
           this->Settings,
-          BlockNames({ block.first->FlatIndex }));
+          BlockNames({ FlatIndexOf(*block.first) }));
       }
     }
   }
@@ -200,9 +242,7 @@ protected:
   }
 
   /// Per block, before its draw: whether its frame comes from its tangents.
-  void SetShaderValues(vtkShaderProgram* program,
-    vtkCompositeMapperHelperData* hdata,
-    size_t primOffset) override
+  void SetShaderValues(vtkShaderProgram* program, BlockData* hdata, size_t primOffset) override
   {
     this->Superclass::SetShaderValues(program, hdata, primOffset);
     if (program->IsUniformUsed("nmDatasetHasTangents"))
@@ -225,10 +265,26 @@ private:
   vtkNormalMapCompositeMapperHelper(const vtkNormalMapCompositeMapperHelper&) = delete;
   void operator=(const vtkNormalMapCompositeMapperHelper&) = delete;
 
-  int AppliedFrame(const vtkCompositeMapperHelperData& block,
-    vtkNormalMapShading::TangentUse use) const
+  /// f(block) for each block this helper draws.
+  template<typename F>
+  void ForEachBlock(F&& f)
   {
-    if (!block.Visibility)
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+    for (const auto& block : this->VTKPolyDataToGLBatchElement)
+    {
+      f(block.second.get());
+    }
+#else
+    for (const auto& block : this->Data)
+    {
+      f(block.second);
+    }
+#endif
+  }
+
+  int AppliedFrame(const BlockData& block, vtkNormalMapShading::TangentUse use) const
+  {
+    if (!IsVisible(block))
     {
       return vtkNormalMapPolyDataMapper::NOT_APPLIED;
     }
@@ -252,13 +308,39 @@ private:
   vtkNormalMapShading* Shading = nullptr;
   /// Per block, its tangents as found at the last vertex buffer build (the array pointers are
   /// read during that build only).
-  std::map<const vtkCompositeMapperHelperData*, vtkNormalMapShading::Tangents> BlockTangents;
+  std::map<const BlockData*, vtkNormalMapShading::Tangents> BlockTangents;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;
 };
 
 vtkStandardNewMacro(vtkNormalMapCompositeMapperHelper);
+
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+/// VTK's OpenGL delegator, whose batched mapper is vtkNormalMapCompositeMapperHelper.
+class vtkNormalMapCompositeDelegator : public vtkOpenGLCompositePolyDataMapperDelegator
+{
+public:
+  static vtkNormalMapCompositeDelegator* New();
+  vtkTypeMacro(vtkNormalMapCompositeDelegator, vtkOpenGLCompositePolyDataMapperDelegator);
+
+protected:
+  vtkNormalMapCompositeDelegator()
+  {
+    // In place of the batched mapper the superclass made (released with its smart pointer).
+    auto* helper = vtkNormalMapCompositeMapperHelper::New();
+    this->GLDelegate = helper;
+    this->Delegate = vtk::TakeSmartPointer(helper);
+  }
+  ~vtkNormalMapCompositeDelegator() override = default;
+
+private:
+  vtkNormalMapCompositeDelegator(const vtkNormalMapCompositeDelegator&) = delete;
+  void operator=(const vtkNormalMapCompositeDelegator&) = delete;
+};
+
+vtkStandardNewMacro(vtkNormalMapCompositeDelegator);
+#endif
 
 struct vtkNormalMapCompositePolyDataMapper::Internals
 {
@@ -299,6 +381,47 @@ void vtkNormalMapCompositePolyDataMapper::SetTangentSignsArrayName(const std::st
   }
 }
 
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+//------------------------------------------------------------------------------
+vtkCompositePolyDataMapperDelegator* vtkNormalMapCompositePolyDataMapper::CreateADelegator()
+{
+  return vtkNormalMapCompositeDelegator::New();
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapCompositePolyDataMapper::PreRender(
+  const std::vector<vtkSmartPointer<vtkCompositePolyDataMapperDelegator>>& delegators,
+  vtkRenderer* ren,
+  vtkActor* actor)
+{
+  this->Superclass::PreRender(delegators, ren, actor);
+  for (const auto& delegator : delegators)
+  {
+    if (auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(delegator->GetDelegate()))
+    {
+      ours->Configure(vtkNormalMapShading::SettingsOf(this), &this->Internal->Shading);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkNormalMapCompositePolyDataMapper::PostRender(
+  const std::vector<vtkSmartPointer<vtkCompositePolyDataMapperDelegator>>& delegators,
+  vtkRenderer* ren,
+  vtkActor* actor)
+{
+  this->Superclass::PostRender(delegators, ren, actor);
+  // Each drawn block's frame, kept after the delegators are gone (released graphics resources).
+  this->Internal->Frames.clear();
+  for (const auto& delegator : delegators)
+  {
+    if (auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(delegator->GetDelegate()))
+    {
+      ours->CollectAppliedFrames(this->Internal->Frames);
+    }
+  }
+}
+#else
 //------------------------------------------------------------------------------
 vtkCompositeMapperHelper2* vtkNormalMapCompositePolyDataMapper::CreateHelper()
 {
@@ -330,6 +453,7 @@ void vtkNormalMapCompositePolyDataMapper::Render(vtkRenderer* ren, vtkActor* act
     }
   }
 }
+#endif
 
 //------------------------------------------------------------------------------
 int vtkNormalMapCompositePolyDataMapper::GetLastAppliedFrame(unsigned int flatIndex)

@@ -1,6 +1,6 @@
 /**
  * @class   vtkNormalMapCompositePolyDataMapper
- * @brief   vtkCompositePolyDataMapper2 with the normal mapping of vtkNormalMapPolyDataMapper.
+ * @brief   VTK's composite polydata mapper with the normal mapping of vtkNormalMapPolyDataMapper.
  *
  * For multiblock data (what VTK's glTF, OBJ and Exodus readers give, and what ParaView
  * renders): every block is drawn with the same normal mapping, settings and warnings as
@@ -16,25 +16,45 @@
  * warning naming it. Per-block visibility, colour and opacity (vtkCompositeDataDisplayAttributes)
  * work as in the superclass. Warnings name the blocks by flat index ("Block 3: ...").
  *
- * vtkNormalMapObjectFactory::Install() registers this class as the override of
- * vtkCompositePolyDataMapper2 (see there for when VTK consults it).
+ * Its superclass is the composite mapper VTK renders multiblock data with:
+ * vtkCompositePolyDataMapper2 up to VTK 9.2, vtkCompositePolyDataMapper from VTK 9.3 (which
+ * removed vtkCompositePolyDataMapper2 in 9.5). vtkNormalMapObjectFactory::Install() registers
+ * this class as the override of that superclass (see there for when VTK consults it).
  */
 #ifndef vtkNormalMapCompositePolyDataMapper_h
 #define vtkNormalMapCompositePolyDataMapper_h
 
-#include "vtkCompositePolyDataMapper2.h"
 #include "vtkNormalMapPolyDataMapper.h" // For the enums
 #include "vtkNormalMappingModule.h"     // For export macro
+#include "vtkVersionMacros.h"           // For the superclass
+
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 3, 0)
+#include "vtkCompositePolyDataMapper.h" // For the superclass
+#include "vtkSmartPointer.h"            // For the delegator list
+#include <vector>                       // For the delegator list
+#define VTK_NORMALMAPPING_BATCHED_COMPOSITE 1
+#else
+#include "vtkCompositePolyDataMapper2.h" // For the superclass
+#define VTK_NORMALMAPPING_BATCHED_COMPOSITE 0
+#endif
 
 #include <memory> // For the private state
 #include <string> // For array names
 
 class VTKNORMALMAPPING_EXPORT vtkNormalMapCompositePolyDataMapper
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+  : public vtkCompositePolyDataMapper
+#else
   : public vtkCompositePolyDataMapper2
+#endif
 {
 public:
   static vtkNormalMapCompositePolyDataMapper* New();
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+  vtkTypeMacro(vtkNormalMapCompositePolyDataMapper, vtkCompositePolyDataMapper);
+#else
   vtkTypeMacro(vtkNormalMapCompositePolyDataMapper, vtkCompositePolyDataMapper2);
+#endif
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -59,13 +79,19 @@ public:
   ///@{
   /// Point array with each block's tangents; empty (the default): the active Tangents.
   void SetTangentsArrayName(const std::string& name);
-  const std::string& GetTangentsArrayName() const { return this->TangentsArrayName; }
+  const std::string& GetTangentsArrayName() const
+  {
+    return this->TangentsArrayName;
+  }
   ///@}
 
   ///@{
   /// Point array with each block's handedness signs (default "TangentSigns").
   void SetTangentSignsArrayName(const std::string& name);
-  const std::string& GetTangentSignsArrayName() const { return this->TangentSignsArrayName; }
+  const std::string& GetTangentSignsArrayName() const
+  {
+    return this->TangentSignsArrayName;
+  }
   ///@}
 
   /**
@@ -75,15 +101,30 @@ public:
    */
   int GetLastAppliedFrame(unsigned int flatIndex);
 
-  void Render(vtkRenderer* ren, vtkActor* actor) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
   vtkNormalMapCompositePolyDataMapper();
   ~vtkNormalMapCompositePolyDataMapper() override;
 
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+  vtkCompositePolyDataMapperDelegator* CreateADelegator() override;
+  void PreRender(
+    const std::vector<vtkSmartPointer<vtkCompositePolyDataMapperDelegator>>& delegators,
+    vtkRenderer* ren,
+    vtkActor* actor) override;
+  void PostRender(
+    const std::vector<vtkSmartPointer<vtkCompositePolyDataMapperDelegator>>& delegators,
+    vtkRenderer* ren,
+    vtkActor* actor) override;
+#else
+public:
+  void Render(vtkRenderer* ren, vtkActor* actor) override;
+
+protected:
   vtkCompositeMapperHelper2* CreateHelper() override;
   void CopyMapperValuesToHelper(vtkCompositeMapperHelper2* helper) override;
+#endif
 
   int MapEncoding = vtkNormalMapPolyDataMapper::TANGENT_SPACE_OPENGL;
   int FrameSource = vtkNormalMapPolyDataMapper::AUTOMATIC;

@@ -19,10 +19,17 @@ vtkObject* CreateNormalMapCompositePolyDataMapper()
   return vtkNormalMapCompositePolyDataMapper::New();
 }
 
+/// VTK's composite polydata mapper: vtkNormalMapCompositePolyDataMapper's superclass.
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+constexpr const char* CompositeMapper = "vtkCompositePolyDataMapper";
+#else
+constexpr const char* CompositeMapper = "vtkCompositePolyDataMapper2";
+#endif
+
 /// The classes overridden, each with its replacement.
 const char* const Overrides[][2] = {
   { "vtkPolyDataMapper", "vtkNormalMapPolyDataMapper" },
-  { "vtkCompositePolyDataMapper2", "vtkNormalMapCompositePolyDataMapper" },
+  { CompositeMapper, "vtkNormalMapCompositePolyDataMapper" },
 };
 
 /// The registered factory, or nullptr.
@@ -50,7 +57,7 @@ vtkNormalMapObjectFactory::vtkNormalMapObjectFactory()
     "Normal-mapping polydata mapper",
     1,
     CreateNormalMapPolyDataMapper);
-  this->RegisterOverride("vtkCompositePolyDataMapper2",
+  this->RegisterOverride(CompositeMapper,
     "vtkNormalMapCompositePolyDataMapper",
     "Normal-mapping composite polydata mapper",
     1,
@@ -66,8 +73,13 @@ const char* vtkNormalMapObjectFactory::GetVTKSourceVersion()
 //------------------------------------------------------------------------------
 const char* vtkNormalMapObjectFactory::GetDescription()
 {
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+  return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
+         "vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper";
+#else
   return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
          "vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper2";
+#endif
 }
 
 //------------------------------------------------------------------------------

@@ -5,14 +5,15 @@
  * For applications that create their mappers through VTK's object factory (ParaView-like
  * applications, readers and importers): after Install(), every vtkPolyDataMapper::New()
  * returns a vtkNormalMapPolyDataMapper, and the factory creates a
- * vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper2; both render exactly
- * like VTK's mappers where no normal texture is set. Nothing changes until Install() is
- * called: linking the module does not override anything. Uninstall() restores VTK's own.
+ * vtkNormalMapCompositePolyDataMapper for VTK's composite mapper (vtkCompositePolyDataMapper2
+ * up to VTK 9.2, vtkCompositePolyDataMapper from 9.3); both render exactly like VTK's mappers
+ * where no normal texture is set. Nothing changes until Install() is called: linking the
+ * module does not override anything. Uninstall() restores VTK's own.
  *
- * vtkCompositePolyDataMapper2::New() (VTK 9.1, 9.2) asks the object factory only in VTK builds
- * with VTK_ALL_NEW_OBJECT_FACTORY (Debian's VTK 9.1 is built without it); elsewhere the
- * override reaches code that creates the class by name (vtkObjectFactory::CreateInstance),
- * and applications create vtkNormalMapCompositePolyDataMapper directly.
+ * The composite mappers' New() asks the object factory only in VTK builds with
+ * VTK_ALL_NEW_OBJECT_FACTORY (Debian's VTK 9.1 is built without it); elsewhere the override
+ * reaches code that creates the class by name (vtkObjectFactory::CreateInstance), and
+ * applications create vtkNormalMapCompositePolyDataMapper directly.
  * vtkPolyDataMapper::New() always asks the factory.
  *
  * VTK's OpenGL module registers its own vtkPolyDataMapper override first, and the factory

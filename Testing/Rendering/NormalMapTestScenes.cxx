@@ -4,7 +4,6 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
-#include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -392,6 +391,12 @@ MirrorScene MakeMirrorScene()
 }
 
 //------------------------------------------------------------------------------
+std::string StockCompositeName()
+{
+  return vtkNew<StockCompositeMapper>()->GetClassName();
+}
+
+//------------------------------------------------------------------------------
 vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height)
 {
   auto window = vtkSmartPointer<vtkRenderWindow>::New();
@@ -503,10 +508,10 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
   AddSceneLight(renderer, setup.LightPosition);
   for (const FlatActor& a : actors)
   {
-    vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
+    vtkSmartPointer<vtkPolyDataMapper> mapper;
     if (a.Blocks && a.StockMapper)
     {
-      mapper = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
+      mapper = vtkSmartPointer<StockCompositeMapper>::New();
     }
     else if (a.Blocks)
     {

@@ -5,9 +5,10 @@
 #ifndef NormalMapTestScenes_h
 #define NormalMapTestScenes_h
 
-#include "vtkImageData.h"    // For vtkSmartPointer<vtkImageData>
-#include "vtkPolyData.h"     // For vtkSmartPointer<vtkPolyData>
-#include "vtkRenderWindow.h" // For vtkSmartPointer<vtkRenderWindow>
+#include "vtkImageData.h"                        // For vtkSmartPointer<vtkImageData>
+#include "vtkNormalMapCompositePolyDataMapper.h" // For StockCompositeMapper
+#include "vtkPolyData.h"                         // For vtkSmartPointer<vtkPolyData>
+#include "vtkRenderWindow.h"                     // For vtkSmartPointer<vtkRenderWindow>
 #include "vtkSmartPointer.h"
 #include "vtkTexture.h" // For vtkSmartPointer<vtkTexture>
 
@@ -28,6 +29,12 @@ class vtkTexture;
 
 namespace nmtest
 {
+/// VTK's own composite mapper, the superclass of ours: vtkCompositePolyDataMapper2 up to VTK 9.2,
+/// vtkCompositePolyDataMapper from 9.3.
+using StockCompositeMapper = vtkNormalMapCompositePolyDataMapper::Superclass;
+/// Its class name, for messages.
+std::string StockCompositeName();
+
 /// Height fields whose normal maps the tests render; h and its gradient are analytic.
 enum class Pattern
 {
@@ -157,7 +164,7 @@ struct FlatActor
   std::string* Shaders = nullptr; // when set: receives the vertex + fragment shader source
   int* AppliedFrame = nullptr;    // when set (our mapper): receives GetLastAppliedFrame()
   /// When set, drawn instead of Mesh through a composite mapper: ours
-  /// (vtkNormalMapCompositePolyDataMapper), or VTK's vtkCompositePolyDataMapper2 (StockMapper).
+  /// (vtkNormalMapCompositePolyDataMapper), or VTK's (StockCompositeMapper, with StockMapper).
   vtkDataObject* Blocks = nullptr;
   std::string TangentsArrayName; // our mappers' setting (empty: the active tangents)
 };

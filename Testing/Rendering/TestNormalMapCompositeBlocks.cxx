@@ -2,7 +2,7 @@
 // CPU-reference checks of the polydata mapper, on datasets whose blocks store their tangents
 // differently (float with a sign array, glTF-style double with the sign in w, none), plus a
 // block without texture coordinates, per-block display attributes and the object factory.
-// VTK's stock vtkCompositePolyDataMapper2 fails the same checks.
+// VTK's stock composite mapper fails the same checks.
 #include "NormalMapTestScenes.h"
 
 #include "vtkActor.h"
@@ -63,7 +63,7 @@ Rendered RenderBlocks(const nmtest::FlatSetup& setup,
 {
   Rendered result;
   auto window = nmtest::MakeFlatScene(setup, { actor });
-  auto* mapper = vtkCompositePolyDataMapper2::SafeDownCast(
+  auto* mapper = nmtest::StockCompositeMapper::SafeDownCast(
     window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
   CollectWarnings(mapper, result.Warnings);
   mapper->SetCompositeDataDisplayAttributes(attributes);
@@ -238,7 +238,7 @@ void MirrorSymmetry(nmtest::Checks& check)
       nmtest::MirrorSymmetry(out.Pixels, setup.Width, setup.Height, bound);
     const double mapped = MappedShare(out.Pixels, flat);
     const std::string name =
-      std::string("VTK's vtkCompositePolyDataMapper2, ") + (oneBlock ? "one block" : "two blocks");
+      "VTK's " + nmtest::StockCompositeName() + (oneBlock ? ", one block" : ", two blocks");
     std::cout << name << ": " << 100.0 * d.WithinFraction << "% symmetric within " << bound
               << " levels; " << 100.0 * mapped << "% mapped; " << out.Warnings.size() << " warnings"
               << std::endl;
@@ -326,7 +326,7 @@ void CPUReference(nmtest::Checks& check)
       { { 1, Mapper::APPLIED_POINT_TANGENTS }, { 2, Mapper::APPLIED_DERIVATIVES } } },
     // VTK's mapper re-derives an orthonormal frame in view space, wrong wherever the map tilts
     // the normal under a non-uniform scale (unscaled and unmirrored, it matches: measured).
-    { "VTK's vtkCompositePolyDataMapper2, float tangents, scale (1.6, 0.7, 1)",
+    { "VTK's composite mapper, float tangents, scale (1.6, 0.7, 1)",
       Layout::Unsigned,
       Layout::Unsigned,
       "",
@@ -506,26 +506,27 @@ void Changes(nmtest::Checks& check)
     "naming it");
 }
 
-/// Install() registers the override of vtkCompositePolyDataMapper2.
+/// Install() registers the override of VTK's composite mapper.
 void Factory(nmtest::Checks& check)
 {
+  const std::string stock = nmtest::StockCompositeName();
   vtkNormalMapObjectFactory::Install();
   vtkSmartPointer<vtkObject> created;
-  created.TakeReference(vtkObjectFactory::CreateInstance("vtkCompositePolyDataMapper2"));
+  created.TakeReference(vtkObjectFactory::CreateInstance(stock.c_str()));
   check(created && created->IsA("vtkNormalMapCompositePolyDataMapper"),
-    "after Install(), the factory creates vtkNormalMapCompositePolyDataMapper");
-  auto viaNew = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
+    "after Install(), the factory creates vtkNormalMapCompositePolyDataMapper for " + stock);
+  auto viaNew = vtkSmartPointer<nmtest::StockCompositeMapper>::New();
 #ifdef VTK_ALL_NEW_OBJECT_FACTORY
   check(viaNew->IsA("vtkNormalMapCompositePolyDataMapper"),
-    "vtkCompositePolyDataMapper2::New() gives ours (VTK_ALL_NEW_OBJECT_FACTORY)");
+    stock + "::New() gives ours (VTK_ALL_NEW_OBJECT_FACTORY)");
 #else
   // VTK's New() of this class is vtkStandardNewMacro, which asks factories only in VTK builds
   // with VTK_ALL_NEW_OBJECT_FACTORY; the header of vtkNormalMapObjectFactory says so.
-  std::cout << "vtkCompositePolyDataMapper2::New() without VTK_ALL_NEW_OBJECT_FACTORY gives "
+  std::cout << stock << "::New() without VTK_ALL_NEW_OBJECT_FACTORY gives "
             << viaNew->GetClassName() << std::endl;
 #endif
   vtkNormalMapObjectFactory::Uninstall();
-  created.TakeReference(vtkObjectFactory::CreateInstance("vtkCompositePolyDataMapper2"));
+  created.TakeReference(vtkObjectFactory::CreateInstance(stock.c_str()));
   check(!created || !created->IsA("vtkNormalMapCompositePolyDataMapper"),
     "after Uninstall(), the factory no longer creates ours");
 }

@@ -10,7 +10,6 @@
 
 #include "vtkActor.h"
 #include "vtkCompositeDataDisplayAttributes.h"
-#include "vtkCompositePolyDataMapper2.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
@@ -86,10 +85,10 @@ int TestNormalMapCompositeScene(int argc, char* argv[])
     { "VTK's composite mapper", "the hidden block shown" },
     [&](int alteration)
     {
-      vtkSmartPointer<vtkCompositePolyDataMapper2> used = mapper.Get();
+      vtkSmartPointer<nmtest::StockCompositeMapper> used = mapper.Get();
       if (alteration == 0)
       {
-        used = vtkSmartPointer<vtkCompositePolyDataMapper2>::New();
+        used = vtkSmartPointer<nmtest::StockCompositeMapper>::New();
       }
       used->SetInputDataObject(blocks);
       mapper->SetTangentsArrayName("TANGENT");

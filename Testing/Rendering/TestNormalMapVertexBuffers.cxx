@@ -4,12 +4,18 @@
 // normal texture. Read back from each mapper's vertex buffer group after a render.
 #include "NormalMapTestScenes.h"
 
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+#include "vtkCompositePolyDataMapperDelegator.h"
+#include "vtkOpenGLPolyDataMapper.h"
+#else
 // GLenum, which vtkCompositeMapperHelper2.h uses without including its declaration.
 #include "vtk_glew.h"
 
-#include "vtkActor.h"
 #include "vtkColor.h" // vtkColor3d, which vtkCompositeMapperHelper2.h uses without including it
 #include "vtkCompositeMapperHelper2.h"
+#endif
+
+#include "vtkActor.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
@@ -30,12 +36,37 @@ namespace
 {
 using Mapper = vtkNormalMapPolyDataMapper;
 
-/// The composite mapper with its per-block helpers' vertex buffer groups exposed.
+/// The composite mapper with its per-block helpers' vertex buffer groups exposed (VTK 9.3 and
+/// later: its delegators' batched mappers' groups).
 class CompositeMapperProbe : public vtkNormalMapCompositePolyDataMapper
 {
 public:
   static CompositeMapperProbe* New();
   vtkTypeMacro(CompositeMapperProbe, vtkNormalMapCompositePolyDataMapper);
+#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
+  std::vector<vtkOpenGLVertexBufferObjectGroup*> HelperBuffers() const
+  {
+    return this->Buffers;
+  }
+
+protected:
+  void PostRender(
+    const std::vector<vtkSmartPointer<vtkCompositePolyDataMapperDelegator>>& delegators,
+    vtkRenderer* ren,
+    vtkActor* actor) override
+  {
+    this->Superclass::PostRender(delegators, ren, actor);
+    this->Buffers.clear();
+    for (const auto& delegator : delegators)
+    {
+      this->Buffers.push_back(
+        vtkOpenGLPolyDataMapper::SafeDownCast(delegator->GetDelegate())->GetVBOs());
+    }
+  }
+
+private:
+  std::vector<vtkOpenGLVertexBufferObjectGroup*> Buffers;
+#else
   std::vector<vtkOpenGLVertexBufferObjectGroup*> HelperBuffers() const
   {
     std::vector<vtkOpenGLVertexBufferObjectGroup*> groups;
@@ -45,6 +76,7 @@ public:
     }
     return groups;
   }
+#endif
 };
 vtkStandardNewMacro(CompositeMapperProbe);
 
