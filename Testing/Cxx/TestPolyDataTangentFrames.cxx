@@ -36,6 +36,7 @@
 #include "vtkTriangleFilter.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkVersionMacros.h"
 
 #include <gtest/gtest.h>
 
@@ -47,6 +48,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -1942,20 +1944,43 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     }
 }
 
-TEST(PolyDataTangentFrames, ThirtyTwoBitConnectivityGivesTheSameFrames)
+namespace
+{
+/// The storages besides 64-bit ids a vtkCellArray of triangles can take: 32-bit ids, and from
+/// VTK 9.6 fixed-size cells (no offsets array), each as a conversion of the cell array.
+std::vector<std::pair<std::string, bool (*)(vtkCellArray*)>> OtherCellStorages()
+{
+  std::vector<std::pair<std::string, bool (*)(vtkCellArray*)>> storages = { { "32-bit ids",
+    [](vtkCellArray* c) { return c->ConvertTo32BitStorage() && !c->IsStorage64Bit(); } } };
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  storages.emplace_back("fixed-size cells, 64-bit ids",
+    [](vtkCellArray* c)
+    {
+      return c->ConvertToStorageType(vtkCellArray::StorageTypes::FixedSizeInt64) &&
+        c->IsStorageFixedSize64Bit();
+    });
+  storages.emplace_back("fixed-size cells, 32-bit ids",
+    [](vtkCellArray* c)
+    {
+      return c->ConvertToStorageType(vtkCellArray::StorageTypes::FixedSizeInt32) &&
+        c->IsStorageFixedSize32Bit();
+    });
+#endif
+  return storages;
+}
+} // namespace
+
+TEST(PolyDataTangentFrames, EveryCellStorageGivesTheSameFrames)
 {
   // Triangles whose ids are stored in 32 bits are converted to vtkIdType first, a path of their
-  // own: a mirrored torus (split points re-point cells) must give the same bits in every output
-  // with either width, for every method, with cell tangents; an out-of-range id is still an error.
+  // own, and fixed-size cells (VTK 9.6 and later) are read from a 64-bit copy: a mirrored torus
+  // (split points re-point cells) must give the same bits in every output with any storage, for
+  // every method, with cell tangents; an out-of-range id is still an error.
   vtkNormalMapping::TorusOptions options;
   options.U = 48;
   options.V = 24;
   options.MirrorU = true;
   auto wide = vtkNormalMapping::MakeTorus(options);
-  auto narrow = vtkSmartPointer<vtkPolyData>::New();
-  narrow->DeepCopy(wide);
-  ASSERT_TRUE(narrow->GetPolys()->ConvertTo32BitStorage());
-  ASSERT_FALSE(narrow->GetPolys()->IsStorage64Bit());
   const auto run = [](vtkPolyData* mesh, int method)
   {
     return RunFrames(mesh,
@@ -1966,45 +1991,56 @@ TEST(PolyDataTangentFrames, ThirtyTwoBitConnectivityGivesTheSameFrames)
         f->ComputeCellTangentsOn();
       });
   };
-  for (int method : EveryMethod)
+  for (const auto& storage : OtherCellStorages())
   {
-    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
-    auto a = run(wide, method);
-    auto b = run(narrow, method);
-    ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
-    EXPECT_GT(a->GetNumberOfPoints(), wide->GetNumberOfPoints()); // the seams are split
-    for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(a->GetPointData()),
-           static_cast<vtkDataSetAttributes*>(a->GetCellData()) })
+    SCOPED_TRACE(storage.first);
+    auto narrow = vtkSmartPointer<vtkPolyData>::New();
+    narrow->DeepCopy(wide);
+    ASSERT_TRUE(storage.second(narrow->GetPolys()));
+    for (int method : EveryMethod)
     {
-      vtkDataSetAttributes* other = data == a->GetPointData()
-        ? static_cast<vtkDataSetAttributes*>(b->GetPointData())
-        : static_cast<vtkDataSetAttributes*>(b->GetCellData());
-      for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+      SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+      auto a = run(wide, method);
+      auto b = run(narrow, method);
+      ASSERT_EQ(a->GetNumberOfPoints(), b->GetNumberOfPoints());
+      EXPECT_GT(a->GetNumberOfPoints(), wide->GetNumberOfPoints()); // the seams are split
+      for (vtkDataSetAttributes* data : { static_cast<vtkDataSetAttributes*>(a->GetPointData()),
+             static_cast<vtkDataSetAttributes*>(a->GetCellData()) })
       {
-        auto* x = vtkFloatArray::SafeDownCast(data->GetArray(name));
-        auto* y = vtkFloatArray::SafeDownCast(other->GetArray(name));
-        if (!x)
+        vtkDataSetAttributes* other = data == a->GetPointData()
+          ? static_cast<vtkDataSetAttributes*>(b->GetPointData())
+          : static_cast<vtkDataSetAttributes*>(b->GetCellData());
+        for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
         {
-          EXPECT_EQ(y, nullptr) << name;
-          continue;
+          auto* x = vtkFloatArray::SafeDownCast(data->GetArray(name));
+          auto* y = vtkFloatArray::SafeDownCast(other->GetArray(name));
+          if (!x)
+          {
+            EXPECT_EQ(y, nullptr) << name;
+            continue;
+          }
+          ASSERT_NE(y, nullptr) << name;
+          ASSERT_EQ(x->GetDataSize(), y->GetDataSize()) << name;
+          EXPECT_EQ(0, std::memcmp(x->GetPointer(0), y->GetPointer(0), 4 * x->GetDataSize()))
+            << name;
         }
-        ASSERT_NE(y, nullptr) << name;
-        ASSERT_EQ(x->GetDataSize(), y->GetDataSize()) << name;
-        EXPECT_EQ(0, std::memcmp(x->GetPointer(0), y->GetPointer(0), 4 * x->GetDataSize())) << name;
       }
-    }
-    vtkNew<vtkIdList> pa, pb;
-    for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
-    {
-      a->GetCellPoints(c, pa);
-      b->GetCellPoints(c, pb);
-      ASSERT_EQ(pa->GetNumberOfIds(), pb->GetNumberOfIds());
-      for (vtkIdType k = 0; k < pa->GetNumberOfIds(); ++k)
+      vtkNew<vtkIdList> pa, pb;
+      for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
       {
-        ASSERT_EQ(pa->GetId(k), pb->GetId(k)) << "cell " << c;
+        a->GetCellPoints(c, pa);
+        b->GetCellPoints(c, pb);
+        ASSERT_EQ(pa->GetNumberOfIds(), pb->GetNumberOfIds());
+        for (vtkIdType k = 0; k < pa->GetNumberOfIds(); ++k)
+        {
+          ASSERT_EQ(pa->GetId(k), pb->GetId(k)) << "cell " << c;
+        }
       }
     }
   }
+  auto narrow = vtkSmartPointer<vtkPolyData>::New();
+  narrow->DeepCopy(wide);
+  ASSERT_TRUE(narrow->GetPolys()->ConvertTo32BitStorage());
   const vtkIdType bad[3] = { 0, 1, narrow->GetNumberOfPoints() };
   narrow->GetPolys()->InsertNextCell(3, bad);
   ASSERT_FALSE(narrow->GetPolys()->IsStorage64Bit());
