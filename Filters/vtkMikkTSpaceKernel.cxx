@@ -28,6 +28,7 @@
 
 #include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
+#include <vtkVersionMacros.h>
 
 #include <algorithm>
 #include <array>
@@ -1516,15 +1517,18 @@ Result ComputeMikkTSpace(const MeshInput& in,
   {
     return Compute(in, progressAndAbort);
   }
-  // VTK 9.1's TBB backend ignores a LocalScope whose thread count equals that of the previous
-  // LocalScope. Entering a scope with a different count first makes the requested one effective.
   Result res;
+  const auto compute = [&]() { res = Compute(in, progressAndAbort); };
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
+  // From VTK 9.4 the TBB backend takes a scope's count when it is at most the enclosing one.
+  vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads }, compute);
+#else
+  // VTK 9.1 to 9.3's TBB backend ignores a LocalScope whose thread count equals that of the
+  // previous LocalScope. Entering a scope with a different count first makes the requested one
+  // effective.
   vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads == 1 ? 2 : 1 },
-    [&]()
-    {
-      vtkSMPTools::LocalScope(
-        vtkSMPTools::Config{ numThreads }, [&]() { res = Compute(in, progressAndAbort); });
-    });
+    [&]() { vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads }, compute); });
+#endif
   return res;
 }
 

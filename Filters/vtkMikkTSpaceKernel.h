@@ -114,7 +114,7 @@ inline bool IsCancelled(const CornerFrame& f)
 /**
  * Compute MikkTSpace tangents for every face corner.
  * numThreads <= 0: vtkSMPTools default; > 0: at most that many threads (a vtkSMPTools
- * LocalScope, entered so that VTK 9.1's TBB backend honours repeated equal counts).
+ * LocalScope).
  * Deterministic: identical output for any thread count.
  * progressAndAbort: optional, called from the calling thread between phases with a progress in
  * [0,1]; returning true stops the computation (Result::Aborted, corners set to the default).
