@@ -27,5 +27,5 @@ function(run)
 endfunction()
 run("${CMAKE_COMMAND}" -S "${WORK_DIR}/src" -B "${WORK_DIR}/build" -DCMAKE_BUILD_TYPE=Release
   "-DVTK_DIR=${VTK_DIR}")
-run("${CMAKE_COMMAND}" --build "${WORK_DIR}/build" --target NormalMapping)
+run("${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
 message("remote-module layout: VTK::NormalMapping built as a module of a project named VTK")

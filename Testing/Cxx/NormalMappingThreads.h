@@ -3,22 +3,32 @@
 #define NormalMappingThreads_h
 
 #include "vtkSMPTools.h"
+#include "vtkVersionMacros.h"
+
+#include <string>
 
 namespace NormalMappingTesting
 {
 /**
- * f() with at most `threads` threads. VTK 9.1's TBB backend ignores a LocalScope whose thread
- * count equals the previous scope's (the second of two 1-thread scopes runs on every thread), so
- * a scope with a different count is entered first; then the requested count holds. That other
- * count is below the requested one (2 for 1 thread): TBB caps its workers at the machine's
- * threads minus one, and a scope asking for more makes it warn and ignore later requests.
+ * f() with at most `threads` threads (fewer when the backend has fewer: TBB caps the count at the
+ * machine's threads). Each call starts from the backend's default count (Initialize(0)), because
+ * the TBB backend keeps the previous count in ways that differ by VTK version: VTK 9.1 ignores a
+ * scope whose count equals the previous scope's, VTK 9.7 one that asks for more than the
+ * previous count (and never raises it again: see below).
  */
 template<typename F>
 void WithThreads(int threads, F&& f)
 {
-  vtkSMPTools::Config other;
-  other.MaxNumberOfThreads = threads > 1 ? threads - 1 : 2;
-  vtkSMPTools::LocalScope(other, []() {});
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
+  // From VTK 9.4 the TBB backend cannot raise its count again once a scope lowered it (its task
+  // arena keeps the lowest count); the STDThread backend can, so the runs that compare thread
+  // counts use it there.
+  if (std::string(vtkSMPTools::GetBackend()) == "TBB")
+  {
+    vtkSMPTools::SetBackend("STDThread");
+  }
+#endif
+  vtkSMPTools::Initialize(0);
   vtkSMPTools::Config config;
   config.MaxNumberOfThreads = threads;
   vtkSMPTools::LocalScope(config, f);

@@ -7,6 +7,7 @@
 
 #include "MikkTSpaceKernelMesh.h"
 #include "NormalMappingTestData.h"
+#include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
 
 #include <vtkCellArray.h>
@@ -956,7 +957,7 @@ TEST(MikkTSpaceKernel, DeterministicAcrossThreadCounts)
   for (int threads : { 1, 2, 8 })
   {
     mikk::Result r;
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, [&]() { r = RunKernel(m); });
+    NormalMappingTesting::WithThreads(threads, [&]() { r = RunKernel(m); });
     results.push_back(std::move(r));
     results.push_back(RunKernel(m, threads)); // the kernel's own thread setting
   }

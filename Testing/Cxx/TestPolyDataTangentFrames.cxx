@@ -1114,13 +1114,19 @@ vtkSmartPointer<vtkPolyData> WithCell(vtkPolyData* mesh, std::vector<vtkIdType> 
 {
   auto copy = vtkSmartPointer<vtkPolyData>::New();
   copy->DeepCopy(mesh);
-  vtkCellArray* cells = strip ? copy->GetStrips() : copy->GetPolys();
-  if (!cells)
-  {
-    copy->SetStrips(vtkNew<vtkCellArray>());
-    cells = copy->GetStrips();
-  }
+  // A cell array of its own: a polydata without strips (or polygons) hands out VTK's one empty
+  // array, shared by every such polydata, which must not get the cell.
+  vtkNew<vtkCellArray> cells;
+  cells->DeepCopy(strip ? copy->GetStrips() : copy->GetPolys());
   cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  if (strip)
+  {
+    copy->SetStrips(cells);
+  }
+  else
+  {
+    copy->SetPolys(cells);
+  }
   return copy;
 }
 }

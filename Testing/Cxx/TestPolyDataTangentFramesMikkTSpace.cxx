@@ -7,6 +7,7 @@
 // Shared data location: see NormalMappingTestData.h (tests that need it skip without it).
 
 #include "NormalMappingTestData.h"
+#include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkPolyDataTangentFrames.h"
 #include "vtkTangentFrameKernels.h"
@@ -574,15 +575,6 @@ std::vector<T> Values(vtkDataArray* a)
       i / a->GetNumberOfComponents(), static_cast<int>(i % a->GetNumberOfComponents()))));
   }
   return v;
-}
-
-/// Runs fn with at most `threads` vtkSMPTools threads. VTK 9.1's TBB backend ignores a
-/// LocalScope whose count equals the previous scope's, so a scope with another count is
-/// entered first.
-void WithThreads(int threads, const std::function<void()>& fn)
-{
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads == 1 ? 2 : 1 },
-    [&]() { vtkSMPTools::LocalScope(vtkSMPTools::Config{ threads }, fn); });
 }
 
 bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
@@ -1343,11 +1335,12 @@ static void ExpectSameForAnyThreadCount(vtkPolyData* input)
   };
   // TBB cannot exceed the hardware concurrency: 8 threads means all cores.
   int maxThreads = 1;
-  WithThreads(64, [&]() { maxThreads = vtkSMPTools::GetEstimatedNumberOfThreads(); });
+  NormalMappingTesting::WithThreads(
+    64, [&]() { maxThreads = vtkSMPTools::GetEstimatedNumberOfThreads(); });
   const auto snapshot = [&](int threads)
   {
     Snapshot s;
-    WithThreads(threads,
+    NormalMappingTesting::WithThreads(threads,
       [&]()
       {
         EXPECT_EQ(vtkSMPTools::GetEstimatedNumberOfThreads(), std::min(threads, maxThreads));

@@ -62,7 +62,7 @@ void AddLabel(vtkRenderWindow* window, const double viewport[4], const std::stri
   label->GetTextProperty()->SetFontSize(14);
   label->GetTextProperty()->SetColor(1.0, 1.0, 1.0);
   label->SetPosition(6.0, 5.0); // viewport coordinates
-  renderer->AddActor2D(label);
+  renderer->AddViewProp(label);
   window->AddRenderer(renderer);
 }
 }

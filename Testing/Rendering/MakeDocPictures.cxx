@@ -71,7 +71,7 @@ void Side(vtkRenderWindow* window,
   text->GetTextProperty()->SetFontSize(16);
   text->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
   text->SetPosition(0.03, 0.04);
-  renderer->AddActor2D(text);
+  renderer->AddViewProp(text);
   renderer->ResetCamera();
   renderer->GetActiveCamera()->Zoom(1.3);
   window->AddRenderer(renderer);
