@@ -19,6 +19,7 @@
 set -euo pipefail
 job="${1:-demo}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/common.sh"
 build="${BUILD_DIR:-$root/build}"
 
 # The OSMesa job has its own set-up (scripts/osmesa.sh): a VTK of its own, built once and cached.
@@ -35,18 +36,7 @@ packages=(build-essential cmake libvtk9-dev libglm-dev libgtest-dev libbenchmark
 [ "$job" != test ] || packages+=(g++-aarch64-linux-gnu)
 # ccache: compiled objects kept outside the checkout (below).
 packages+=(ccache)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-  echo "== installing missing Debian packages: ${missing[*]}"
-  sudo_cmd=""
-  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >/dev/null
-fi
+install_missing "${packages[@]}"
 
 # Every build below (this one, ParaView's, the sanitizer and OSMesa module builds, and the
 # builds ctest runs) compiles through ccache, with its objects in the cache folder the OSMesa VTK

@@ -18,6 +18,7 @@
 # mirrors already configured when apt has no source entries yet.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/common.sh"
 cache="${NORMALMAPPING_CACHE:-/var/cache/normalmapping}"
 prefix="$cache/vtk-9.1-osmesa"
 work="$cache/work"
@@ -25,8 +26,6 @@ key_file="$prefix/normalmapping-key.txt"
 build="${OSMESA_BUILD_DIR:-$root/build-osmesa}"
 jobs="${OSMESA_JOBS:-2}"
 niced=(nice -n 19)
-sudo_cmd=""
-[ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 
 apt_get() {
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get -o DPkg::Lock::Timeout=600 "$@"
@@ -37,20 +36,10 @@ apt_get() {
 # source (VTK uses Debian's), TBB (the SMP backend of Debian's VTK, so the thread tests see
 # the same behaviour), and the module's own build and test dependencies.
 install_packages() {
-  local packages=(build-essential cmake ninja-build dpkg-dev libosmesa6-dev libtbb-dev
-    zlib1g-dev libpng-dev libjpeg-dev libtiff-dev libexpat1-dev libfreetype-dev liblz4-dev
-    liblzma-dev libdouble-conversion-dev libutfcpp-dev libeigen3-dev libjsoncpp-dev
-    libgtest-dev libbenchmark-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev)
-  local missing=() p
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
-      missing+=("$p")
-  done
-  if [ "${#missing[@]}" -gt 0 ]; then
-    echo "== installing missing Debian packages: ${missing[*]}"
-    apt_get update -qq
-    apt_get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-  fi
+  install_missing build-essential cmake ninja-build dpkg-dev libosmesa6-dev libtbb-dev \
+    zlib1g-dev libpng-dev libjpeg-dev libtiff-dev libexpat1-dev libfreetype-dev liblz4-dev \
+    liblzma-dev libdouble-conversion-dev libutfcpp-dev libeigen3-dev libjsoncpp-dev \
+    libgtest-dev libbenchmark-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
 }
 
 # The source package and version a binary package comes from, as name=version: the installed
@@ -100,13 +89,7 @@ vtk_configuration() {
     -DVTK_WRAP_JAVA=OFF
     -DVTK_USE_MPI=OFF
   )
-  add_options "-DVTK_GROUP_ENABLE_%s=DONT_WANT" Imaging MPI Qt Rendering StandAlone Views Web
-  # Not VTK's 2D charts: only the benchmark chart (BenchChart) needs them, and with what they
-  # pull in they are a tenth of this build; BenchmarkSmoke here checks the tables without it.
-  add_options "-DVTK_MODULE_ENABLE_VTK_%s=YES" CommonCore CommonDataModel CommonExecutionModel \
-    CommonMath CommonSystem CommonComputationalGeometry FiltersCore FiltersGeneral \
-    FiltersSources FiltersTexture ImagingCore IOGeometry IOImage IOLegacy IOPLY IOXML \
-    RenderingCore RenderingOpenGL2 RenderingFreeType RenderingUI TestingRendering
+  vtk_module_options vtk_options
   add_options "-DVTK_MODULE_USE_EXTERNAL_VTK_%s=ON" doubleconversion eigen expat freetype \
     gl2ps glew hdf5 jpeg jsoncpp libproj libxml2 lz4 lzma netcdf ogg png sqlite theora tiff \
     utf8 zlib
@@ -175,14 +158,7 @@ build_vtk() {
   echo "== VTK with OSMesa (minimal), into $prefix"
   local src
   src="$(find "$work" -maxdepth 1 -type d -name 'vtk9-*' | head -n 1)"
-  # VTK is built once per key: its objects would only fill the compiler cache (bootstrap.sh).
-  env -u CMAKE_C_COMPILER_LAUNCHER -u CMAKE_CXX_COMPILER_LAUNCHER \
-    cmake -S "$src" -B "$work/vtk-build" -G Ninja --no-warn-unused-cli \
-    -DCMAKE_INSTALL_PREFIX="$prefix" "${vtk_options[@]}" >"$work/vtk-configure.log" ||
-    { tail -n 40 "$work/vtk-configure.log"; exit 1; }
-  "${niced[@]}" cmake --build "$work/vtk-build" -j "$jobs" >"$work/vtk-build.log" 2>&1 ||
-    { grep -E "error|FAILED" "$work/vtk-build.log" | head -n 40; exit 1; }
-  cmake --install "$work/vtk-build" >/dev/null
+  install_vtk "$src" "$work/vtk-build" "$prefix" "$work/vtk" "$jobs" "${vtk_options[@]}"
   printf '%s\n' "$key" >"$key_file"
   rm -rf "$work"
 }
@@ -233,10 +209,7 @@ run_tests() {
 main() {
   install_packages
   vtk_configuration
-  if ! mkdir -p "$cache" 2>/dev/null || [ ! -w "$cache" ]; then
-    $sudo_cmd mkdir -p "$cache"
-    $sudo_cmd chown "$(id -u):$(id -g)" "$cache"
-  fi
+  ensure_writable_dir "$cache"
   # One job at a time builds or uses the cache.
   exec 9>"$cache/osmesa.lock"
   flock 9

@@ -14,24 +14,13 @@
 set -euo pipefail
 job="${1:-test}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/common.sh"
 build="${BUILD_DIR:-$root/build-paraview}"
 prefix="$build/prefix"
 
 packages=(build-essential cmake libglm-dev xvfb xauth paraview paraview-dev
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev qttools5-dev qtxmlpatterns5-dev-tools)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-sudo_cmd=""
-[ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
-if [ "${#missing[@]}" -gt 0 ]; then
-  echo "== installing missing Debian packages: ${missing[*]}"
-  mkdir -p "$build"
-  { $sudo_cmd apt-get update -qq &&
-    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends \
-      "${missing[@]}"; } >"$build/apt.log" 2>&1 || { cat "$build/apt.log"; exit 1; }
-fi
+install_missing "${packages[@]}"
 
 multiarch="$(gcc -dumpmachine)" # after the install: build-essential brings gcc
 
