@@ -87,7 +87,12 @@ main() {
   "${niced[@]}" cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
   "${niced[@]}" cmake --build "$build" -j "$jobs" >/dev/null
   echo "== every test against the VTK of $vtk_dir"
-  (cd "$build" && ctest --output-on-failure -j "$jobs")
+  # The VTK's libraries, for programs built against an install without an RPATH (the
+  # installed-package test's example).
+  local libdir="$vtk_dir/lib"
+  case "$vtk_dir" in */cmake/vtk-*) libdir="$(cd "$vtk_dir/../.." && pwd)" ;; esac
+  (cd "$build" && LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+    ctest --output-on-failure -j "$jobs")
 }
 
 # One line: bash reads it whole before main starts, so editing this file while a job runs does
