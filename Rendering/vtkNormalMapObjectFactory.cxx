@@ -5,6 +5,8 @@
 #include "vtkObjectFactoryCollection.h"
 #include "vtkVersion.h"
 
+#include <string>
+
 vtkStandardNewMacro(vtkNormalMapObjectFactory);
 
 namespace
@@ -73,13 +75,11 @@ const char* vtkNormalMapObjectFactory::GetVTKSourceVersion()
 //------------------------------------------------------------------------------
 const char* vtkNormalMapObjectFactory::GetDescription()
 {
-#if VTK_NORMALMAPPING_BATCHED_COMPOSITE
-  return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
-         "vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper";
-#else
-  return "VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
-         "vtkNormalMapCompositePolyDataMapper for vtkCompositePolyDataMapper2";
-#endif
+  static const std::string description =
+    std::string("VTK::NormalMapping: vtkNormalMapPolyDataMapper for vtkPolyDataMapper, "
+                "vtkNormalMapCompositePolyDataMapper for ") +
+    CompositeMapper;
+  return description.c_str();
 }
 
 //------------------------------------------------------------------------------

@@ -64,3 +64,15 @@ install_vtk() {
     { grep -E "error|FAILED" "$logs-build.log" | head -n 40; return 1; }
   cmake --install "$build" >/dev/null
 }
+
+# build_module VTK_DIR BUILD JOBS OPTION...: configures the module (the checkout at $root)
+# against the VTK package in VTK_DIR, without Python wrapping, in BUILD, with the options, and
+# builds it with JOBS jobs under nice, showing only the compiler's errors and warnings.
+build_module() {
+  local vtk_dir="$1" build="$2" jobs="$3"
+  shift 3
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVTK_DIR="$vtk_dir" \
+    -DNORMALMAPPING_WRAP_PYTHON=OFF "$@" >/dev/null
+  nice -n 19 cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
+  nice -n 19 cmake --build "$build" -j "$jobs" >/dev/null
+}

@@ -26,7 +26,6 @@ given="$(cd "${1:?usage: bash scripts/newvtk.sh <VTK source tree, build or insta
 cache="${NORMALMAPPING_CACHE:-/var/cache/normalmapping}"
 build="${NEWVTK_BUILD_DIR:-$root/build-newvtk}"
 jobs="${NEWVTK_JOBS:-2}"
-niced=(nice -n 19)
 
 # The version of the VTK source tree $given, from its CMake/vtkVersion.cmake.
 source_version() {
@@ -82,10 +81,7 @@ main() {
   fi
 
   echo "== the module against $vtk_dir, in $build"
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVTK_DIR="$vtk_dir" \
-    -DNORMALMAPPING_WRAP_PYTHON=OFF -DNORMALMAPPING_BUILD_BENCHMARKS=OFF >/dev/null
-  "${niced[@]}" cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
-  "${niced[@]}" cmake --build "$build" -j "$jobs" >/dev/null
+  build_module "$vtk_dir" "$build" "$jobs" -DNORMALMAPPING_BUILD_BENCHMARKS=OFF
   echo "== every test against the VTK of $vtk_dir"
   # The VTK's libraries, for programs built against an install without an RPATH (the
   # installed-package test's example).

@@ -163,13 +163,6 @@ build_vtk() {
   rm -rf "$work"
 }
 
-build_module() {
-  echo "== the module against the OSMesa VTK, in $build"
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-    -DVTK_DIR="$prefix/lib/cmake/vtk-9.1" -DNORMALMAPPING_WRAP_PYTHON=OFF >/dev/null
-  "${niced[@]}" cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
-  "${niced[@]}" cmake --build "$build" -j "$jobs" >/dev/null
-}
 
 # Every test with no way to X: no program links libX11, DISPLAY is unset, and an Xvfb that
 # refuses to start comes first on PATH, so a test that took the X path fails instead of
@@ -218,7 +211,8 @@ main() {
   else
     build_vtk
   fi
-  build_module
+  echo "== the module against the OSMesa VTK, in $build"
+  build_module "$prefix/lib/cmake/vtk-9.1" "$build" "$jobs"
   run_tests
 }
 

@@ -12,9 +12,7 @@ namespace NormalMappingTesting
 /**
  * f() with at most `threads` threads (fewer when the backend has fewer: TBB caps the count at the
  * machine's threads). Each call starts from the backend's default count (Initialize(0)), because
- * the TBB backend keeps the previous count in ways that differ by VTK version: VTK 9.1 ignores a
- * scope whose count equals the previous scope's, VTK 9.7 one that asks for more than the
- * previous count (and never raises it again: see below).
+ * VTK 9.1's TBB backend ignores a scope whose count equals the previous scope's.
  */
 template<typename F>
 void WithThreads(int threads, F&& f)
