@@ -17,10 +17,12 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataTangentFrames.h"
 #include "vtkSmartPointer.h"
+#include "vtkTangentFrameKernels.h"
 #include "vtkType.h"
 #include "vtkVersionMacros.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -64,6 +66,15 @@ bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoi
     inRange &= ids[i] >= 0 && static_cast<vtkIdType>(ids[i]) < numPoints;
   }
   return inRange;
+}
+
+/// The degeneracy tolerances for positions and texture coordinates stored in these arrays: those
+/// of double for double arrays, of float for any other type.
+inline DegeneracyTolerance ToleranceFor(vtkDataArray* points, vtkDataArray* uvs)
+{
+  const auto epsilon = [](vtkDataArray* array)
+  { return array->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON); };
+  return DegeneracyTolerance::ForEpsilons(epsilon(points), epsilon(uvs));
 }
 
 /**
@@ -239,18 +250,6 @@ struct OutputFrames
           ? NewArray<ArrayT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
           : nullptr)
   {
-  }
-
-  /// Changes the number of tuples of each (their storage may move).
-  void Resize(vtkIdType tuples)
-  {
-    for (ArrayT* array : { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
-    {
-      if (array)
-      {
-        array->SetNumberOfTuples(tuples);
-      }
-    }
   }
 
   /// Their names, the point arrays AddTo replaces.

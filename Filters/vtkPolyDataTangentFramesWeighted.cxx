@@ -225,17 +225,17 @@ bool BuildTriangles(vtkCellArray* const cellArrays[2],
 }
 
 /**
- * Per point, its triangle corners (3 * triangle + corner) in triangle order: the order in which
- * the computed normals add their terms, whatever the number of threads.
+ * Per point, its triangles in triangle order: the order in which the computed normals add their
+ * terms, whatever the number of threads.
  */
 struct Links
 {
   std::vector<vtkIdType> Start; // per point, and one more entry for the end
-  Buffer<vtkIdType> Corners;
+  Buffer<vtkIdType> Triangle;
 
   Links(const Triangles& tris, vtkIdType numPoints)
     : Start(static_cast<size_t>(numPoints + 1), 0)
-    , Corners(new vtkIdType[3 * tris.Count])
+    , Triangle(new vtkIdType[3 * tris.Count])
   {
     const vtkIdType numCorners = 3 * tris.Count;
     for (vtkIdType c = 0; c < numCorners; ++c)
@@ -246,20 +246,18 @@ struct Links
     // Filling moves each point's start to its end, which is the next point's start.
     for (vtkIdType c = 0; c < numCorners; ++c)
     {
-      this->Corners[this->Start[tris.Ids[c]]++] = c;
+      this->Triangle[this->Start[tris.Ids[c]]++] = c / 3;
     }
     std::copy_backward(this->Start.begin(), this->Start.end() - 1, this->Start.end());
     this->Start[0] = 0;
   }
 
-  /// f(triangle, corner) for the corners of point p, in triangle order.
+  /// f(triangle) for the triangles of point p, in triangle order.
   template<typename F>
   void ForEach(vtkIdType p, F&& f) const
   {
-    for (vtkIdType i = this->Start[p]; i < this->Start[p + 1]; ++i)
-    {
-      f(this->Corners[i] / 3, static_cast<int>(this->Corners[i] % 3));
-    }
+    const vtkIdType* triangles = this->Triangle.get();
+    std::for_each(triangles + this->Start[p], triangles + this->Start[p + 1], f);
   }
 };
 
@@ -357,147 +355,42 @@ void ComputeFrameBlock(TriangleBlock& block,
 }
 
 /**
- * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
- * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
- * [first, first + count) (ComputeFrameBlock), with `normals` also their corners' weights for
- * `method` signed with their handedness, for any point and texture coordinate arrays.
+ * Calls f(begin, end, normal) on ranges of [0, n) in parallel, where normal(p) is point p's
+ * normal in double from a 3-component array (read through its concrete type when it stores
+ * floats or doubles).
  */
-struct VisitTriangleBlocks
+template<typename F>
+void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
 {
-  template<typename PointArray, typename UVArray, typename Visit>
-  void operator()(PointArray* pointArray,
-    UVArray* uvArray,
-    const Triangles& tris,
-    vtkIdType begin,
-    vtkIdType end,
-    const DegeneracyTolerance& tol,
-    const ShadingNormals* normals,
-    TangentMethod method,
-    bool serial,
-    const Visit& visit) const
-  {
-    const auto points = vtk::DataArrayTupleRange<3>(pointArray);
-    const auto uvs = vtk::DataArrayTupleRange(uvArray);
-    const bool hasV = uvArray->GetNumberOfComponents() > 1;
-    const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd)
+  DispatchArray<vtkArrayDispatch::Reals>(array,
+    [&](auto* typed)
     {
-      TriangleBlock b; // not initialized: each triangle's entries are written before use
-      for (vtkIdType first = rangeBegin; first < rangeEnd; first += TriangleBlock::Size)
+      const auto normals = vtk::DataArrayTupleRange<3>(typed, 0, n);
+      const auto normal = [&](vtkIdType p)
       {
-        const int count =
-          static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, rangeEnd - first));
-        for (int i = 0; i < count; ++i)
-        {
-          dvec3 p[3];
-          dvec2 uv[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            const vtkIdType id = tris.Ids[3 * (first + i) + k];
-            const auto point = points[id];
-            const auto texture = uvs[id];
-            p[k] = dvec3(point[0], point[1], point[2]);
-            uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
-            if (normals)
-            {
-              b.SetCornerNormal(k, i, normals->Stored(id));
-            }
-          }
-          b.SetCorners(i, p, uv);
-        }
-        ComputeFrameBlock(b, count, tol, normals != nullptr, method);
-        visit(first, static_cast<const TriangleBlock&>(b), count);
-      }
-    };
-    if (serial)
-    {
-      visitRange(begin, end);
-    }
-    else
-    {
-      vtkSMPTools::For(begin, end, visitRange);
-    }
-  }
-};
-
-/// Calls worker(a, b, args...) with a and b as their concrete float or double array types, or
-/// as plain vtkDataArray (virtual access) for any other type.
-template<typename Worker, typename... Args>
-void DispatchReals2(vtkDataArray* a, vtkDataArray* b, Worker&& worker, Args&&... args)
-{
-  using Dispatcher =
-    vtkArrayDispatch::Dispatch2ByValueType<vtkArrayDispatch::Reals, vtkArrayDispatch::Reals>;
-  if (!Dispatcher::Execute(a, b, worker, args...))
-  {
-    worker(a, b, args...);
-  }
+        const auto v = normals[p];
+        return dvec3(v[0], v[1], v[2]);
+      };
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) { f(begin, end, normal); });
+    });
 }
 
-/// Unit shading normals from a normal array (zero where it is zero or non-finite).
-struct UnitNormals
-{
-  template<typename NormalArray>
-  void operator()(NormalArray* array, dvec3* out, vtkIdType n) const
-  {
-    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
-    vtkSMPTools::For(0,
-      n,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        for (vtkIdType p = begin; p < end; ++p)
-        {
-          const auto v = normals[p];
-          out[p] = SafeNormalize(dvec3(v[0], v[1], v[2]));
-        }
-      });
-  }
-};
-
 /// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
-struct CountUnusableNormals
+vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
 {
-  template<typename NormalArray>
-  void operator()(NormalArray* array, vtkIdType n, vtkIdType& unusable) const
-  {
-    const auto normals = vtk::DataArrayTupleRange<3>(array, 0, n);
-    std::atomic<vtkIdType> count{ 0 };
-    vtkSMPTools::For(0,
-      n,
-      [&](vtkIdType begin, vtkIdType end)
-      {
-        vtkIdType here = 0;
-        for (vtkIdType p = begin; p < end; ++p)
-        {
-          const auto v = normals[p];
-          here += IsUsableNormal(dvec3(v[0], v[1], v[2])) ? 0 : 1;
-        }
-        count += here;
-      });
-    unusable = count;
-  }
-};
-
-/**
- * Smooth point normals: per point the sum, in triangle order, of its triangles' area-weighted
- * unit normals (`weighted`), normalized; `empty` for points with no area.
- */
-std::vector<dvec3> AreaWeightedNormals(const Links& links,
-  const std::vector<dvec3>& weighted,
-  const dvec3& empty)
-{
-  std::vector<dvec3> normals(links.Start.size() - 1);
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(normals.size()),
-    [&](vtkIdType begin, vtkIdType end)
+  std::atomic<vtkIdType> count{ 0 };
+  ForEachNormalRange(array,
+    n,
+    [&](vtkIdType begin, vtkIdType end, const auto& normal)
     {
+      vtkIdType here = 0;
       for (vtkIdType p = begin; p < end; ++p)
       {
-        dvec3 sum(0.0);
-        links.ForEach(p, [&](vtkIdType t, int) { sum += weighted[t]; });
-        const dvec3 n = SafeNormalize(sum);
-        normals[p] = n == dvec3(0.0) ? empty : n;
+        here += IsUsableNormal(normal(p)) ? 0 : 1;
       }
+      count += here;
     });
-  return normals;
+  return count;
 }
 
 /// The weighted tangent sums of one point, per handedness (index 0: +1, 1: -1).
@@ -824,13 +717,13 @@ void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool norm
 }
 
 /**
- * Every point's frame, with `sumsOf(p)` giving its sums (KindOf): the tangent of its side made
- * perpendicular to its unit normal, a block of points at a time (ComputeUnitFrames). Fallback
- * points are only marked in `kinds`.
+ * Every point's frame from its sums (KindOf): the tangent of its side made perpendicular to its
+ * unit normal, a block of points at a time (ComputeUnitFrames). Fallback points are only marked
+ * in `kinds`.
  */
-template<typename OutT, typename SumsOf>
+template<typename OutT>
 void WriteFrames(vtkIdType numPoints,
-  const SumsOf& sumsOf,
+  const ScatteredSums& sums,
   const ShadingNormals& normals,
   bool splitting,
   const FrameArrays<OutT>& out,
@@ -848,7 +741,7 @@ void WriteFrames(vtkIdType numPoints,
         const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
         for (int i = 0; i < count; ++i)
         {
-          const PointSums s = sumsOf(first + i);
+          const PointSums s = sums.Of(first + i);
           int side = 0;
           kinds[first + i] = KindOf(s, splitting, side);
           b.Set(i, normals.Stored(first + i), s.Tangent[side]);
@@ -934,9 +827,8 @@ void FillFallbacks(const Triangles& tris,
     });
 }
 
-/// The -1 frames of the seam points, for their copies, with `sumsOf(p)` giving their sums.
-template<typename SumsOf>
-std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
+/// The -1 frames of the seam points, for their copies.
+std::vector<SplitPoint> SplitFrames(const ScatteredSums& sums,
   const ShadingNormals& normals,
   const std::vector<vtkIdType>& conflicts)
 {
@@ -948,18 +840,12 @@ std::vector<SplitPoint> SplitFrames(const SumsOf& sumsOf,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = conflicts[i];
-        const PointSums& s = sumsOf(p);
+        const PointSums s = sums.Of(p);
         const dvec3 n = normals.UnitOf(p);
         splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, s.Tangent[1]) };
       }
     });
   return splits;
-}
-
-/// Machine epsilon of the type an array stores.
-double Epsilon(vtkDataArray* array)
-{
-  return array->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : static_cast<double>(FLT_EPSILON);
 }
 
 /// The output arrays' concrete class for OutT, so that users' SafeDownCasts work.
@@ -977,7 +863,7 @@ vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkId
 template<typename OutT>
 using OutputFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
 
-/// The storage of `frames`, to write frames into; valid until Resize.
+/// The storage of `frames`, to write frames into.
 template<typename OutT>
 FrameArrays<OutT> StorageOf(const OutputFrames<OutT>& frames)
 {
@@ -997,7 +883,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkIdType FirstSurfaceCell = 0;
   Triangles Tris;
   std::unique_ptr<TriangleFrames> Frames;
-  std::unique_ptr<Links> PointLinks;
   /// Per corner, the handedness the triangle gives it (SideOf its signed weight).
   Buffer<signed char> CornerSides;
 
@@ -1028,18 +913,13 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     return true;
   }
 
-  /// The point links, built on first use.
-  const Links& PointLinksOf()
-  {
-    if (!this->PointLinks)
-    {
-      this->PointLinks.reset(new Links(this->Tris, this->NumberOfPoints));
-    }
-    return *this->PointLinks;
-  }
-
-  /// visit(first, block, count) for the triangles of [begin, end), with `normals` also their
-  /// signed corner weights for `method` (VisitTriangleBlocks).
+  /**
+   * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
+   * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
+   * [first, first + count) (ComputeFrameBlock), with `normals` also their corners' weights for
+   * `method` signed with their handedness. Float and double points and texture coordinates are
+   * read through their concrete types, any other type through vtkDataArray.
+   */
   template<typename Visit>
   void VisitFrames(bool serial,
     const Visit& visit,
@@ -1048,19 +928,58 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const ShadingNormals* normals = nullptr,
     TangentMethod method = TangentMethod::Unweighted)
   {
-    const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(
-      Epsilon(this->Input->GetPoints()->GetData()), Epsilon(this->UVs));
-    DispatchReals2(this->Input->GetPoints()->GetData(),
-      this->UVs,
-      VisitTriangleBlocks(),
-      this->Tris,
-      begin,
-      end,
-      tol,
-      normals,
-      method,
-      serial,
-      visit);
+    vtkDataArray* pointArray = this->Input->GetPoints()->GetData();
+    const DegeneracyTolerance tol = vtkNormalMapping::detail::ToleranceFor(pointArray, this->UVs);
+    const bool hasV = this->UVs->GetNumberOfComponents() > 1;
+    const vtkIdType* ids = this->Tris.Ids;
+    const auto run = [&](auto* typedPoints, auto* typedUVs)
+    {
+      const auto points = vtk::DataArrayTupleRange<3>(typedPoints);
+      const auto uvs = vtk::DataArrayTupleRange(typedUVs);
+      const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd)
+      {
+        TriangleBlock b; // not initialized: each triangle's entries are written before use
+        for (vtkIdType first = rangeBegin; first < rangeEnd; first += TriangleBlock::Size)
+        {
+          const int count =
+            static_cast<int>(std::min<vtkIdType>(TriangleBlock::Size, rangeEnd - first));
+          for (int i = 0; i < count; ++i)
+          {
+            dvec3 p[3];
+            dvec2 uv[3];
+            for (int k = 0; k < 3; ++k)
+            {
+              const vtkIdType id = ids[3 * (first + i) + k];
+              const auto point = points[id];
+              const auto texture = uvs[id];
+              p[k] = dvec3(point[0], point[1], point[2]);
+              uv[k] = dvec2(texture[0], hasV ? static_cast<double>(texture[1]) : 0.0);
+              if (normals)
+              {
+                b.SetCornerNormal(k, i, normals->Stored(id));
+              }
+            }
+            b.SetCorners(i, p, uv);
+          }
+          ComputeFrameBlock(b, count, tol, normals != nullptr, method);
+          visit(first, static_cast<const TriangleBlock&>(b), count);
+        }
+      };
+      if (serial)
+      {
+        visitRange(begin, end);
+      }
+      else
+      {
+        vtkSMPTools::For(begin, end, visitRange);
+      }
+    };
+    using Dispatcher =
+      vtkArrayDispatch::Dispatch2ByValueType<vtkArrayDispatch::Reals, vtkArrayDispatch::Reals>;
+    if (!Dispatcher::Execute(pointArray, this->UVs, run))
+    {
+      run(pointArray, this->UVs);
+    }
   }
 
   /**
@@ -1106,7 +1025,23 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
           }
         });
     }
-    return AreaWeightedNormals(this->PointLinksOf(), weighted, empty);
+    // Per point the sum of its triangles' area-weighted normals in triangle order (the links'),
+    // so that the result is the same for any number of threads.
+    const Links links(this->Tris, this->NumberOfPoints);
+    std::vector<dvec3> normals(static_cast<size_t>(this->NumberOfPoints));
+    vtkSMPTools::For(0,
+      this->NumberOfPoints,
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          dvec3 sum(0.0);
+          links.ForEach(p, [&](vtkIdType t) { sum += weighted[t]; });
+          const dvec3 n = SafeNormalize(sum);
+          normals[p] = n == dvec3(0.0) ? empty : n;
+        }
+      });
+    return normals;
   }
 
   /**
@@ -1237,7 +1172,16 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       return normals;
     }
     unit.reset(new dvec3[this->NumberOfPoints]);
-    DispatchArray<vtkArrayDispatch::Reals>(array, UnitNormals(), unit.get(), this->NumberOfPoints);
+    // Unit normals, zero where a normal is zero or non-finite.
+    ForEachNormalRange(array,
+      this->NumberOfPoints,
+      [&](vtkIdType begin, vtkIdType end, const auto& normal)
+      {
+        for (vtkIdType p = begin; p < end; ++p)
+        {
+          unit[p] = SafeNormalize(normal(p));
+        }
+      });
     if (unusable > 0)
     {
       const std::vector<dvec3> geometric = this->SmoothNormals(nullptr, dvec3(0.0));
@@ -1334,7 +1278,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
     vtkNormalMapping::detail::CopyWithAppendedPoints(
       this->Input, this->Output, splitSource, frames.Names());
-    frames.Resize(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
     if (!splits.empty())
     {
       if (computedNormals)
@@ -1377,8 +1320,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
   vtkIdType unusable = 0;
   if (this->Normals)
   {
-    DispatchArray<vtkArrayDispatch::Reals>(
-      this->Normals, CountUnusableNormals(), this->NumberOfPoints, unusable);
+    unusable = CountUnusableNormals(this->Normals, this->NumberOfPoints);
     self->NumberOfInvalidNormals += unusable;
   }
   if (!mikkTSpace || !this->Normals)
@@ -1418,12 +1360,12 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   std::optional<ScatteredSums> sums(
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
-  // Room for the split points' frames too: one per mirror-seam point when splitting.
+  // Room for the split points' frames too: with splitting, each mirror-seam point (a Conflict
+  // point) gets one copy.
   OutputFrames<OutT> frames(
     numPoints + (self->Splitting ? sums->SeamPoints() : 0), self->ComputeBitangents);
-  const auto sumsOf = [&](vtkIdType p) { return sums->Of(p); };
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  WriteFrames(numPoints, sumsOf, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
+  WriteFrames(numPoints, *sums, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
   const std::vector<vtkIdType> conflicts =
     PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
   const std::vector<vtkIdType> fallbacks =
@@ -1444,7 +1386,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
       StorageOf<OutT>(frames));
   }
   const std::vector<SplitPoint> splits =
-    self->Splitting ? SplitFrames(sumsOf, normals, conflicts) : std::vector<SplitPoint>();
+    self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
   if (!this->Continue(0.85))
   {
     return 1;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkTangentFrameChecks.h"
 
+#include "vtkNormalMappingPrivate.h"
+
 #include "vtkTangentFrameKernels.h"
 
 #include "vtkCellArray.h"
@@ -39,10 +41,12 @@ std::vector<vtkIdType> ListTriangles(vtkPolyData* mesh)
       it->GetCurrentCell(n, pts);
       for (vtkIdType j = 0; j + 2 < n; ++j)
       {
-        const bool odd = strip && (j & 1) != 0;
-        ids.push_back(strip ? pts[odd ? j + 1 : j] : pts[0]);
-        ids.push_back(strip ? pts[odd ? j : j + 1] : pts[j + 1]);
-        ids.push_back(pts[j + 2]);
+        vtkIdType tri[3] = { pts[0], pts[j + 1], pts[j + 2] };
+        if (strip)
+        {
+          detail::StripTriangle(pts, j, tri);
+        }
+        ids.insert(ids.end(), tri, tri + 3);
       }
     }
   }
@@ -62,11 +66,6 @@ glm::dvec2 UV(vtkDataArray* uvs, vtkIdType id)
     uvs->GetComponent(id, 0), uvs->GetNumberOfComponents() > 1 ? uvs->GetComponent(id, 1) : 0.0);
 }
 
-double Epsilon(vtkDataArray* array)
-{
-  return array->GetDataType() == VTK_DOUBLE ? DBL_EPSILON : FLT_EPSILON;
-}
-
 /**
  * Per point, the windings (PositiveWinding, NegativeWinding bits) of its usable triangles
  * relative to its normal: the handedness vtkPolyDataTangentFrames gives each corner.
@@ -79,7 +78,7 @@ std::vector<unsigned char> PointWindings(vtkPolyData* mesh,
   const std::vector<vtkIdType> ids = ListTriangles(mesh);
   const vtkIdType numTriangles = static_cast<vtkIdType>(ids.size() / 3);
   vtkDataArray* points = mesh->GetPoints()->GetData();
-  const DegeneracyTolerance tol = DegeneracyTolerance::ForEpsilons(Epsilon(points), Epsilon(uvs));
+  const DegeneracyTolerance tol = detail::ToleranceFor(points, uvs);
   std::vector<signed char> sides(ids.size(), 0);
   vtkSMPTools::For(0,
     numTriangles,
@@ -98,8 +97,7 @@ std::vector<unsigned char> PointWindings(vtkPolyData* mesh,
           UV(uvs, tri[0]),
           UV(uvs, tri[1]),
           UV(uvs, tri[2]),
-          tol,
-          false);
+          tol);
         for (int k = 0; f.Orientation != 0 && k < 3; ++k)
         {
           sides[3 * t + k] =

@@ -100,7 +100,7 @@ struct TriangleFrame
   /// of the rescaled edges: normalizing it here would cost a square root and a division per
   /// triangle that the sign tests do not need); zero when degenerate in position.
   glm::dvec3 Normal{ 0.0 };
-  /// Area of the triangle in position space (finite, possibly 0), when asked for; else 0.
+  /// Area of the triangle in position space (finite, possibly 0).
   double Area = 0.0;
   /// +1 when the UV winding agrees with the position winding, -1 when mirrored, 0 when the
   /// triangle has no usable frame (zero UV area, zero area, or non-finite input).
@@ -245,22 +245,6 @@ inline double AngleFromSineCosine(double s, double c)
   return den > 0.0 ? angle : 0.0;
 }
 
-/**
- * Interior angles from the edges e1 = p1 - p0, e2 = p2 - p0, e3 = p2 - p1 and
- * sine = |e1 x e2|: the two edges at any corner span the same parallelogram, so one cross
- * product serves all three corners; each has its own cosine term.
- */
-inline void CornerAnglesFromEdges(const glm::dvec3& e1,
-  const glm::dvec3& e2,
-  const glm::dvec3& e3,
-  double sine,
-  double angles[3])
-{
-  angles[0] = AngleFromSineCosine(sine, glm::dot(e1, e2));
-  angles[1] = AngleFromSineCosine(sine, -glm::dot(e1, e3));
-  angles[2] = AngleFromSineCosine(sine, glm::dot(e2, e3));
-}
-
 /// c ? a : b, per component: selects of scalars, which a vectorizing compiler turns into blends.
 inline glm::dvec3 Select(bool c, const glm::dvec3& a, const glm::dvec3& b)
 {
@@ -271,10 +255,7 @@ inline bool IsFinite(const glm::dvec3& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
-} // namespace detail
 
-namespace detail
-{
 /**
  * The frame of a triangle from its edges e1 = p1 - p0, e2 = p2 - p0 and UV deltas d1, d2, whose
  * largest components need no rescaling (RescaleExponent 0, or rescaled already). Selects instead
@@ -317,24 +298,26 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   return frame;
 }
 
-/// The corner angles of a triangle whose edges FrameFromEdges took and whose frame it gave:
-/// zero when it is degenerate in position (its Area is zero).
+/**
+ * The interior angles of a triangle whose edges FrameFromEdges took and whose frame it gave; zero
+ * when it is degenerate in position (its Area is zero). The two edges at any corner span the same
+ * parallelogram, so its area serves as the sine of all three corners; each has its own cosine.
+ */
 inline void FrameCornerAngles(const glm::dvec3& e1,
   const glm::dvec3& e2,
   const TriangleFrame& f,
   double angles[3])
 {
   const double sine = 2.0 * f.Area; // |e1 x e2| (FrameFromEdges halves it exactly), or 0
-  CornerAnglesFromEdges(e1, e2, e2 - e1, sine, angles);
+  const glm::dvec3 e3 = e2 - e1;
+  const double cosines[3] = { glm::dot(e1, e2), -glm::dot(e1, e3), glm::dot(e2, e3) };
   for (int k = 0; k < 3; ++k)
   {
-    angles[k] = sine > 0.0 ? angles[k] : 0.0;
+    const double angle = AngleFromSineCosine(sine, cosines[k]);
+    angles[k] = sine > 0.0 ? angle : 0.0;
   }
 }
-} // namespace detail
 
-namespace detail
-{
 /// The largest coordinate magnitude of a triangle's corners (the scale of their rounding).
 inline double MaxCoordinate(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2)
 {
@@ -354,7 +337,6 @@ inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
   glm::dvec2 d2,
   double maxCoordinate,
   const DegeneracyTolerance& tol,
-  bool withArea,
   double* angles)
 {
   if (angles)
@@ -388,7 +370,7 @@ inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
   // Back to the input's units; an area beyond DBL_MAX still weighs as the largest double.
   const double area =
     detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(frame.Area, -ePos), -ePos);
-  frame.Area = !withArea ? 0.0 : (std::isfinite(area) ? area : DBL_MAX);
+  frame.Area = std::isfinite(area) ? area : DBL_MAX;
   return frame;
 }
 
@@ -405,17 +387,10 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
   const glm::dvec2& uv1,
   const glm::dvec2& uv2,
   const DegeneracyTolerance& tol = DegeneracyTolerance(),
-  bool withArea = true,
   double* angles = nullptr)
 {
-  return ComputeFrameFromEdges(p1 - p0,
-    p2 - p0,
-    uv1 - uv0,
-    uv2 - uv0,
-    detail::MaxCoordinate(p0, p1, p2),
-    tol,
-    withArea,
-    angles);
+  return ComputeFrameFromEdges(
+    p1 - p0, p2 - p0, uv1 - uv0, uv2 - uv0, detail::MaxCoordinate(p0, p1, p2), tol, angles);
 }
 
 /**
@@ -548,14 +523,8 @@ inline void ComputeTriangleBlock(TriangleBlock& b,
       continue;
     }
     double angles[3];
-    const TriangleFrame f = ComputeFrameFromEdges(b.Edge(0, i),
-      b.Edge(1, i),
-      b.Delta(0, i),
-      b.Delta(1, i),
-      b.MaxCoordinate[i],
-      tol,
-      true,
-      angles);
+    const TriangleFrame f = ComputeFrameFromEdges(
+      b.Edge(0, i), b.Edge(1, i), b.Delta(0, i), b.Delta(1, i), b.MaxCoordinate[i], tol, angles);
     const double none[3] = { 0.0, 0.0, 0.0 };
     b.Set(i, f, withAngles ? angles : none);
   }

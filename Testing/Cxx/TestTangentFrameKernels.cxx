@@ -140,11 +140,9 @@ TEST(TangentFrameKernels, CornerAnglesSumToPi)
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   const auto cornerAngles =
-    [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double angles[3])
-  {
-    ComputeTriangleFrame(
-      a, b, c, { 0, 0 }, { 1, 0 }, { 0, 1 }, DegeneracyTolerance(), false, angles);
-  };
+    [](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double angles[3]) {
+      ComputeTriangleFrame(a, b, c, { 0, 0 }, { 1, 0 }, { 0, 1 }, DegeneracyTolerance(), angles);
+    };
   for (int i = 0; i < 1000; ++i)
   {
     const glm::dvec3 a(d(rng), d(rng), d(rng)), b(d(rng), d(rng), d(rng)),
@@ -300,7 +298,7 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
         const glm::dvec2* uv = uvs[i].data();
         double angles[3];
         const TriangleFrame ref =
-          ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, true, angles);
+          ComputeTriangleFrame(p[0], p[1], p[2], uv[0], uv[1], uv[2], tol, angles);
         const TriangleFrame f = block.Frame(i);
         EXPECT_EQ(f.Tangent, ref.Tangent) << "triangle " << i << " of round " << round;
         EXPECT_EQ(f.Normal, ref.Normal) << "triangle " << i << " of round " << round;
