@@ -45,12 +45,11 @@ enum class TangentMethod : int
 };
 
 /**
- * Relative thresholds below which a triangle is degenerate. UV is a "shape" ratio in UV space,
- * 2*area / (longest edge)^2: below a few units of the stored type's epsilon the rounding of the
- * stored texture coordinates alone decides the frame. PositionNoise bounds the height of a
- * triangle relative to its largest coordinate (IsRoundingNoise); in position space that bound
- * also covers the shape ratio, which it puts at 64 epsilon * m / L >= 18 epsilon at least (L the
- * longest edge, m >= L / (2 sqrt(3)) the largest coordinate magnitude of two corners L apart).
+ * Relative thresholds below which a triangle is degenerate (docs/numerics.md, "Degenerate
+ * triangles"): UV bounds the shape ratio 2*area / (longest edge)^2 in UV space, below which the
+ * rounding of the stored texture coordinates alone decides the frame; PositionNoise bounds the
+ * height of a triangle relative to its largest coordinate (IsRoundingNoise), which also bounds
+ * its shape ratio in position space.
  */
 struct DegeneracyTolerance
 {
@@ -70,20 +69,13 @@ struct DegeneracyTolerance
 /**
  * Whether a triangle's height h = |n| / L (n the cross product of two edges, L the longest edge)
  * lies within the rounding noise of its coordinates: h <= noise * m, where m is the largest
- * coordinate magnitude of its corners and noise = 64 epsilon of the stored precision
- * (DegeneracyTolerance::PositionNoise). Such a triangle carries no direction: moving a corner by
- * its coordinates' rounding (epsilon * m per stored value, more where they are computed from
- * rounded parameters, such as an angle near 2 pi whose own ulp is 4 epsilon) turns its plane by
- * 1/64 radian or more. Points that should coincide, like the seam and pole points of parametric
- * surfaces, make such triangles, tens of ulps high and with full-size UVs; without this rule
- * they steer their corners' frames (angle and unweighted votes do not shrink with the height)
- * depending on the rounding of one evaluation. Both sides scale with the coordinates, so
- * scaling a mesh keeps every triangle on its side of the bound. A mesh far from the origin
- * compared with its size has every triangle under the bound once its triangles are less than
- * 64 ulps of its coordinates high: its frames are then the fallback frames.
- * Inputs are those of ComputeTriangleFrame, in its rescaled units: twiceArea2 = |n|^2,
- * longest2 = L^2, m the largest coordinate scaled likewise (inf where that overflows, which
- * makes the triangle noise, as it is). Squared, without a square root; NaN is noise.
+ * coordinate magnitude of its corners and noise = DegeneracyTolerance::PositionNoise. Moving a
+ * corner by its coordinates' rounding turns such a triangle's plane by 1/64 radian or more, so it
+ * carries no direction; the seams and poles of parametric surfaces make such triangles, with
+ * full-size UVs (docs/numerics.md). Both sides scale with the coordinates, so scaling a mesh
+ * changes no classification. Inputs are those of ComputeTriangleFrame, in its rescaled units:
+ * twiceArea2 = |n|^2, longest2 = L^2, m scaled likewise (inf where that overflows, which makes the
+ * triangle noise, as it is). Squared, without a square root; NaN is noise.
  */
 inline bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
 {
@@ -167,12 +159,15 @@ inline int RescaleExponent(double m)
 }
 
 /// The same for the normalization of one vector (normals, summed tangents): no product of two
-/// components of a vector whose largest component lies in [2^-400, 2^400] can overflow, and a
-/// product that underflows is below 2^-222 of the largest square it is added to, so it cannot
-/// change the sum: rescaling would not change a bit of the unit vector and is skipped.
+/// components of a vector whose largest component lies in [NormalizeMinimum, NormalizeMaximum]
+/// can overflow, and a product that underflows is below 2^-222 of the largest square it is added
+/// to, so it cannot change the sum: rescaling would not change a bit of the unit vector and is
+/// skipped.
+constexpr double NormalizeMinimum = 0x1p-400;
+constexpr double NormalizeMaximum = 0x1p400;
 inline int NormalizeExponent(double m)
 {
-  return (m >= 0x1p-400 && m <= 0x1p400) ? 0 : UnitExponent(m);
+  return (m >= NormalizeMinimum && m <= NormalizeMaximum) ? 0 : UnitExponent(m);
 }
 
 /// v * 2^k for any k a double exponent can need (two steps outside the normal range). Exact
@@ -711,8 +706,8 @@ namespace detail
 inline bool InNormalizeRange(const glm::dvec3& v)
 {
   const glm::dvec3 a = glm::abs(v);
-  return (a.x <= 0x1p400) & (a.y <= 0x1p400) & (a.z <= 0x1p400) &
-    ((a.x >= 0x1p-400) | (a.y >= 0x1p-400) | (a.z >= 0x1p-400));
+  return (a.x <= NormalizeMaximum) & (a.y <= NormalizeMaximum) & (a.z <= NormalizeMaximum) &
+    ((a.x >= NormalizeMinimum) | (a.y >= NormalizeMinimum) | (a.z >= NormalizeMinimum));
 }
 
 /// The common-case pass of ComputePointBlock; Normalize a template argument so that the loop
