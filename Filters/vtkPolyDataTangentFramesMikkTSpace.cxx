@@ -10,8 +10,8 @@
 //   positions at unit extent, by a power of two, and centred when far away (KernelPositions).
 // * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
 //   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
-//   strip triangle containing it. Strip corners whose triangles disagree (bitwise) are counted in
-//   StripCornerConflicts and make their point a conflict.
+//   strip triangle containing it. Strip corners whose triangles disagree (bitwise) make their
+//   point a conflict.
 // * A point's frame is that of its first corner (cell order, then corner order, polygons before
 //   strips). A point whose corners carry bitwise different frames is a conflict. With Splitting
 //   every further distinct frame of it becomes a new point (appended after the input points in
@@ -524,7 +524,6 @@ struct Assignment
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
   vtkIdType Conflicts = 0;
-  vtkIdType StripCornerConflicts = 0;
 };
 
 /// Frame of output corner c (the default for corners without a frame).
@@ -677,7 +676,6 @@ void Assign(const Surface& s,
   };
   for (const auto& list : stripDisagree)
   {
-    a.StripCornerConflicts += static_cast<vtkIdType>(list.size());
     for (long long c : list)
     {
       markConflict(s.PointOf(c));
@@ -971,7 +969,6 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, request.Splitting, assignment);
   counts.Conflicts = assignment.Conflicts;
-  counts.StripCornerConflicts = assignment.StripCornerConflicts;
   counts.SplitPoints = static_cast<vtkIdType>(assignment.SplitSource.size());
   filter->UpdateProgress(0.9);
   if (filter->GetAbortExecute())

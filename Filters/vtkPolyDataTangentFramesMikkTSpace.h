@@ -45,8 +45,7 @@ struct MikkTSpaceCounts
   // Points whose corners carry bitwise different frames, including points with a strip corner
   // whose strip triangles disagree (splitting cannot separate those).
   vtkIdType Conflicts = 0;
-  vtkIdType SplitPoints = 0;          // points appended (one per extra distinct frame)
-  vtkIdType StripCornerConflicts = 0; // strip corners whose (up to 3) triangles disagree
+  vtkIdType SplitPoints = 0; // points appended (one per extra distinct frame)
 };
 
 /// Fills output; returns 1 on success or after an error (input passed through, with a
