@@ -75,8 +75,6 @@ using mikk::IsCancelled;
 static_assert(std::is_same<vtkTypeInt64, long long>::value,
   "64-bit cell storage is passed to the kernel without a copy");
 
-constexpr vtkIdType kChunk = 32768; // corners or cells per deterministic work chunk
-
 /// Bitwise equality, as two 64-bit compares (this runs once per corner).
 bool SameFrame(const CornerFrame& a, const CornerFrame& b)
 {
@@ -292,8 +290,8 @@ struct ContractNormals
   }
 };
 
-/// The kernel's faces built from the polygons and strips, and the map from output corners
-/// (polygon connectivity positions, then strip connectivity positions) to kernel corners.
+/// The kernel's faces built from the polygons and strips (polygon c is face c, the strip
+/// triangles follow), and the strips' layout.
 struct Surface
 {
   vtkIdType NumPolys = 0;
@@ -304,26 +302,8 @@ struct Surface
   const long long* FaceOffsets = nullptr;
   const long long* FaceConnectivity = nullptr;
   std::vector<long long> OffsetStore, ConnectivityStore; // when the storage cannot be shared
-  std::vector<long long> StripPoint;                     // point id of each strip corner
-  std::vector<long long> StripSlot;          // kernel corner of each strip corner (-1: none)
-  std::vector<long long> StripFirstTriangle; // per strip + 1: first strip triangle
-  std::vector<long long> StripCornerStart;   // per strip + 1: first strip corner
-  std::vector<unsigned char> PolyFrameless;  // per polygon corner, only if some polygon has < 3
-
-  long long PointOf(long long c) const
-  {
-    return c < PolyCorners ? FaceConnectivity[c] : StripPoint[static_cast<size_t>(c - PolyCorners)];
-  }
-  /// Kernel corner of output corner c; -1 for corners of polygons with fewer than 3 points and
-  /// of strips with fewer than 3 points (no frame: they neither set nor split their point).
-  long long SlotOf(long long c) const
-  {
-    if (c < PolyCorners)
-    {
-      return PolyFrameless.empty() || !PolyFrameless[static_cast<size_t>(c)] ? c : -1;
-    }
-    return StripSlot[static_cast<size_t>(c - PolyCorners)];
-  }
+  std::vector<long long> StripFirstTriangle;             // per strip + 1: first strip triangle
+  std::vector<long long> StripCornerStart;               // per strip + 1: first strip corner
 };
 
 /// The problem an id outside the points makes.
@@ -375,9 +355,9 @@ bool LayOutStrips(vtkCellArray* strips, vtkIdType numPoints, Surface& s, std::st
 }
 
 /**
- * Notes the corners of polygons with fewer than 3 points (s.PolyFrameless: they get no frame);
- * false with `problem` set when the offsets decrease or end elsewhere than the connectivity, or
- * such a polygon has an id outside [0, numPoints).
+ * False with `problem` set when the offsets decrease or end elsewhere than the connectivity, or
+ * a polygon with fewer than 3 points has an id outside [0, numPoints) (the kernel checks the
+ * others, and skips these without looking at them).
  */
 bool CheckPolygons(vtkCellArray* polys, vtkIdType numPoints, Surface& s, std::string& problem)
 {
@@ -397,8 +377,6 @@ bool CheckPolygons(vtkCellArray* polys, vtkIdType numPoints, Surface& s, std::st
         if (ok && e - b < 3)
         {
           inRange &= IdsInRange(conn, b, e, numPoints);
-          s.PolyFrameless.resize(static_cast<size_t>(s.PolyCorners), 0);
-          std::fill(s.PolyFrameless.begin() + b, s.PolyFrameless.begin() + e, 1);
         }
       }
     });
@@ -429,15 +407,9 @@ void CopyPolygons(vtkCellArray* polys, vtkIdType numPolys, long long* offsets, l
     });
 }
 
-/**
- * The strip triangles as faces after the polygons, each with the strip's winding, and per strip
- * corner its point (s.StripPoint) and the kernel corner whose frame it takes (s.StripSlot: that
- * of the first strip triangle containing it).
- */
-void UnrollStrips(vtkCellArray* strips, Surface& s, long long* offsets, long long* conn)
+/// The strip triangles as faces after the polygons, each with the strip's winding.
+void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, long long* conn)
 {
-  s.StripPoint.resize(static_cast<size_t>(s.StripCorners));
-  s.StripSlot.resize(static_cast<size_t>(s.StripCorners));
   WithCellStorage(strips,
     [&](auto*, auto* ids)
     {
@@ -450,13 +422,6 @@ void UnrollStrips(vtkCellArray* strips, Surface& s, long long* offsets, long lon
             const long long first = s.StripCornerStart[k];
             const long long n = s.StripCornerStart[k + 1] - first;
             const long long t0 = s.StripFirstTriangle[k];
-            for (long long i = 0; i < n; ++i)
-            {
-              s.StripPoint[first + i] = ids[first + i];
-              const long long j = std::max(0LL, i - 2); // first strip triangle containing i
-              s.StripSlot[first + i] =
-                n < 3 ? -1 : s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
-            }
             for (long long j = 0; j + 2 < n; ++j)
             {
               const long long base = s.PolyCorners + 3 * (t0 + j);
@@ -526,101 +491,6 @@ struct Assignment
   vtkIdType Conflicts = 0;
 };
 
-/// Frame of output corner c (the default for corners without a frame).
-const CornerFrame& FrameOf(const Surface& s, const std::vector<CornerFrame>& frames, long long c)
-{
-  const long long slot = s.SlotOf(c);
-  return slot < 0 ? mikk::DefaultCornerFrame : frames[static_cast<size_t>(slot)];
-}
-
-/**
- * One ascending pass, polygon corners then strip corners: every point's frame is that of its
- * first corner with a frame (a.PointFrame), and the corners whose frame differs from it are
- * returned. The point keeps a copy of the frame (kernel frames have Sign +1 or -1, so Sign 0
- * marks a point not reached yet): each corner then reads one entry per point instead of a point
- * entry and a corner entry.
- */
-std::vector<long long> FirstFrames(const Surface& s,
-  const std::vector<CornerFrame>& frames,
-  vtkIdType numPoints,
-  Assignment& a)
-{
-  a.PointFrame.assign(static_cast<size_t>(numPoints), CornerFrame{ { 0.0f, 0.0f, 0.0f }, 0.0f });
-  std::vector<long long> differing;
-  const auto visit = [&](long long c, long long point, long long slot)
-  {
-    CornerFrame& first = a.PointFrame[static_cast<size_t>(point)];
-    const CornerFrame& mine = frames[static_cast<size_t>(slot)];
-    if (first.Sign == 0.0f)
-    {
-      first = mine;
-    }
-    else if (!SameFrame(mine, first))
-    {
-      differing.push_back(c);
-    }
-  };
-  for (long long c = 0; c < s.PolyCorners; ++c)
-  {
-    if (s.PolyFrameless.empty() || !s.PolyFrameless[static_cast<size_t>(c)])
-    {
-      visit(c, s.FaceConnectivity[c], c);
-    }
-  }
-  for (long long i = 0; i < s.StripCorners; ++i)
-  {
-    if (s.StripSlot[static_cast<size_t>(i)] >= 0)
-    {
-      visit(s.PolyCorners + i,
-        s.StripPoint[static_cast<size_t>(i)],
-        s.StripSlot[static_cast<size_t>(i)]);
-    }
-  }
-  return differing;
-}
-
-/**
- * The strip corners (output corner ids) whose strip triangles disagree: a corner shared by up to
- * three triangles of a strip takes the frame of one of them (FrameOf); these are the corners where
- * another one gives a different frame. Per chunk of kChunk strips, in strip order.
- */
-std::vector<std::vector<long long>> StripDisagreements(const Surface& s,
-  const std::vector<CornerFrame>& frames)
-{
-  const vtkIdType numStripChunks = (s.NumStrips + kChunk - 1) / kChunk;
-  std::vector<std::vector<long long>> disagree(static_cast<size_t>(numStripChunks));
-  vtkSMPTools::For(0,
-    numStripChunks,
-    1,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      for (vtkIdType chunk = b; chunk < e; ++chunk)
-      {
-        const vtkIdType end = std::min<vtkIdType>(s.NumStrips, (chunk + 1) * kChunk);
-        for (vtkIdType k = chunk * kChunk; k < end; ++k)
-        {
-          const long long first = s.StripCornerStart[k];
-          const long long n = s.StripCornerStart[k + 1] - first;
-          const long long t0 = s.StripFirstTriangle[k];
-          for (long long i = 0; i < n; ++i)
-          {
-            const CornerFrame& chosen = FrameOf(s, frames, s.PolyCorners + first + i);
-            for (long long j = std::max(0LL, i - 2) + 1; j <= std::min(i, n - 3); ++j)
-            {
-              const long long slot = s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j);
-              if (!SameFrame(frames[static_cast<size_t>(slot)], chosen))
-              {
-                disagree[chunk].push_back(s.PolyCorners + first + i);
-                break;
-              }
-            }
-          }
-        }
-      }
-    });
-  return disagree;
-}
-
 /**
  * The new point of point p that carries frame f: one of p's new points so far (`mine`), or a new
  * one appended after them all.
@@ -646,10 +516,13 @@ vtkIdType SplitPointOf(long long p,
 }
 
 /**
- * Every point's frame (FirstFrames), the points with corners of other frames (conflicts: the
- * corners FirstFrames found, and the strip corners whose triangles disagree), and with
- * `splitting` one new point per other frame of a point, with the corners of that frame re-pointed
- * to it.
+ * One ascending pass over the output corners with a frame, polygon corners then strip corners:
+ * every point's frame is that of its first corner (a.PointFrame). A point is a conflict when
+ * another of its corners carries a different frame, or when one of its strip corners has strip
+ * triangles that disagree. With `splitting` each other frame of a point becomes a new point, in
+ * the order of the corners, and the corners carrying it are re-pointed to it. The point keeps a
+ * copy of its frame (kernel frames have Sign +1 or -1, so Sign 0 marks a point not reached yet):
+ * each corner then reads one entry per point instead of a point entry and a corner entry.
  */
 void Assign(const Surface& s,
   const std::vector<CornerFrame>& frames,
@@ -657,10 +530,7 @@ void Assign(const Surface& s,
   bool splitting,
   Assignment& a)
 {
-  const std::vector<long long> differing = FirstFrames(s, frames, numPoints, a);
-  const std::vector<std::vector<long long>> stripDisagree = StripDisagreements(s, frames);
-
-  // Sequential, in corner order: conflicts and new points.
+  a.PointFrame.assign(static_cast<size_t>(numPoints), CornerFrame{ { 0.0f, 0.0f, 0.0f }, 0.0f });
   std::vector<unsigned char> conflict;
   const auto markConflict = [&](long long p)
   {
@@ -674,23 +544,75 @@ void Assign(const Surface& s,
       ++a.Conflicts;
     }
   };
-  for (const auto& list : stripDisagree)
+  // Raw pointers, so that the corner loops keep them in registers across push_back calls.
+  const long long* off = s.FaceOffsets;
+  const long long* conn = s.FaceConnectivity;
+  const CornerFrame* kernelFrames = frames.data();
+  CornerFrame* pointFrames = a.PointFrame.data();
+  std::vector<std::pair<long long, long long>> differing; // (output corner, kernel corner)
+  // Output corner c, which takes the frame of kernel corner `slot`.
+  const auto visit = [&](long long c, long long slot)
   {
-    for (long long c : list)
+    CornerFrame& first = pointFrames[conn[slot]];
+    if (first.Sign == 0.0f)
     {
-      markConflict(s.PointOf(c));
+      first = kernelFrames[slot];
     }
-  }
-  std::unordered_map<long long, std::vector<vtkIdType>> extra; // point -> its new points
-  for (long long c : differing)
+    else if (!SameFrame(kernelFrames[slot], first))
+    {
+      differing.emplace_back(c, slot);
+    }
+  };
+  // A polygon corner is its own kernel corner; polygons with fewer than 3 points have no frame.
+  for (vtkIdType k = 0, numPolys = s.NumPolys; k < numPolys; ++k)
   {
-    const long long p = s.PointOf(c);
-    markConflict(p);
-    if (!splitting)
+    const long long b = off[k], e = off[k + 1];
+    if (e - b < 3)
     {
       continue;
     }
-    a.Repoint.emplace_back(c, SplitPointOf(p, FrameOf(s, frames, c), extra[p], numPoints, a));
+    for (long long c = b; c < e; ++c)
+    {
+      visit(c, c);
+    }
+  }
+  // A strip corner takes the frame of the first strip triangle containing it.
+  for (vtkIdType k = 0; k < s.NumStrips; ++k)
+  {
+    const long long first = s.StripCornerStart[k];
+    const long long n = s.StripCornerStart[k + 1] - first;
+    const long long t0 = s.StripFirstTriangle[k];
+    if (n < 3)
+    {
+      continue;
+    }
+    for (long long i = 0; i < n; ++i)
+    {
+      // the kernel corner of strip corner i in strip triangle j, which contains it
+      const auto slotIn = [&](long long j)
+      { return s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j); };
+      const long long j = std::max(0LL, i - 2);
+      const long long slot = slotIn(j);
+      visit(s.PolyCorners + first + i, slot);
+      for (long long later = j + 1; later <= std::min(i, n - 3); ++later)
+      {
+        if (!SameFrame(kernelFrames[slotIn(later)], kernelFrames[slot]))
+        {
+          markConflict(conn[slot]);
+          break;
+        }
+      }
+    }
+  }
+  std::unordered_map<long long, std::vector<vtkIdType>> extra; // point -> its new points
+  for (const auto& [c, slot] : differing)
+  {
+    const long long p = conn[slot];
+    markConflict(p);
+    if (splitting)
+    {
+      a.Repoint.emplace_back(c, SplitPointOf(p, kernelFrames[slot], extra[p], numPoints, a));
+    }
   }
 }
 
