@@ -306,12 +306,6 @@ struct Surface
   std::vector<long long> StripCornerStart;               // per strip + 1: first strip corner
 };
 
-/// The problem an id outside the points makes.
-std::string BadIdsProblem(vtkIdType numPoints)
-{
-  return "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
-}
-
 /// Position of strip corner i in strip triangle j (which must contain it).
 int PositionInStripTriangle(long long i, long long j)
 {
@@ -322,67 +316,42 @@ int PositionInStripTriangle(long long i, long long j)
   return i == j + 1 ? 0 : (i == j ? 1 : 2);
 }
 
-/**
- * The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle); false with
- * `problem` set when their offsets are inconsistent or a strip with fewer than 3 points has an id
- * outside [0, numPoints) (the kernel checks the others, and skips these without looking at them).
- */
-bool LayOutStrips(vtkCellArray* strips, vtkIdType numPoints, Surface& s, std::string& problem)
+/// Whether the cells with fewer than 3 points, among the first numCells of `cells`, use only
+/// ids in [0, numPoints) (the kernel checks the others, and skips these without looking at them).
+bool ShortCellIdsInRange(vtkCellArray* cells, vtkIdType numCells, vtkIdType numPoints)
+{
+  return numCells == 0 ||
+    WithCellStorage(cells,
+      [&](const auto* off, const auto* conn)
+      {
+        bool inRange = true;
+        for (vtkIdType k = 0; k < numCells; ++k)
+        {
+          inRange &= off[k + 1] - off[k] >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
+        }
+        return inRange;
+      });
+}
+
+/// The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle).
+void LayOutStrips(vtkCellArray* strips, Surface& s)
 {
   s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
   s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
   if (s.NumStrips == 0)
   {
-    return true;
+    return;
   }
-  bool ok = true, inRange = true;
   WithCellStorage(strips,
-    [&](auto* off, auto* conn)
+    [&](const auto* off, const auto*)
     {
-      ok = off[0] == 0 && off[s.NumStrips] == s.StripCorners;
-      for (vtkIdType k = 0; ok && k < s.NumStrips; ++k)
+      for (vtkIdType k = 0; k < s.NumStrips; ++k)
       {
         const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
-        ok = n >= 0;
-        inRange &= n >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
         s.StripCornerStart[k + 1] = off[k + 1];
         s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
       }
     });
-  problem = !ok ? "the triangle strip cell array has inconsistent offsets"
-                : (inRange ? "" : BadIdsProblem(numPoints));
-  return ok && inRange;
-}
-
-/**
- * False with `problem` set when the offsets decrease or end elsewhere than the connectivity, or
- * a polygon with fewer than 3 points has an id outside [0, numPoints) (the kernel checks the
- * others, and skips these without looking at them).
- */
-bool CheckPolygons(vtkCellArray* polys, vtkIdType numPoints, Surface& s, std::string& problem)
-{
-  if (s.NumPolys == 0)
-  {
-    return true;
-  }
-  bool ok = true, inRange = true;
-  WithCellStorage(polys,
-    [&](auto* off, auto* conn)
-    {
-      ok = off[0] == 0 && off[s.NumPolys] == s.PolyCorners;
-      for (vtkIdType k = 0; ok && k < s.NumPolys; ++k)
-      {
-        const long long b = off[k], e = off[k + 1];
-        ok = e >= b && e <= s.PolyCorners;
-        if (ok && e - b < 3)
-        {
-          inRange &= IdsInRange(conn, b, e, numPoints);
-        }
-      }
-    });
-  problem = !ok ? "the polygon cell array has inconsistent offsets"
-                : (inRange ? "" : BadIdsProblem(numPoints));
-  return ok && inRange;
 }
 
 /// The polygons as the first faces: their offsets and ids copied to 64-bit storage.
@@ -433,8 +402,13 @@ void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, lo
     });
 }
 
-/// Fills `s`; returns false with `problem` set when a cell array is malformed (LayOutStrips,
-/// CheckPolygons).
+/**
+ * Fills `s`; returns false with `problem` set when a polygon or strip with fewer than 3 points has
+ * an id outside [0, numPoints). Precondition: the cell arrays' offsets are consistent (the first
+ * 0, none smaller than the one before, the last the connectivity size). vtkPolyDataTangentFrames
+ * rejects other input (CellArrayProblem) before it calls RunMikkTSpace, and every read of the
+ * offsets, and of the ids between them, relies on it.
+ */
 bool BuildSurface(vtkCellArray* polys,
   vtkCellArray* strips,
   vtkIdType numPoints,
@@ -445,10 +419,14 @@ bool BuildSurface(vtkCellArray* polys,
   s.NumStrips = strips ? strips->GetNumberOfCells() : 0;
   s.PolyCorners = s.NumPolys > 0 ? polys->GetNumberOfConnectivityIds() : 0;
   s.StripCorners = s.NumStrips > 0 ? strips->GetNumberOfConnectivityIds() : 0;
-  if (!LayOutStrips(strips, numPoints, s, problem) || !CheckPolygons(polys, numPoints, s, problem))
+  if (!ShortCellIdsInRange(polys, s.NumPolys, numPoints) ||
+    !ShortCellIdsInRange(strips, s.NumStrips, numPoints))
   {
+    problem =
+      "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
     return false;
   }
+  LayOutStrips(strips, s);
   const long long numStripTriangles = s.StripFirstTriangle.back();
   s.NumFaces = s.NumPolys + numStripTriangles;
   if (s.NumStrips == 0 && s.NumPolys > 0 && polys->IsStorage64Bit())
