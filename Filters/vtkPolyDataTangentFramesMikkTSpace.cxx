@@ -773,34 +773,6 @@ void WriteOutput(const MikkTSpaceRequest& request,
   }
 }
 
-/**
- * The kernel's corner frames for the surface's faces, with progress from 0.05 to 0.85; the
- * result says whether it was aborted or could not run.
- */
-mikk::Result RunKernel(vtkPolyDataTangentFrames* filter,
-  const Surface& surface,
-  vtkIdType numPoints,
-  const float* positions,
-  const float* normals,
-  const float* tcoords)
-{
-  mikk::MeshInput in;
-  in.NumberOfFaces = surface.NumFaces;
-  in.FaceOffsets = surface.FaceOffsets;
-  in.FaceConnectivity = surface.FaceConnectivity;
-  in.NumberOfPoints = numPoints;
-  in.Positions = positions;
-  in.Normals = normals;
-  in.TCoords = tcoords;
-  return mikk::ComputeMikkTSpace(in,
-    0,
-    [filter](double progress)
-    {
-      filter->UpdateProgress(0.05 + 0.8 * progress);
-      return filter->GetAbortExecute() != 0;
-    });
-}
-
 /// Why the kernel could not compute frames (empty when it could).
 std::string KernelProblem(const mikk::Result& result, vtkIdType numPoints)
 {
@@ -851,7 +823,21 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
   const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
   filter->UpdateProgress(0.05);
 
-  mikk::Result result = RunKernel(filter, surface, numPoints, positions, normals, tcoords);
+  // The kernel's corner frames, with progress from 0.05 to 0.85.
+  const mikk::MeshInput kernelInput{ surface.NumFaces,
+    surface.FaceOffsets,
+    surface.FaceConnectivity,
+    numPoints,
+    positions,
+    normals,
+    tcoords };
+  mikk::Result result = mikk::ComputeMikkTSpace(kernelInput,
+    0,
+    [filter](double progress)
+    {
+      filter->UpdateProgress(0.05 + 0.8 * progress);
+      return filter->GetAbortExecute() != 0;
+    });
   if (result.Aborted || filter->GetAbortExecute())
   {
     return abort();
@@ -876,19 +862,15 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
     return abort();
   }
 
-  const auto write = [&](auto* arrayType)
-  {
-    using OutArray = std::remove_pointer_t<decltype(arrayType)>;
-    WriteOutput<OutArray>(
-      request, surface, result.Corners, positions, contractNormals, assignment, output);
-  };
   if (request.DoublePrecision)
   {
-    write(static_cast<vtkDoubleArray*>(nullptr));
+    WriteOutput<vtkDoubleArray>(
+      request, surface, result.Corners, positions, contractNormals, assignment, output);
   }
   else
   {
-    write(static_cast<vtkFloatArray*>(nullptr));
+    WriteOutput<vtkFloatArray>(
+      request, surface, result.Corners, positions, contractNormals, assignment, output);
   }
   filter->UpdateProgress(1.0);
   return 1;
