@@ -64,8 +64,7 @@ constexpr uint8_t kDegenerate = 1; // two equal corner positions
 constexpr uint8_t kDead = 2;       // face skipped (bad ids)
 constexpr uint8_t kGWA = 4;        // group with any: no direction contribution, never seeds
 constexpr uint8_t kOrient = 8;     // positive UV orientation
-constexpr uint8_t kOneDegenQuad = 16;
-constexpr uint8_t kMulti0 = 32; // (kMulti0 << i): corner i's face corner has several writers
+constexpr uint8_t kMulti0 = 32;    // (kMulti0 << i): corner i's face corner has several writers
 constexpr uint8_t kExcluded = kDegenerate | kDead;
 
 //------------------------------------------------------------------------------
@@ -661,21 +660,14 @@ void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
   Tris[size_t(t) + 1].Flags |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
 }
 
-// The reference's rules for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
-// their directions are complete: a quad with one degenerate triangle is marked, and two good
-// triangles of different orientation take the one of the larger UV area (a GWA second
-// triangle always takes the first's).
+// The reference's rule for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
+// their directions are complete: two good triangles of different orientation take the one of
+// the larger UV area (a GWA second triangle always takes the first's).
 void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
 {
   uint8_t& fa = Tris[size_t(t)].Flags;
   uint8_t& fb = Tris[size_t(t) + 1].Flags;
-  const bool degA = (fa & kDegenerate) != 0, degB = (fb & kDegenerate) != 0;
-  if (degA != degB)
-  {
-    fa |= kOneDegenQuad;
-    fb |= kOneDegenQuad;
-  }
-  else if (!degA && ((fa ^ fb) & kOrient))
+  if (!((fa | fb) & kDegenerate) && ((fa ^ fb) & kOrient))
   {
     const bool firstWins = (fb & kGWA) || std::fabs(rows.Det[row]) >= std::fabs(rows.Det[row + 1]);
     uint8_t& dst = firstWins ? fb : fa;
@@ -1295,8 +1287,9 @@ void Kernel::CopyDegenerates()
           {
             return;
           }
-          if (n == 4 && (tri[0].Flags & kOneDegenQuad))
+          if (n == 4 && !(tri[0].Flags & tri[1].Flags & kDegenerate))
           {
+            // a quad of which exactly one triangle is degenerate
             CopyToQuadCorner(Idx(b), t);
             return;
           }
