@@ -38,7 +38,6 @@
 #include <limits>
 #include <memory>
 #include <numeric>
-#include <tuple>
 
 // The reference rounds every float operation separately; a fused multiply-add changes results
 // in the last bits. The build adds -ffp-contract=off for GCC and Clang (GCC ignores the STDC
@@ -1202,15 +1201,8 @@ void Kernel::MergeMultiWriters()
   ForEachFaceChunk(
     [&](long long c)
     {
-      struct Contribution
-      {
-        Idx Slot, Key, Corner;
-        bool operator<(const Contribution& o) const
-        {
-          return std::tie(Slot, Key, Corner) < std::tie(o.Slot, o.Key, o.Corner);
-        }
-      };
-      std::vector<Contribution> list;
+      // {face corner, group key, triangle corner} of each frame to merge, sorted in that order
+      std::vector<std::array<Idx, 3>> list;
       ForEachTriangulatedFace(c,
         [&](long long b, long long e, Idx t)
         {
@@ -1231,14 +1223,15 @@ void Kernel::MergeMultiWriters()
           std::sort(list.begin(), list.end());
           for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
           {
-            const SideFrame* sf = &Side[size_t(list[r0].Corner)];
+            const Idx slot = list[r0][0];
+            const SideFrame* sf = &Side[size_t(list[r0][2])];
             Frame f = sf->F;
-            for (r1 = r0 + 1; r1 < list.size() && list[r1].Slot == list[r0].Slot; ++r1)
+            for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
             {
-              sf = &Side[size_t(list[r1].Corner)];
+              sf = &Side[size_t(list[r1][2])];
               f = Average(f, sf->F);
             }
-            Out[size_t(list[r0].Slot)] = ToCornerFrame(f.S, sf->Orient);
+            Out[size_t(slot)] = ToCornerFrame(f.S, sf->Orient);
           }
         });
     });
