@@ -290,11 +290,11 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
 struct Kernel
 {
   const MeshInput& In;
-  Idx NumPoints = 0;
-  Idx NumSlots = 0; // face corners
-  const long long* Off = nullptr;
-  const long long* Conn = nullptr;
-  CornerFrame* Out = nullptr;
+  const Idx NumPoints;
+  const Idx NumSlots; // face corners
+  const long long* const Off;
+  const long long* const Conn;
+  CornerFrame* const Out;
 
   // welding
   std::vector<Idx> Rep; // welded id of a point, -1 if it contains a NaN
@@ -327,8 +327,14 @@ struct Kernel
   std::vector<Idx> FanStart, Fan;
   std::vector<SideFrame> Side; // 3 per triangle if AnyMulti
 
-  explicit Kernel(const MeshInput& in)
+  // `res.Corners` holds one frame per face corner (CheckInput).
+  Kernel(const MeshInput& in, Result& res)
     : In(in)
+    , NumPoints(Idx(std::max(0LL, in.NumberOfPoints)))
+    , NumSlots(Idx(res.Corners.size()))
+    , Off(in.FaceOffsets)
+    , Conn(in.FaceConnectivity)
+    , Out(res.Corners.data())
   {
   }
 
@@ -1315,8 +1321,11 @@ void Kernel::Finish(Result& res)
 {
   constexpr vtkIdType kChunk = 65536;
   const vtkIdType numChunks = (vtkIdType(NumSlots) + kChunk - 1) / kChunk;
-  std::vector<long long> defaults(size_t(numChunks), 0), nonFinite(size_t(numChunks), 0),
-    cancelled(size_t(numChunks), 0);
+  struct CornerCounts
+  {
+    long long Defaults = 0, NonFinite = 0, Cancelled = 0;
+  };
+  std::vector<CornerCounts> counts(static_cast<size_t>(numChunks));
   vtkSMPTools::For(0,
     numChunks,
     1,
@@ -1325,27 +1334,28 @@ void Kernel::Finish(Result& res)
       for (vtkIdType c = cb; c < ce; ++c)
       {
         const vtkIdType e = std::min(vtkIdType(NumSlots), (c + 1) * kChunk);
+        CornerCounts& n = counts[size_t(c)];
         for (CornerFrame* o = Out + c * kChunk; o != Out + e; ++o)
         {
           const bool unwritten = o->Sign == 0.0f;
           if (unwritten || !Finite(V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }))
           {
             *o = DefaultCornerFrame;
-            ++defaults[size_t(c)];
-            nonFinite[size_t(c)] += unwritten ? 0 : 1;
+            ++n.Defaults;
+            n.NonFinite += unwritten ? 0 : 1;
           }
           else
           {
-            cancelled[size_t(c)] += IsCancelled(*o) ? 1 : 0;
+            n.Cancelled += IsCancelled(*o) ? 1 : 0;
           }
         }
       }
     });
-  for (vtkIdType c = 0; c < numChunks; ++c)
+  for (const CornerCounts& n : counts)
   {
-    res.NumberOfDefaultCorners += defaults[size_t(c)];
-    res.NumberOfNonFiniteCorners += nonFinite[size_t(c)];
-    res.NumberOfCancelledCorners += cancelled[size_t(c)];
+    res.NumberOfDefaultCorners += n.Defaults;
+    res.NumberOfNonFiniteCorners += n.NonFinite;
+    res.NumberOfCancelledCorners += n.Cancelled;
   }
 }
 
@@ -1464,12 +1474,7 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
   {
     return res;
   }
-  Kernel K(in);
-  K.NumPoints = Idx(std::max(0LL, in.NumberOfPoints));
-  K.NumSlots = Idx(res.Corners.size());
-  K.Off = in.FaceOffsets;
-  K.Conn = in.FaceConnectivity;
-  K.Out = res.Corners.data();
+  Kernel K(in, res);
   const auto aborted = [&](double p)
   {
     res.Aborted = progress && progress(p);
