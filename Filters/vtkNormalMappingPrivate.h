@@ -289,6 +289,45 @@ vtkSmartPointer<vtkCellArray> RepointCells(vtkCellArray* cells,
   vtkIdType base,
   vtkIdType size,
   vtkIdType maxId);
+
+/**
+ * The output of a method that splits points: the input with a copy of each point of `source`
+ * appended (CopyWithAppendedPoints), the connectivity positions of `repoint` (counted over the
+ * polygons' connectivity, then the strips') re-pointed to the copies, and `frames` as its frame
+ * arrays, whose tuples the caller has written. `computedNormals`, the normals the filter computed
+ * for the input points (null when the input had its own), follow the point data and become the
+ * output's normals.
+ */
+template<typename ArrayT>
+void WriteSplitOutput(vtkPolyData* input,
+  vtkPolyData* output,
+  const std::vector<vtkIdType>& source,
+  const std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
+  const OutputFrames<ArrayT>& frames,
+  vtkDataArray* computedNormals)
+{
+  CopyWithAppendedPoints(input, output, source, frames.Names());
+  vtkPointData* outPD = output->GetPointData();
+  if (!source.empty())
+  {
+    const vtkIdType numIn = input->GetNumberOfPoints();
+    const vtkIdType maxId = numIn + static_cast<vtkIdType>(source.size()) - 1;
+    const vtkIdType polySize = input->GetPolys()->GetNumberOfConnectivityIds();
+    const vtkIdType stripSize = input->GetStrips()->GetNumberOfConnectivityIds();
+    output->SetPolys(RepointCells(input->GetPolys(), repoint, 0, polySize, maxId));
+    output->SetStrips(RepointCells(input->GetStrips(), repoint, polySize, stripSize, maxId));
+    if (computedNormals)
+    {
+      outPD->SetNormals(
+        vtkDataArray::SafeDownCast(ExtendPointArray(computedNormals, numIn, source)));
+    }
+  }
+  else if (computedNormals)
+  {
+    outPD->SetNormals(computedNormals);
+  }
+  frames.AddTo(outPD);
+}
 }
 }
 

@@ -743,30 +743,13 @@ void WriteOutput(const MikkTSpaceRequest& request,
   }
   std::vector<CornerFrame>().swap(frames);
   const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
-  CopyWithAppendedPoints(input, output, a.SplitSource, arrays.Names());
-  if (numSplits > 0)
-  {
-    const vtkIdType maxId = numIn + numSplits - 1;
-    if (s.PolyCorners > 0)
-    {
-      output->SetPolys(RepointCells(input->GetPolys(), a.Repoint, 0, s.PolyCorners, maxId));
-    }
-    if (s.StripCorners > 0)
-    {
-      output->SetStrips(
-        RepointCells(input->GetStrips(), a.Repoint, s.PolyCorners, s.StripCorners, maxId));
-    }
-  }
   WritePointFrames(request, contractNormals, a, numIn, arrays);
-  vtkPointData* outPD = output->GetPointData();
-  if (request.ComputedNormals)
-  {
-    // the filter's computed array (named "Normals", of the output type), extended like the
-    // point data
-    outPD->SetNormals(vtkDataArray::SafeDownCast(
-      numSplits > 0 ? ExtendPointArray(request.Normals, numIn, a.SplitSource) : request.Normals));
-  }
-  arrays.AddTo(outPD);
+  WriteSplitOutput(input,
+    output,
+    a.SplitSource,
+    a.Repoint,
+    arrays,
+    request.ComputedNormals ? request.Normals : nullptr);
   if (cellTangents)
   {
     output->GetCellData()->SetTangents(cellTangents);

@@ -1242,57 +1242,29 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     vtkSmartPointer<OutArray<OutT>> computedNormals,
     const ShadingNormals& normals);
 
-  /// The split points' -1 frames, written after the input points, and the cells on their
-  /// mirrored side re-pointed to them in the output.
-  template<typename OutT>
-  void AppendSplitFrames(const std::vector<SplitPoint>& splits, const FrameArrays<OutT>& out)
-  {
-    const vtkIdType numSplits = static_cast<vtkIdType>(splits.size());
-    for (vtkIdType i = 0; i < numSplits; ++i)
-    {
-      out.Write(this->NumberOfPoints + i, splits[i].Normal, splits[i].Tangent, -1.0);
-    }
-    const auto repoint = MirroredCorners(
-      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
-    const vtkIdType polySize = this->Cells[0]->GetNumberOfConnectivityIds();
-    const vtkIdType stripSize = this->Cells[1]->GetNumberOfConnectivityIds();
-    const vtkIdType maxId = this->NumberOfPoints + numSplits - 1;
-    this->Output->SetPolys(
-      vtkNormalMapping::detail::RepointCells(this->Cells[0], repoint, 0, polySize, maxId));
-    this->Output->SetStrips(
-      vtkNormalMapping::detail::RepointCells(this->Cells[1], repoint, polySize, stripSize, maxId));
-  }
-
   /**
-   * The output: the input with the split points appended (their point data copied, the computed
-   * normals too) and their mirrored corners re-pointed, the point frames, and the cell tangents
-   * when asked for.
+   * The output (WriteSplitOutput): the split points' -1 frames after the input points', the
+   * corners on their mirrored side re-pointed to them, and the cell tangents when asked for.
    */
   template<typename OutT>
   void WriteOutput(const std::vector<SplitPoint>& splits,
-    OutputFrames<OutT>& frames,
-    vtkSmartPointer<OutArray<OutT>> computedNormals)
+    const OutputFrames<OutT>& frames,
+    vtkDataArray* computedNormals)
   {
+    const FrameArrays<OutT> out = StorageOf<OutT>(frames);
     std::vector<vtkIdType> splitSource(splits.size());
-    std::transform(
-      splits.begin(), splits.end(), splitSource.begin(), [](const SplitPoint& s) { return s.Id; });
-    vtkNormalMapping::detail::CopyWithAppendedPoints(
-      this->Input, this->Output, splitSource, frames.Names());
-    if (!splits.empty())
+    for (size_t i = 0; i < splits.size(); ++i)
     {
-      if (computedNormals)
-      {
-        computedNormals = OutArray<OutT>::SafeDownCast(vtkNormalMapping::detail::ExtendPointArray(
-          computedNormals, this->NumberOfPoints, splitSource));
-      }
-      this->AppendSplitFrames(splits, StorageOf<OutT>(frames));
+      splitSource[i] = splits[i].Id;
+      out.Write(this->NumberOfPoints + static_cast<vtkIdType>(i),
+        splits[i].Normal,
+        splits[i].Tangent,
+        -1.0);
     }
-    vtkPointData* outPD = this->Output->GetPointData();
-    if (computedNormals)
-    {
-      outPD->SetNormals(computedNormals);
-    }
-    frames.AddTo(outPD);
+    const auto repoint = MirroredCorners(
+      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    vtkNormalMapping::detail::WriteSplitOutput(
+      this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
     {
       const vtkIdType numCells = this->Input->GetNumberOfCells();
