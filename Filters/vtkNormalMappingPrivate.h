@@ -231,6 +231,33 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tup
   return array;
 }
 
+/// The storage of the frame arrays (OutputFrames::Storage), point p at index p.
+template<typename T>
+struct FrameStorage
+{
+  T* Tangents;
+  T* Signs;
+  T* Bitangents; // null when not asked for
+
+  /// Point p's frame: unit tangent t, its sign, and the bitangent from the unit normal n.
+  void Write(vtkIdType p, const glm::dvec3& n, const glm::dvec3& t, double sign) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Tangents[3 * p + c] = static_cast<T>(t[c]);
+    }
+    this->Signs[p] = static_cast<T>(sign);
+    if (this->Bitangents)
+    {
+      const glm::dvec3 b = Bitangent(n, t, sign);
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Bitangents[3 * p + c] = static_cast<T>(b[c]);
+      }
+    }
+  }
+};
+
 /**
  * The output's point frame arrays, `tuples` long, of one array class (vtkFloatArray or
  * vtkDoubleArray): tangents, signs and, when asked for, bitangents, named as
@@ -250,6 +277,14 @@ struct OutputFrames
           ? NewArray<ArrayT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
           : nullptr)
   {
+  }
+
+  /// Their storage, to write frames into.
+  FrameStorage<typename ArrayT::ValueType> Storage() const
+  {
+    return { this->Tangents->GetPointer(0),
+      this->Signs->GetPointer(0),
+      this->Bitangents ? this->Bitangents->GetPointer(0) : nullptr };
   }
 
   /// Their names, the point arrays AddTo replaces.

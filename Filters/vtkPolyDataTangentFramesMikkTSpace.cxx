@@ -667,7 +667,6 @@ void WritePointFrames(const MikkTSpaceRequest& request,
   vtkIdType numIn,
   const OutputFrames<OutArray>& arrays)
 {
-  using OutT = typename OutArray::ValueType;
   const float signFactor = request.GLTFSign ? -1.0f : 1.0f;
   const auto pointFrame = [&](vtkIdType p) -> const CornerFrame&
   {
@@ -680,9 +679,7 @@ void WritePointFrames(const MikkTSpaceRequest& request,
   };
   const auto sourceOf = [&](vtkIdType p)
   { return p < numIn ? p : a.SplitSource[static_cast<size_t>(p - numIn)]; };
-  OutT* tOut = arrays.Tangents->GetPointer(0);
-  OutT* sOut = arrays.Signs->GetPointer(0);
-  OutT* bOut = arrays.Bitangents ? arrays.Bitangents->GetPointer(0) : nullptr;
+  const auto out = arrays.Storage();
   vtkSMPTools::For(0,
     arrays.Tangents->GetNumberOfTuples(),
     [&](vtkIdType b, vtkIdType e)
@@ -690,24 +687,14 @@ void WritePointFrames(const MikkTSpaceRequest& request,
       for (vtkIdType p = b; p < e; ++p)
       {
         const CornerFrame f = ContractFrame(pointFrame(p), contractNormals[sourceOf(p)]);
-        const float sign = signFactor * f.Sign;
-        for (int k = 0; k < 3; ++k)
-        {
-          tOut[3 * p + k] = static_cast<OutT>(f.Tangent[k]);
-        }
-        sOut[p] = static_cast<OutT>(sign);
-        if (bOut)
-        {
-          // The unit normal the tangent was made perpendicular to; a zero or non-finite normal
-          // gives a zero bitangent (SafeNormalize), never NaN.
-          const glm::dvec3 n = SafeNormalize(contractNormals[sourceOf(p)]);
-          const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
-          const glm::dvec3 bt = Bitangent(n, t, static_cast<double>(sign));
-          for (int k = 0; k < 3; ++k)
-          {
-            bOut[3 * p + k] = static_cast<OutT>(bt[k]);
-          }
-        }
+        // For the bitangent, the unit normal the tangent was made perpendicular to; a zero or
+        // non-finite normal gives a zero bitangent (SafeNormalize), never NaN.
+        const glm::dvec3 n =
+          out.Bitangents ? SafeNormalize(contractNormals[sourceOf(p)]) : glm::dvec3(0.0);
+        out.Write(p,
+          n,
+          glm::dvec3(f.Tangent[0], f.Tangent[1], f.Tangent[2]),
+          static_cast<double>(signFactor * f.Sign));
       }
     });
 }

@@ -531,31 +531,9 @@ enum class PointKind : unsigned char
   Fallback, ///< no usable triangle
 };
 
-/// The output arrays of the frames.
+/// Where the frames of values OutT are written (OutputFrames::Storage).
 template<typename OutT>
-struct FrameArrays
-{
-  OutT* Tangents;
-  OutT* Signs;
-  OutT* Bitangents; // null when not asked for
-
-  void Write(vtkIdType p, const dvec3& n, const dvec3& t, double sign) const
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Tangents[3 * p + c] = static_cast<OutT>(t[c]);
-    }
-    this->Signs[p] = static_cast<OutT>(sign);
-    if (this->Bitangents)
-    {
-      const dvec3 b = vtkNormalMapping::Bitangent(n, t, sign);
-      for (int c = 0; c < 3; ++c)
-      {
-        this->Bitangents[3 * p + c] = static_cast<OutT>(b[c]);
-      }
-    }
-  }
-};
+using FrameArrays = vtkNormalMapping::detail::FrameStorage<OutT>;
 
 /// A point on a mirror seam with splitting: its normal and the frame of its -1 side, which goes
 /// to its copy.
@@ -863,14 +841,6 @@ vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkId
 template<typename OutT>
 using OutputFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
 
-/// The storage of `frames`, to write frames into.
-template<typename OutT>
-FrameArrays<OutT> StorageOf(const OutputFrames<OutT>& frames)
-{
-  return { frames.Tangents->GetPointer(0),
-    frames.Signs->GetPointer(0),
-    frames.Bitangents ? frames.Bitangents->GetPointer(0) : nullptr };
-}
 } // namespace
 
 /// One execution on one polydata, with what it needs from the filter.
@@ -1251,7 +1221,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const OutputFrames<OutT>& frames,
     vtkDataArray* computedNormals)
   {
-    const FrameArrays<OutT> out = StorageOf<OutT>(frames);
+    const FrameArrays<OutT> out = frames.Storage();
     std::vector<vtkIdType> splitSource(splits.size());
     for (size_t i = 0; i < splits.size(); ++i)
     {
@@ -1337,7 +1307,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   OutputFrames<OutT> frames(
     numPoints + (self->Splitting ? sums->SeamPoints() : 0), self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  WriteFrames(numPoints, *sums, normals, self->Splitting, StorageOf<OutT>(frames), kinds.get());
+  WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());
   const std::vector<vtkIdType> conflicts =
     PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
   const std::vector<vtkIdType> fallbacks =
@@ -1350,12 +1320,8 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(this->Tris,
-      this->CornerSides.get(),
-      normals,
-      kinds.get(),
-      fallbacks,
-      StorageOf<OutT>(frames));
+    FillFallbacks(
+      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frames.Storage());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
