@@ -1231,8 +1231,10 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         splits[i].Tangent,
         -1.0);
     }
-    const auto repoint = MirroredCorners(
-      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    const auto repoint = splits.empty()
+      ? std::vector<std::pair<vtkIdType, vtkIdType>>()
+      : MirroredCorners(
+          this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
     vtkNormalMapping::detail::WriteSplitOutput(
       this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
