@@ -36,8 +36,7 @@
 /*
  * How the weighted methods run (everything in double, the passes on vtkSMPTools::For):
  * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
- *    normals are computed, every point gets the list of its triangle corners in that order (the
- *    links).
+ *    normals are computed, every point gets the list of its triangles in that order (the links).
  * 2. Every point gets its shading normal: the input's, or where that is unusable (or the input
  *    has none) the area-weighted sum of its triangles' normals, through the links. Float normals
  *    that are all usable are read in place (ShadingNormals); any others become unit vectors.
