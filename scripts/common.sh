@@ -4,6 +4,11 @@
 sudo_cmd=""
 [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
 
+# apt-get as root, waiting up to 10 minutes for another apt to release its lock.
+apt_get() {
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get -o DPkg::Lock::Timeout=600 "$@"
+}
+
 # install_missing PACKAGE...: installs from Debian those of the packages that are not installed,
 # without recommends; apt's output is shown only when it fails.
 install_missing() {
@@ -15,9 +20,8 @@ install_missing() {
   [ "${#missing[@]}" -gt 0 ] || return 0
   echo "== installing missing Debian packages: ${missing[*]}"
   log="$(mktemp)"
-  { $sudo_cmd apt-get -o DPkg::Lock::Timeout=600 update -qq &&
-    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get -o DPkg::Lock::Timeout=600 install -y -qq \
-      --no-install-recommends "${missing[@]}"; } >"$log" 2>&1 || { cat "$log"; rm -f "$log"; return 1; }
+  { apt_get update -qq && apt_get install -y -qq --no-install-recommends "${missing[@]}"; } \
+    >"$log" 2>&1 || { cat "$log"; rm -f "$log"; return 1; }
   rm -f "$log"
 }
 

@@ -27,10 +27,6 @@ build="${OSMESA_BUILD_DIR:-$root/build-osmesa}"
 jobs="${OSMESA_JOBS:-2}"
 niced=(nice -n 19)
 
-apt_get() {
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get -o DPkg::Lock::Timeout=600 "$@"
-}
-
 # libosmesa6-dev: the offscreen Mesa library VTK renders through. ninja-build, dpkg-dev: the
 # VTK build and `apt-get source`. Then the third-party libraries Debian strips from VTK's
 # source (VTK uses Debian's), TBB (the SMP backend of Debian's VTK, so the thread tests see
@@ -162,7 +158,6 @@ build_vtk() {
   printf '%s\n' "$key" >"$key_file"
   rm -rf "$work"
 }
-
 
 # Every test with no way to X: no program links libX11, DISPLAY is unset, and an Xvfb that
 # refuses to start comes first on PATH, so a test that took the X path fails instead of
