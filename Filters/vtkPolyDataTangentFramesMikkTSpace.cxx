@@ -686,11 +686,11 @@ void WritePointFrames(const MikkTSpaceRequest& request,
     {
       for (vtkIdType p = b; p < e; ++p)
       {
-        const CornerFrame f = ContractFrame(pointFrame(p), contractNormals[sourceOf(p)]);
+        const glm::dvec3 normal = contractNormals[sourceOf(p)];
+        const CornerFrame f = ContractFrame(pointFrame(p), normal);
         // For the bitangent, the unit normal the tangent was made perpendicular to; a zero or
         // non-finite normal gives a zero bitangent (SafeNormalize), never NaN.
-        const glm::dvec3 n =
-          out.Bitangents ? SafeNormalize(contractNormals[sourceOf(p)]) : glm::dvec3(0.0);
+        const glm::dvec3 n = out.Bitangents ? SafeNormalize(normal) : glm::dvec3(0.0);
         out.Write(p,
           n,
           glm::dvec3(f.Tangent[0], f.Tangent[1], f.Tangent[2]),

@@ -22,7 +22,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cfloat>
 #include <cstring>
 #include <memory>
 #include <numeric>
@@ -66,6 +65,7 @@ using vtkNormalMapping::TangentMethod;
 using vtkNormalMapping::TriangleBlock;
 using vtkNormalMapping::TriangleFrame;
 using vtkNormalMapping::detail::DispatchArray;
+using vtkNormalMapping::detail::FrameStorage;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// Storage whose every entry the filter writes before reading it (not cleared first).
@@ -530,10 +530,6 @@ enum class PointKind : unsigned char
   Fallback, ///< no usable triangle
 };
 
-/// Where the frames of values OutT are written (OutputFrames::Storage).
-template<typename OutT>
-using FrameArrays = vtkNormalMapping::detail::FrameStorage<OutT>;
-
 /// A point on a mirror seam with splitting: its normal and the frame of its -1 side, which goes
 /// to its copy.
 struct SplitPoint
@@ -586,6 +582,10 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   vtkIdType numPoints)
 {
   std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  if (splits.empty())
+  {
+    return repoint;
+  }
   // Which points are split, looked up per connectivity entry; the few entries of split points
   // then find their cell and their copy by binary search.
   std::vector<unsigned char> isSplit(static_cast<size_t>(numPoints), 0);
@@ -703,7 +703,7 @@ void WriteFrames(vtkIdType numPoints,
   const ScatteredSums& sums,
   const ShadingNormals& normals,
   bool splitting,
-  const FrameArrays<OutT>& out,
+  const FrameStorage<OutT>& out,
   PointKind* kinds)
 {
   using vtkNormalMapping::PointBlock;
@@ -763,7 +763,7 @@ void FillFallbacks(const Triangles& tris,
   const ShadingNormals& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
-  const FrameArrays<OutT>& out)
+  const FrameStorage<OutT>& out)
 {
   std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
   std::vector<int> votes(fallbacks.size(), 0);
@@ -1220,7 +1220,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const OutputFrames<OutT>& frames,
     vtkDataArray* computedNormals)
   {
-    const FrameArrays<OutT> out = frames.Storage();
+    const FrameStorage<OutT> out = frames.Storage();
     std::vector<vtkIdType> splitSource(splits.size());
     for (size_t i = 0; i < splits.size(); ++i)
     {
@@ -1230,10 +1230,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         splits[i].Tangent,
         -1.0);
     }
-    const auto repoint = splits.empty()
-      ? std::vector<std::pair<vtkIdType, vtkIdType>>()
-      : MirroredCorners(
-          this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    const auto repoint = MirroredCorners(
+      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
     vtkNormalMapping::detail::WriteSplitOutput(
       this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)

@@ -2,7 +2,6 @@
 #include "vtkTangentFrameChecks.h"
 
 #include "vtkNormalMappingPrivate.h"
-
 #include "vtkTangentFrameKernels.h"
 
 #include "vtkCellArray.h"
@@ -14,7 +13,6 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
-#include <cfloat>
 #include <cmath>
 
 namespace vtkNormalMapping
