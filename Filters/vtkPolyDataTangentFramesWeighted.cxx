@@ -280,21 +280,26 @@ struct TriangleFrames
     , Area(cellTangents ? new double[n] : nullptr)
   {
   }
-  /// Stores triangle t's frame and signed corner weights.
-  void Set(vtkIdType t, const TriangleFrame& f, const double signedWeights[3])
+  /// Stores the frames and signed corner weights of a block's `count` triangles as triangles
+  /// [first, first + count).
+  void Set(vtkIdType first, const TriangleBlock& b, int count)
   {
-    for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < count; ++i)
     {
-      this->Tangent[3 * t + k] = f.Tangent[k];
-      this->SignedWeight[3 * t + k] = signedWeights[k];
-    }
-    if (this->Area)
-    {
+      const vtkIdType t = first + i;
       for (int k = 0; k < 3; ++k)
       {
-        this->Normal[3 * t + k] = f.Normal[k];
+        this->Tangent[3 * t + k] = b.Tangent[k][i];
+        this->SignedWeight[3 * t + k] = b.SignedWeight[k][i];
       }
-      this->Area[t] = f.Area;
+      if (this->Area)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          this->Normal[3 * t + k] = b.Normal[k][i];
+        }
+        this->Area[t] = b.Area[i];
+      }
     }
   }
   dvec3 TangentOf(vtkIdType t) const
@@ -467,18 +472,31 @@ struct ScatteredSums
   /// changes none of its bits: it adds zeros to sums that are never -0.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
   {
-    Side& first = this->First[p];
+    Side& side = this->First[p];
     // One branch, taken only on mirror seams: whether the point's first handedness is already
     // set and differs from this corner's.
-    const bool otherSide = (first.Weight != 0.0) & (signedWeight != 0.0) &
-      (std::signbit(first.Weight) != std::signbit(signedWeight));
+    const bool otherSide = (side.Weight != 0.0) & (signedWeight != 0.0) &
+      (std::signbit(side.Weight) != std::signbit(signedWeight));
     if (!otherSide)
     {
-      first.Add(signedWeight, tangent);
+      side.Add(signedWeight, tangent);
       return;
     }
     this->HasOther[p] = 1;
     this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
+  }
+
+  /// Adds the corners of a block's `count` triangles, whose point ids start at `ids`, in order.
+  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      const dvec3 tangent(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
+      for (int k = 0; k < 3; ++k)
+      {
+        this->Add(ids[3 * i + k], b.SignedWeight[k][i], tangent);
+      }
+    }
   }
 
   /**
@@ -539,24 +557,54 @@ struct SplitPoint
   dvec3 Tangent;
 };
 
-/// The sign of a signed corner weight: the handedness, or 0 without a frame or weight.
-signed char SideOf(double signedWeight)
+/**
+ * Per corner, the handedness its triangle gives it (TriangleBlock::Handedness: +1, -1, or 0
+ * without a frame or weight), one array per corner index k, so that each block of triangles
+ * stores its handedness as three runs.
+ */
+struct CornerSides
 {
-  return static_cast<signed char>((signedWeight > 0.0) - (signedWeight < 0.0));
-}
+  vtkIdType Count = 0; // triangles
+  Buffer<signed char> Side;
 
-/// The handedness (CornerSides) triangle t gives its corner at point id.
-int CornerHandedness(const Triangles& tris, const signed char* sides, vtkIdType t, vtkIdType id)
-{
-  for (int k = 0; k < 3; ++k)
+  explicit CornerSides(vtkIdType count)
+    : Count(count)
+    , Side(new signed char[3 * count])
   {
-    if (tris.Ids[3 * t + k] == id)
-    {
-      return sides[3 * t + k];
-    }
   }
-  return 0;
-}
+  /// Corner k of the triangles, from triangle `first` on.
+  signed char* Corner(int k, vtkIdType first) { return this->Side.get() + k * this->Count + first; }
+  int Of(vtkIdType t, int k) const { return this->Side[k * this->Count + t]; }
+
+  /// The handedness triangle t gives its corner at point id.
+  int At(const Triangles& tris, vtkIdType t, vtkIdType id) const
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tris.Ids[3 * t + k] == id)
+      {
+        return this->Of(t, k);
+      }
+    }
+    return 0;
+  }
+
+  /// The corners without handedness, as 3 t + k, in ascending order (memchr finds them).
+  std::vector<vtkIdType> Without() const
+  {
+    std::vector<vtkIdType> corners;
+    const signed char* const begin = this->Side.get();
+    const signed char* const end = begin + 3 * this->Count;
+    for (const void* at = std::memchr(begin, 0, end - begin); at;)
+    {
+      const vtkIdType j = static_cast<const signed char*>(at) - begin;
+      corners.push_back(3 * (j % this->Count) + j / this->Count);
+      at = std::memchr(begin + j + 1, 0, end - begin - j - 1);
+    }
+    std::sort(corners.begin(), corners.end());
+    return corners;
+  }
+};
 
 /**
  * The triangles [first, last] of a cell with n points that hold its corner k, in the order
@@ -577,7 +625,7 @@ void TrianglesAtCorner(vtkIdType k, vtkIdType n, bool strip, vtkIdType& first, v
  */
 std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
-  const signed char* sides,
+  const CornerSides& sides,
   const std::vector<SplitPoint>& splits,
   vtkIdType numPoints)
 {
@@ -621,7 +669,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
-            vote += CornerHandedness(tris, sides, firstTriangle + j, id);
+            vote += sides.At(tris, firstTriangle + j, id);
           }
           if (vote < 0)
           {
@@ -759,7 +807,7 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
  */
 template<typename OutT>
 void FillFallbacks(const Triangles& tris,
-  const signed char* sides,
+  const CornerSides& sides,
   const ShadingNormals& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
@@ -767,13 +815,8 @@ void FillFallbacks(const Triangles& tris,
 {
   std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
   std::vector<int> votes(fallbacks.size(), 0);
-  // Only corners without handedness can be a fallback point's: memchr finds the next one.
-  const signed char* const end = sides + 3 * tris.Count;
-  const auto nextWithout = [end](const signed char* from)
-  { return static_cast<const signed char*>(std::memchr(from, 0, end - from)); };
-  for (const signed char* side = nextWithout(sides); side; side = nextWithout(side + 1))
+  for (const vtkIdType c : sides.Without())
   {
-    const vtkIdType c = side - sides;
     const vtkIdType p = tris.Ids[c];
     if (kinds[p] != PointKind::Fallback)
     {
@@ -852,8 +895,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkIdType FirstSurfaceCell = 0;
   Triangles Tris;
   std::unique_ptr<TriangleFrames> Frames;
-  /// Per corner, the handedness the triangle gives it (SideOf its signed weight).
-  Buffer<signed char> CornerSides;
+  /// Per corner, the handedness its triangle gives it.
+  std::unique_ptr<CornerSides> Sides;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction)
@@ -1014,10 +1057,11 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   /**
-   * Calls visit(t, frame, signedWeights) for every triangle t of [begin, end), in parallel, or in
-   * triangle order when `serial`: `signedWeights` are its corners' weights for `method` signed
-   * with the handedness the triangle gives their points' shading normals (CornerSign), which
-   * also go to CornerSides. Returns the number of triangles without a frame.
+   * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
+   * parallel, or in triangle order when `serial`, as VisitFrames does, with the block's
+   * SignedWeight: its corners' weights for `method` signed with the handedness the triangle gives
+   * their points' shading normals (CornerSign), which also go to Sides. Returns the number
+   * of triangles without a frame.
    */
   template<typename Visit>
   vtkIdType VisitSignedFrames(TangentMethod method,
@@ -1032,22 +1076,17 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       serial,
       [&](vtkIdType first, const TriangleBlock& b, int count)
       {
-        signed char* sides = this->CornerSides.get() + 3 * first;
+        for (int k = 0; k < 3; ++k)
+        {
+          std::memcpy(this->Sides->Corner(k, first), b.Handedness[k], count);
+        }
         vtkIdType none = 0;
         for (int i = 0; i < count; ++i)
         {
-          const double weights[3] = {
-            b.SignedWeight[0][i], b.SignedWeight[1][i], b.SignedWeight[2][i]
-          };
-          for (int k = 0; k < 3; ++k)
-          {
-            sides[3 * i + k] = SideOf(weights[k]);
-          }
-          const TriangleFrame f = b.Frame(i);
-          visit(first + i, f, weights);
-          none += f.Orientation == 0 ? 1 : 0;
+          none += b.Orientation[i] == 0.0 ? 1 : 0;
         }
         degenerate += none;
+        visit(first, b, count);
       },
       begin,
       end,
@@ -1084,13 +1123,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         0,
         count,
         true,
-        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
-        {
-          for (int k = 0; k < 3; ++k)
-          {
-            sums.Add(ids[3 * t + k], weights[k], f.Tangent);
-          }
-        });
+        [&](vtkIdType first, const TriangleBlock& b, int n)
+        { sums.AddBlock(ids + 3 * first, b, n); });
       return sums;
     }
 
@@ -1109,8 +1143,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         begin,
         end,
         false,
-        [&](vtkIdType t, const TriangleFrame& f, const double* weights)
-        { frames.Set(t - begin, f, weights); });
+        [&](vtkIdType first, const TriangleBlock& b, int n) { frames.Set(first - begin, b, n); });
       vtkSMPTools::For(0,
         owners,
         1,
@@ -1230,8 +1263,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         splits[i].Tangent,
         -1.0);
     }
-    const auto repoint = MirroredCorners(
-      this->Cells, this->Tris, this->CornerSides.get(), splits, this->NumberOfPoints);
+    const auto repoint =
+      MirroredCorners(this->Cells, this->Tris, *this->Sides, splits, this->NumberOfPoints);
     vtkNormalMapping::detail::WriteSplitOutput(
       this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
@@ -1297,7 +1330,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  this->CornerSides.reset(new signed char[3 * this->Tris.Count]);
+  this->Sides.reset(new CornerSides(this->Tris.Count));
   std::optional<ScatteredSums> sums(
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
@@ -1319,8 +1352,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(
-      this->Tris, this->CornerSides.get(), normals, kinds.get(), fallbacks, frames.Storage());
+    FillFallbacks(this->Tris, *this->Sides, normals, kinds.get(), fallbacks, frames.Storage());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();

@@ -392,7 +392,7 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
  * The triangles of a block, as separate arrays per component (triangle i at index i), so that
  * loops over them vectorize: their edges, UV deltas and largest coordinates (SetCorners), and
  * after ComputeTriangleBlock their frames and corner angles; with their corners' shading normals
- * (SetCornerNormal), after SignCornerWeights their signed corner weights.
+ * (SetCornerNormal), after SignCornerWeights their signed corner weights and handedness.
  */
 struct TriangleBlock
 {
@@ -409,6 +409,9 @@ struct TriangleBlock
   /// For SignCornerWeights: component c of the shading normal at corner k at CornerNormal[k][c][i]
   double CornerNormal[3][3][Size];
   double SignedWeight[3][Size]; ///< after SignCornerWeights: corner k's signed weight
+  /// After SignCornerWeights: the sign of corner k's signed weight (+1, -1, or 0 without a frame
+  /// or weight), its handedness.
+  signed char Handedness[3][Size];
 
   /// Triangle i's input, from its corners.
   void SetCorners(int i, const glm::dvec3 p[3], const glm::dvec2 uv[3])
@@ -550,8 +553,8 @@ inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
 /**
  * For the first `count` triangles of a block whose frames ComputeTriangleBlock gave (with their
  * corner angles for AngleWeighted) and whose corner normals are set: each corner's CornerWeight,
- * signed with the handedness its triangle gives its shading normal (CornerSign), in a plain loop
- * the compiler vectorizes.
+ * signed with the handedness its triangle gives its shading normal (CornerSign), and that sign,
+ * in a plain loop the compiler vectorizes.
  */
 inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
 {
@@ -561,8 +564,10 @@ inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
     {
       const glm::dvec3 normal(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
       const glm::dvec3 n(b.CornerNormal[k][0][i], b.CornerNormal[k][1][i], b.CornerNormal[k][2][i]);
-      b.SignedWeight[k][i] =
+      const double weight =
         CornerSign(b.Orientation[i], normal, n) * CornerWeight(method, b.Area[i], b.Angle[k][i]);
+      b.SignedWeight[k][i] = weight;
+      b.Handedness[k][i] = static_cast<signed char>((weight > 0.0) - (weight < 0.0));
     }
   }
 }
