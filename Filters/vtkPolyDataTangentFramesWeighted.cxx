@@ -732,6 +732,25 @@ PointKind KindOf(const PointSums& s, bool splitting, int& side)
 }
 
 /**
+ * KindOf point p's sums, and the tangent sum of the side it takes. A point off mirror seams has
+ * one side at most, its first: read in place, without gathering its PointSums.
+ */
+PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& side, dvec3& tangent)
+{
+  if (!sums.HasOther[p])
+  {
+    const ScatteredSums::Side& first = sums.First[p];
+    side = first.Weight > 0.0 ? 0 : 1;
+    tangent = first.Tangent;
+    return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
+  }
+  const PointSums s = sums.Of(p);
+  const PointKind kind = KindOf(s, splitting, side);
+  tangent = s.Tangent[side];
+  return kind;
+}
+
+/**
  * ComputePointBlock, compiled also for the wider vector units of x86-64 CPUs, as
  * ComputeFrameBlock is.
  */
@@ -766,10 +785,10 @@ void WriteFrames(vtkIdType numPoints,
         const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
         for (int i = 0; i < count; ++i)
         {
-          const PointSums s = sums.Of(first + i);
           int side = 0;
-          kinds[first + i] = KindOf(s, splitting, side);
-          b.Set(i, normals.Stored(first + i), s.Tangent[side]);
+          dvec3 tangent;
+          kinds[first + i] = KindOf(sums, first + i, splitting, side, tangent);
+          b.Set(i, normals.Stored(first + i), tangent);
           signs[i] = side == 0 ? 1.0 : -1.0;
         }
         ComputeUnitFrames(b, count, !normals.Unit);
