@@ -17,6 +17,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <cstdint>
 #include <string>
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
@@ -82,17 +83,24 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // One pass without early exit (it vectorizes), then a search only when something is wrong.
-      bool decreasing = false;
-      vtkIdType notTriangles = 0;
+      // One pass without early exit or 64-bit comparisons (SSE2 has none), so that it vectorizes
+      // with any instruction set; then a search only when something is wrong. In unsigned
+      // arithmetic a cell size n is negative when its top bit is set and, when no size is
+      // negative, below 3 when n - 3 has its top bit set.
+      using Bits = std::uint64_t;
+      Bits negative = 0;
+      Bits notThree = 0;
+      Bits below3 = 0;
       for (vtkIdType c = 0; c < numCells; ++c)
       {
-        const auto n = offsets[c + 1] - offsets[c];
-        decreasing |= n < 0;
-        shortCells += n < 3 ? 1 : 0;
-        notTriangles += n != 3 ? 1 : 0;
+        const Bits n = static_cast<Bits>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]));
+        negative |= n;
+        notThree |= n ^ 3;
+        below3 += (n - 3) >> 63;
       }
-      trianglesOnly = trianglesOnly && notTriangles == 0;
+      const bool decreasing = (negative >> 63) != 0;
+      shortCells += static_cast<vtkIdType>(below3);
+      trianglesOnly = trianglesOnly && notThree == 0;
       for (vtkIdType c = 0; decreasing && c < numCells; ++c)
       {
         if (offsets[c + 1] < offsets[c])
