@@ -313,22 +313,21 @@ struct TriangleFrames
 };
 
 /**
- * The shading normal of every point, as 3-tuples of floats or doubles: either unit vectors
- * (Unit), or a float normal array whose every normal is usable, normalized where a unit vector
- * is needed. Corner signs need only the direction, so they read the stored vector: a float
- * normal's dot product with a triangle normal neither overflows nor underflows in double.
+ * The shading normal of every point, as 3-tuples of T: either unit vectors of doubles (Unit), or
+ * a float normal array whose every normal is usable, normalized where a unit vector is needed.
+ * Corner signs need only the direction, so they read the stored vector: a float normal's dot
+ * product with a triangle normal neither overflows nor underflows in double. The type is a
+ * template argument, so that the loops that read a normal per corner or point do not choose.
  */
+template<typename T>
 struct ShadingNormals
 {
-  const float* Float = nullptr;
-  const double* Double = nullptr;
+  const T* Data = nullptr;
   bool Unit = true;
 
   dvec3 Stored(vtkIdType p) const
   {
-    return this->Float
-      ? dvec3(this->Float[3 * p], this->Float[3 * p + 1], this->Float[3 * p + 2])
-      : dvec3(this->Double[3 * p], this->Double[3 * p + 1], this->Double[3 * p + 2]);
+    return dvec3(this->Data[3 * p], this->Data[3 * p + 1], this->Data[3 * p + 2]);
   }
   dvec3 UnitOf(vtkIdType p) const
   {
@@ -765,10 +764,10 @@ void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool norm
  * unit normal, a block of points at a time (ComputeUnitFrames). Fallback points are only marked
  * in `kinds`.
  */
-template<typename OutT>
+template<typename OutT, typename NormalT>
 void WriteFrames(vtkIdType numPoints,
   const ScatteredSums& sums,
-  const ShadingNormals& normals,
+  const ShadingNormals<NormalT>& normals,
   bool splitting,
   const FrameStorage<OutT>& out,
   PointKind* kinds)
@@ -824,10 +823,10 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
  * the links, which this pass does not need). A fallback point's corners have no handedness
  * (`sides`), so only those corners are looked at.
  */
-template<typename OutT>
+template<typename OutT, typename NormalT>
 void FillFallbacks(const Triangles& tris,
   const CornerSides& sides,
-  const ShadingNormals& normals,
+  const ShadingNormals<NormalT>& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
   const FrameStorage<OutT>& out)
@@ -867,8 +866,9 @@ void FillFallbacks(const Triangles& tris,
 }
 
 /// The -1 frames of the seam points, for their copies.
+template<typename NormalT>
 std::vector<SplitPoint> SplitFrames(const ScatteredSums& sums,
-  const ShadingNormals& normals,
+  const ShadingNormals<NormalT>& normals,
   const std::vector<vtkIdType>& conflicts)
 {
   std::vector<SplitPoint> splits(conflicts.size());
@@ -951,12 +951,12 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    * `method` signed with their handedness. Float and double points and texture coordinates are
    * read through their concrete types, any other type through vtkDataArray.
    */
-  template<typename Visit>
+  template<typename Visit, typename NormalT = double>
   void VisitFrames(bool serial,
     const Visit& visit,
     vtkIdType begin,
     vtkIdType end,
-    const ShadingNormals* normals = nullptr,
+    const ShadingNormals<NormalT>* normals = nullptr,
     TangentMethod method = TangentMethod::Unweighted)
   {
     vtkDataArray* pointArray = this->Input->GetPoints()->GetData();
@@ -1082,9 +1082,9 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    * their points' shading normals (CornerSign), which also go to Sides. Returns the number
    * of triangles without a frame.
    */
-  template<typename Visit>
+  template<typename Visit, typename NormalT>
   vtkIdType VisitSignedFrames(TangentMethod method,
-    const ShadingNormals& normals,
+    const ShadingNormals<NormalT>& normals,
     vtkIdType begin,
     vtkIdType end,
     bool serial,
@@ -1123,8 +1123,9 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    * frames stay in the cache until they are added. With cell tangents every frame is stored (one
    * chunk), for CellTangentArray. Counts the triangles without a frame in `degenerate`.
    */
+  template<typename NormalT>
   ScatteredSums SumFrames(TangentMethod method,
-    const ShadingNormals& normals,
+    const ShadingNormals<NormalT>& normals,
     bool cellTangents,
     vtkIdType& degenerate)
   {
@@ -1178,20 +1179,11 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   /**
-   * The shading normals from a point normal array with `unusable` unusable normals: the float
-   * array itself when every normal is usable, else unit normals stored in `unit`, where the
-   * unusable ones take the area-weighted normal of their triangles.
+   * The unit shading normals of a point normal array with `unusable` unusable normals, stored in
+   * `unit`: the unusable ones take the area-weighted normal of their triangles.
    */
-  ShadingNormals ShadingNormalsOf(vtkDataArray* array, vtkIdType unusable, Buffer<dvec3>& unit)
+  ShadingNormals<double> UnitNormals(vtkDataArray* array, vtkIdType unusable, Buffer<dvec3>& unit)
   {
-    ShadingNormals normals;
-    auto* floats = vtkFloatArray::FastDownCast(array);
-    if (floats && unusable == 0)
-    {
-      normals.Float = floats->GetPointer(0);
-      normals.Unit = false;
-      return normals;
-    }
     unit.reset(new dvec3[this->NumberOfPoints]);
     // Unit normals, zero where a normal is zero or non-finite.
     ForEachNormalRange(array,
@@ -1211,8 +1203,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         unit[p] = unit[p] == dvec3(0.0) ? geometric[p] : unit[p];
       }
     }
-    normals.Double = &unit[0].x;
-    return normals;
+    return ShadingNormals<double>{ &unit[0].x, true };
   }
 
   /// Smooth point normals (SmoothNormals, +z where a point has no area) as an output array.
@@ -1258,10 +1249,10 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
   template<typename OutT>
   int Run();
-  template<typename OutT>
+  template<typename OutT, typename NormalT>
   int RunWeighted(TangentMethod method,
     vtkSmartPointer<OutArray<OutT>> computedNormals,
-    const ShadingNormals& normals);
+    const ShadingNormals<NormalT>& normals);
 
   /**
    * The output (WriteSplitOutput): the split points' -1 frames after the input points', the
@@ -1333,18 +1324,25 @@ int vtkPolyDataTangentFrames::Internals::Run()
       computedNormals != nullptr,
       std::is_same<OutT, double>::value);
   }
-  // The frames follow the normals as stored.
+  // The frames follow the normals as stored: a float array whose every normal is usable as it
+  // is, any other as unit vectors.
+  const auto method = static_cast<TangentMethod>(self->Method);
+  vtkDataArray* normals = computedNormals ? computedNormals.Get() : this->Normals;
+  auto* floats = vtkFloatArray::FastDownCast(normals);
+  if (floats && unusable == 0)
+  {
+    return this->RunWeighted<OutT>(
+      method, computedNormals, ShadingNormals<float>{ floats->GetPointer(0), false });
+  }
   Buffer<dvec3> unitNormals;
-  const ShadingNormals normals = this->ShadingNormalsOf(
-    computedNormals ? computedNormals.Get() : this->Normals, unusable, unitNormals);
   return this->RunWeighted<OutT>(
-    static_cast<TangentMethod>(self->Method), computedNormals, normals);
+    method, computedNormals, this->UnitNormals(normals, unusable, unitNormals));
 }
 
-template<typename OutT>
+template<typename OutT, typename NormalT>
 int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkSmartPointer<OutArray<OutT>> computedNormals,
-  const ShadingNormals& normals)
+  const ShadingNormals<NormalT>& normals)
 {
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
