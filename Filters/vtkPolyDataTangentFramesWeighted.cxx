@@ -359,8 +359,8 @@ void ComputeFrameBlock(TriangleBlock& block,
 
 /**
  * Calls f(begin, end, normal) on ranges of [0, n) in parallel, where normal(p) is point p's
- * normal in double from a 3-component array (read through its concrete type when it stores
- * floats or doubles).
+ * normal from a 3-component array, as a glm vector of the floats or doubles it stores (read
+ * through its concrete type), or of doubles for arrays of any other type.
  */
 template<typename F>
 void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
@@ -369,10 +369,11 @@ void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
     [&](auto* typed)
     {
       const auto normals = vtk::DataArrayTupleRange<3>(typed, 0, n);
+      using T = typename decltype(normals)::ComponentType;
       const auto normal = [&](vtkIdType p)
       {
         const auto v = normals[p];
-        return dvec3(v[0], v[1], v[2]);
+        return glm::vec<3, T>(v[0], v[1], v[2]);
       };
       vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) { f(begin, end, normal); });
     });
@@ -1192,7 +1193,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       {
         for (vtkIdType p = begin; p < end; ++p)
         {
-          unit[p] = SafeNormalize(normal(p));
+          unit[p] = SafeNormalize(dvec3(normal(p)));
         }
       });
     if (unusable > 0)

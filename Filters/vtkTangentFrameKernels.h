@@ -26,6 +26,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 namespace vtkNormalMapping
 {
@@ -618,11 +620,24 @@ inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
   return detail::Unit(k == 0 ? n : detail::ScaleByPowerOfTwo(n, k));
 }
 
-/// Whether SafeNormalize(n) is non-zero, i.e. n is finite and not the zero vector (without
-/// the scaling and square root).
-inline bool IsUsableNormal(const glm::dvec3& n)
+/**
+ * Whether SafeNormalize(n) is non-zero, i.e. n is finite and not the zero vector, for a normal of
+ * floats or doubles as stored (without the scaling and square root). Read from the bits: the
+ * largest component magnitude, as an integer, is above zero (not the zero vector) and below that
+ * of infinity (finite, not NaN); integer comparisons have no NaN cases and vectorize.
+ */
+template<typename T>
+inline bool IsUsableNormal(const glm::vec<3, T>& n)
 {
-  return detail::IsFinite(n) && n != glm::dvec3(0.0);
+  using Bits = typename std::conditional<sizeof(T) == 4, std::int32_t, std::int64_t>::type;
+  const auto magnitude = [](T x)
+  {
+    Bits bits;
+    std::memcpy(&bits, &x, sizeof(bits));
+    return static_cast<Bits>(bits & std::numeric_limits<Bits>::max());
+  };
+  const Bits largest = std::max(magnitude(n.x), std::max(magnitude(n.y), magnitude(n.z)));
+  return (largest > 0) & (largest < magnitude(std::numeric_limits<T>::infinity()));
 }
 
 /**

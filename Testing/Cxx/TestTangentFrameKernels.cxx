@@ -218,6 +218,49 @@ TEST(TangentFrameKernels, SafeNormalize)
   EXPECT_NEAR(glm::length(SafeNormalize({ 1e200, 1e200, 0 })), 1.0, UnitTolerance);
 }
 
+template<typename T>
+void ExpectUsableIsFiniteAndNonZero()
+{
+  // IsUsableNormal reads the bits of the stored values; it must agree with its definition
+  // (every component finite, not all zero) on every combination of zeros of both signs,
+  // subnormals, the largest finite values, infinities and NaNs of both signs.
+  using Limits = std::numeric_limits<T>;
+  const T values[] = { T(0),
+    -T(0),
+    T(1),
+    T(-2.5),
+    Limits::denorm_min(),
+    -Limits::denorm_min(),
+    Limits::min(),
+    Limits::max(),
+    -Limits::max(),
+    Limits::infinity(),
+    -Limits::infinity(),
+    Limits::quiet_NaN(),
+    -Limits::quiet_NaN() };
+  int usable = 0;
+  for (T x : values)
+  {
+    for (T y : values)
+    {
+      for (T z : values)
+      {
+        const bool expected = std::isfinite(x) && std::isfinite(y) && std::isfinite(z) &&
+          !(x == T(0) && y == T(0) && z == T(0));
+        EXPECT_EQ(IsUsableNormal(glm::vec<3, T>(x, y, z)), expected) << x << " " << y << " " << z;
+        usable += expected ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(usable, 0);
+}
+
+TEST(TangentFrameKernels, UsableNormalsAreFiniteAndNonZero)
+{
+  ExpectUsableIsFiniteAndNonZero<float>();
+  ExpectUsableIsFiniteAndNonZero<double>();
+}
+
 TEST(TangentFrameKernels, FastAngleMatchesAtan2)
 {
   // The minimax polynomial's relative error is below 3.6e-17 (AtanMinimax), 5.7e-17 rad at
