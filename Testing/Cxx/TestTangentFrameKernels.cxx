@@ -358,8 +358,9 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
 
 TEST(TangentFrameKernels, SignedCornerWeightsOfABlockAreThoseOfCornerSignAndCornerWeight)
 {
-  // SignCornerWeights computes a block's signed corner weights in a vectorized loop: each must
-  // have the bits of CornerSign(frame, normal) * CornerWeight(method, area, angle), for every
+  // SignCornerWeights computes a block's signed corner weights, and their signs (Handedness), in
+  // a vectorized loop: each must have the bits of
+  // CornerSign(frame, normal) * CornerWeight(method, area, angle), for every
   // method, with shading normals that agree with the triangle's winding, oppose it, are
   // perpendicular to it or zero, and triangles without a frame (orientation 0).
   std::mt19937 rng(5);
@@ -407,6 +408,8 @@ TEST(TangentFrameKernels, SignedCornerWeightsOfABlockAreThoseOfCornerSignAndCorn
         const double expected =
           CornerSign(f, normals[i][k]) * CornerWeight(method, f.Area, block.Angle[k][i]);
         EXPECT_EQ(block.SignedWeight[k][i], expected)
+          << "corner " << k << " of triangle " << i << ", method " << static_cast<int>(method);
+        EXPECT_EQ(block.Handedness[k][i], (expected > 0.0) - (expected < 0.0))
           << "corner " << k << " of triangle " << i << ", method " << static_cast<int>(method);
         negative += expected < 0.0 ? 1 : 0;
       }
