@@ -397,23 +397,13 @@ vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
   return count;
 }
 
-/// The weighted tangent sums of one point, per handedness (index 0: +1, 1: -1).
-struct PointSums
-{
-  dvec3 Tangent[2] = { dvec3(0.0), dvec3(0.0) };
-  double Weight[2] = { 0.0, 0.0 };
-
-  /// Whether a corner has this handedness: the weights added are non-zero with the sign of the
-  /// handedness (corner angles, areas clamped to DBL_MAX, or 1), so |a side's sum| is positive
-  /// once it has one.
-  bool Has(int side) const { return this->Weight[side] > 0.0; }
-};
-
 /**
- * Every point's sums, in half the memory of a PointSums per point: per point the sum of the
- * handedness its first corner gave it (Weight signed with that handedness; 0 before any corner),
- * and the other handedness, which only points on mirror seams have, aside. Each side adds its
- * corners in the order they come (SumFrames: triangle order). The points are dealt in blocks of
+ * Every point's weighted tangent sums, in half the memory of two per point: per point the sum of
+ * the handedness its first corner gave it (Weight signed with that handedness; 0 before any
+ * corner), and the other handedness, which only points on mirror seams have, aside. The weights
+ * added are non-zero with the sign of their handedness (corner angles, areas clamped to DBL_MAX,
+ * or 1), so a side that has a corner has a non-zero Weight. Each side adds its corners in the
+ * order they come (SumFrames: triangle order). The points are dealt in blocks of
  * BlockSize to a power of two of owners; Add may run concurrently for points of different owners.
  */
 struct ScatteredSums
@@ -521,22 +511,12 @@ struct ScatteredSums
     }
   }
 
-  /// Point p's sums; safe to call from several threads.
-  PointSums Of(vtkIdType p) const
+  /// The side of handedness +1 (0) or -1 (1) of a point on a mirror seam (HasOther), whose two
+  /// sides have opposite signs; safe to call from several threads.
+  const Side& SeamSide(vtkIdType p, int handedness) const
   {
-    PointSums s;
-    const auto put = [&](const Side& side)
-    {
-      const int index = side.Weight > 0.0 ? 0 : 1;
-      s.Tangent[index] = side.Tangent;
-      s.Weight[index] = std::abs(side.Weight);
-    };
-    put(this->First[p]); // no corner yet: zero weight and tangent, like no put at all
-    if (this->HasOther[p])
-    {
-      put(this->Other[this->OwnerOf(p)].at(p));
-    }
-    return s;
+    const Side& first = this->First[p];
+    return (first.Weight > 0.0) == (handedness == 0) ? first : this->Other[this->OwnerOf(p)].at(p);
   }
 };
 
@@ -720,20 +700,10 @@ void CellTangentArray(const Triangles& tris,
 }
 
 /**
- * What a point's sums make of it, and the handedness (0: +1, 1: -1) whose frame it takes: its one
- * handedness, or on a mirror seam (Conflict) the +1 side with splitting, else the heavier side.
- * A point with no usable triangle (Fallback) takes its neighbours' frames later.
- */
-PointKind KindOf(const PointSums& s, bool splitting, int& side)
-{
-  const bool conflict = s.Has(0) && s.Has(1);
-  side = conflict ? (splitting || !(s.Weight[1] > s.Weight[0]) ? 0 : 1) : (s.Has(0) ? 0 : 1);
-  return conflict ? PointKind::Conflict : (s.Has(side) ? PointKind::Framed : PointKind::Fallback);
-}
-
-/**
- * KindOf point p's sums, and the tangent sum of the side it takes. A point off mirror seams has
- * one side at most, its first: read in place, without gathering its PointSums.
+ * What point p's sums make of it, the handedness (0: +1, 1: -1) whose frame it takes, and that
+ * side's tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it takes
+ * its neighbours' frames later), or on a mirror seam (Conflict) the +1 side with splitting, else
+ * the heavier side (+1 on a tie).
  */
 PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& side, dvec3& tangent)
 {
@@ -744,10 +714,11 @@ PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& si
     tangent = first.Tangent;
     return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
   }
-  const PointSums s = sums.Of(p);
-  const PointKind kind = KindOf(s, splitting, side);
-  tangent = s.Tangent[side];
-  return kind;
+  const ScatteredSums::Side& positive = sums.SeamSide(p, 0);
+  const ScatteredSums::Side& negative = sums.SeamSide(p, 1);
+  side = splitting || !(std::abs(negative.Weight) > std::abs(positive.Weight)) ? 0 : 1;
+  tangent = (side == 0 ? positive : negative).Tangent;
+  return PointKind::Conflict;
 }
 
 /**
@@ -880,9 +851,8 @@ std::vector<SplitPoint> SplitFrames(const ScatteredSums& sums,
       for (vtkIdType i = begin; i < end; ++i)
       {
         const vtkIdType p = conflicts[i];
-        const PointSums s = sums.Of(p);
         const dvec3 n = normals.UnitOf(p);
-        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, s.Tangent[1]) };
+        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSide(p, 1).Tangent) };
       }
     });
   return splits;
