@@ -35,7 +35,7 @@
  * (flatten), so that each clone holds its own copy of the loops it calls. Empty for other
  * compilers and targets, where the function is compiled once for the default target; also for
  * Clang, which refuses flatten on a multiversioned function, and whose clones would then only
- * call the loops compiled for the default target. For the one loop whose speed depends on the
+ * call the loops compiled for the default target. For the block loops whose speed depends on the
  * width of the vector unit; the source stays one portable function.
  */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)

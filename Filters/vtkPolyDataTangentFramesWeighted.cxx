@@ -338,8 +338,8 @@ struct ShadingNormals
 /**
  * ComputeTriangleBlock and, with `signedWeights`, SignCornerWeights for `method` (corner angles
  * only then, for AngleWeighted), compiled also for the wider vector units of x86-64 CPUs and
- * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES): the one function of the filter whose
- * loops are worth it. Every clone performs the same IEEE operations (no contraction into fused
+ * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES), as the point pass's ComputeUnitFrames
+ * is. Every clone performs the same IEEE operations (no contraction into fused
  * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
 VTK_NORMALMAPPING_TARGET_CLONES
@@ -400,11 +400,12 @@ vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
 /**
  * Every point's weighted tangent sums, in half the memory of two per point: per point the sum of
  * the handedness its first corner gave it (Weight signed with that handedness; 0 before any
- * corner), and the other handedness, which only points on mirror seams have, aside. The weights
- * added are non-zero with the sign of their handedness (corner angles, areas clamped to DBL_MAX,
- * or 1), so a side that has a corner has a non-zero Weight. Each side adds its corners in the
- * order they come (SumFrames: triangle order). The points are dealt in blocks of
- * BlockSize to a power of two of owners; Add may run concurrently for points of different owners.
+ * corner), and the other handedness, which only points on mirror seams have, aside. A corner
+ * whose triangle has a frame adds a weight with the sign of its handedness (its angle, its area
+ * clamped to DBL_MAX, or 1), non-zero unless an area underflows; other corners add zero (Add).
+ * So a side with a corner of non-zero weight has a non-zero Weight. Each side adds its corners in
+ * the order they come (SumFrames: triangle order). The points are dealt in blocks of BlockSize to a
+ * power of two of owners; Add may run concurrently for points of different owners.
  */
 struct ScatteredSums
 {
@@ -458,8 +459,8 @@ struct ScatteredSums
   int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
-  /// of zero weight (no frame, or a normal in the triangle's plane) goes to the first side and
-  /// changes none of its bits: it adds zeros to sums that are never -0.
+  /// of zero weight (its triangle has no frame) goes to the first side and changes none of its
+  /// bits: it adds zeros to sums that are never -0.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
   {
     Side& side = this->First[p];
@@ -511,12 +512,12 @@ struct ScatteredSums
     }
   }
 
-  /// The side of handedness +1 (0) or -1 (1) of a point on a mirror seam (HasOther), whose two
-  /// sides have opposite signs; safe to call from several threads.
-  const Side& SeamSide(vtkIdType p, int handedness) const
+  /// Side 0 (handedness +1) or 1 (handedness -1) of a point on a mirror seam (HasOther), whose
+  /// two sides have opposite signs; safe to call from several threads.
+  const Side& SeamSide(vtkIdType p, int side) const
   {
     const Side& first = this->First[p];
-    return (first.Weight > 0.0) == (handedness == 0) ? first : this->Other[this->OwnerOf(p)].at(p);
+    return (first.Weight > 0.0) == (side == 0) ? first : this->Other[this->OwnerOf(p)].at(p);
   }
 };
 
@@ -593,7 +594,7 @@ struct CornerSides
  */
 void TrianglesAtCorner(vtkIdType k, vtkIdType n, bool strip, vtkIdType& first, vtkIdType& last)
 {
-  first = strip || k > 0 ? std::max<vtkIdType>(k - 2, 0) : 0;
+  first = std::max<vtkIdType>(k - 2, 0);
   last =
     strip ? std::min<vtkIdType>(k, n - 3) : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
 }
@@ -864,14 +865,14 @@ using OutArray =
   typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
 
 template<typename OutT>
-vtkSmartPointer<OutArray<OutT>> NewArray(const char* name, int components, vtkIdType tuples)
+vtkSmartPointer<OutArray<OutT>> NewOutArray(const char* name, int components, vtkIdType tuples)
 {
   return vtkNormalMapping::detail::NewArray<OutArray<OutT>>(name, components, tuples);
 }
 
 /// The output's frame arrays of values OutT.
 template<typename OutT>
-using OutputFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
+using OutFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
 
 } // namespace
 
@@ -999,10 +1000,13 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         for (int i = 0; i < count; ++i)
         {
           const TriangleFrame f = b.Frame(i);
-          weighted[first + i] = f.Area * SafeNormalize(f.Normal);
           if (cellNormals)
           {
-            area[first + i] = f.Area;
+            area[first + i] = f.Area; // the cell's normal follows below
+          }
+          else
+          {
+            weighted[first + i] = f.Area * SafeNormalize(f.Normal);
           }
         }
       },
@@ -1182,7 +1186,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkSmartPointer<OutArray<OutT>> ComputedNormals()
   {
     const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
-    auto normals = NewArray<OutT>("Normals", 3, this->NumberOfPoints);
+    auto normals = NewOutArray<OutT>("Normals", 3, this->NumberOfPoints);
     OutT* out = normals->GetPointer(0);
     for (size_t p = 0; p < smooth.size(); ++p)
     {
@@ -1210,12 +1214,12 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     request.Bitangents = self->ComputeBitangents;
     request.CellTangents = self->ComputeCellTangents;
     vtkNormalMapping::detail::MikkTSpaceCounts counts;
-    const int result = vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
+    vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
     self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
     self->NumberOfFallbackPoints += counts.FallbackCorners;
     self->NumberOfHandednessConflicts += counts.Conflicts;
     self->NumberOfSplitPoints += counts.SplitPoints;
-    return result;
+    return 1;
   }
 
   template<typename OutT>
@@ -1231,7 +1235,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    */
   template<typename OutT>
   void WriteOutput(const std::vector<SplitPoint>& splits,
-    const OutputFrames<OutT>& frames,
+    const OutFrames<OutT>& frames,
     vtkDataArray* computedNormals)
   {
     const FrameStorage<OutT> out = frames.Storage();
@@ -1251,7 +1255,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     if (this->Self->ComputeCellTangents)
     {
       const vtkIdType numCells = this->Input->GetNumberOfCells();
-      auto cellTangents = NewArray<OutT>(TangentsArrayName(), 3, numCells);
+      auto cellTangents = NewOutArray<OutT>(TangentsArrayName(), 3, numCells);
       CellTangentArray(
         this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
       this->Output->GetCellData()->SetTangents(cellTangents);
@@ -1270,7 +1274,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
   this->FirstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const bool mikkTSpace = self->Method == MIKKTSPACE;
 
-  // Normals: the input's (unit, with geometric stand-ins where unusable), or computed.
+  // Normals: the input's, or computed when it has none; how the frames read them follows below.
   vtkSmartPointer<OutArray<OutT>> computedNormals;
   vtkIdType unusable = 0;
   if (this->Normals)
@@ -1324,7 +1328,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
 
   // Room for the split points' frames too: with splitting, each mirror-seam point (a Conflict
   // point) gets one copy.
-  OutputFrames<OutT> frames(
+  OutFrames<OutT> frames(
     numPoints + (self->Splitting ? sums->SeamPoints() : 0), self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());

@@ -4,8 +4,8 @@
  *
  * vtkPolyDataTangentFrames is a pipeline shell around these kernels; the tests call them directly,
  * without a pipeline (private: not installed). Everything is computed in double precision, whatever
- * the precision of the stored data: every float input is exact in double, products of two floats
- * are exact, so the only rounding left is that of the stored coordinates themselves.
+ * the precision of the stored data: float input converts to double exactly, and the rounding of
+ * the double arithmetic lies far below that of the stored float coordinates.
  *
  * Robustness at the extremes: edge and UV-delta vectors whose largest component lies outside
  * [2^-160, 2^160] are rescaled by an exact power of two before any product is formed, so any
@@ -55,15 +55,19 @@ enum class TangentMethod : int
  */
 struct DegeneracyTolerance
 {
-  double UV = 4.0 * FLT_EPSILON;
-  double PositionNoise = 64.0 * FLT_EPSILON;
+  /// The thresholds in units of the stored precision's machine epsilon.
+  static constexpr double UVFactor = 4.0;
+  static constexpr double PositionNoiseFactor = 64.0;
+
+  double UV = UVFactor * FLT_EPSILON;
+  double PositionNoise = PositionNoiseFactor * FLT_EPSILON;
 
   /// Tolerances for data stored with the given machine epsilons.
   static DegeneracyTolerance ForEpsilons(double positionEpsilon, double uvEpsilon)
   {
     DegeneracyTolerance tol;
-    tol.UV = 4.0 * uvEpsilon;
-    tol.PositionNoise = 64.0 * positionEpsilon;
+    tol.UV = UVFactor * uvEpsilon;
+    tol.PositionNoise = PositionNoiseFactor * positionEpsilon;
     return tol;
   }
 };
@@ -108,7 +112,7 @@ inline double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
   return std::max(
     { std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z) });
 }
-/// The largest component magnitude of a, with two-operand maxima (no initializer list).
+/// The largest component magnitude of a.
 inline double MaxAbs(const glm::dvec3& a)
 {
   return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
@@ -117,20 +121,12 @@ inline double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
 {
   return std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y) });
 }
-/// The exponent k such that x * 2^k lies in [0.5, 1), for positive finite x. Read from the
-/// exponent bits: std::frexp is a library call, and this is the hot path.
+/// The exponent k such that x * 2^k lies in [0.5, 1), for positive finite x.
 inline int UnitExponent(double x)
 {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof(bits));
-  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
-  if (biased == 0)
-  {
-    int e = 0;
-    std::frexp(x, &e); // subnormal x
-    return -e;
-  }
-  return 1022 - biased;
+  int e = 0;
+  std::frexp(x, &e);
+  return -e;
 }
 
 /// 2^k for k in [-1022, 1023], built from its bits.
@@ -186,8 +182,8 @@ inline V ScaleByPowerOfTwo(const V& v, int k)
 }
 
 /// atan(z) = z + z x Q(x) with x = z^2 on |z| <= tan(pi/8): the coefficients of Q, a minimax fit
-/// of degree 9 (scripts/atan_minimax.py: Remez exchange on the relative error of atan) whose
-/// relative error, with the coefficients rounded to double, is below 3.6e-17.
+/// of degree 9 (scripts/atan_minimax.py: Remez exchange on the relative error of atan), accurate
+/// to double precision (TestTangentFrameKernels bounds the angles).
 constexpr double AtanMinimax[10] = { -0.3333333333333015,
   0.19999999999088963,
   -0.1428571419526196,
@@ -286,10 +282,10 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   // With edges and UV deltas in the safe range, tLength is finite: only its zero needs a test.
   const bool hasTangent = hasArea & hasUVArea & (tLength > 0.0);
 
-  const double sine = std::sqrt(twiceArea2);
+  const double twiceArea = std::sqrt(twiceArea2);
   TriangleFrame frame;
   frame.Normal = Select(hasArea, n, glm::dvec3(0.0));
-  frame.Area = hasArea ? 0.5 * sine : 0.0;
+  frame.Area = hasArea ? 0.5 * twiceArea : 0.0;
   frame.Tangent = Select(hasTangent, t * (1.0 / tLength), glm::dvec3(0.0));
   frame.Orientation = static_cast<signed char>(hasTangent ? (det > 0.0 ? 1 : -1) : 0);
   return frame;
@@ -538,10 +534,10 @@ inline double CornerWeight(TangentMethod method, double area, double angle)
     : (method == TangentMethod::AngleWeighted ? angle : 1.0);
 }
 
-/// The handedness a triangle gives at a corner whose shading normal is n: +1 when
-/// sign * cross(n, T) points along dP/dv. A triangle whose winding disagrees with n (flipped
-/// winding, inward normals) flips its orientation here. For orientations stored as any number
-/// type (+1, -1, 0).
+/// The handedness a triangle gives at a corner whose shading normal is n: the sign w for which
+/// w * cross(n, T) points along the triangle's dP/dv. A triangle whose winding disagrees with n
+/// (flipped winding, inward normals) flips its orientation here. For orientations stored as any
+/// number type (+1, -1, 0).
 template<typename T>
 inline T CornerSign(T orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
 {
@@ -604,14 +600,14 @@ inline glm::dvec3 Bitangent(const glm::dvec3& n, const glm::dvec3& t, double sig
   return sign * glm::cross(n, t);
 }
 
-/// Unit normal, or zero when n is zero, denormal-small or non-finite.
+/// Unit normal, or zero when n is zero or not finite.
 inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
 {
   if (!detail::IsFinite(n))
   {
     return glm::dvec3(0.0);
   }
-  const double m = std::max({ std::abs(n.x), std::abs(n.y), std::abs(n.z) });
+  const double m = detail::MaxAbs(n);
   if (!(m > 0.0))
   {
     return glm::dvec3(0.0);
@@ -664,7 +660,7 @@ inline glm::dvec3 FallbackTangent(const glm::dvec3& n)
  */
 inline bool OrthonormalizeTangent(const glm::dvec3& n, const glm::dvec3& t, glm::dvec3& out)
 {
-  const double tMax = std::max({ std::abs(t.x), std::abs(t.y), std::abs(t.z) });
+  const double tMax = detail::MaxAbs(t);
   if (!(tMax > 0.0) || !std::isfinite(tMax))
   {
     return false;
