@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// MikkTSpace-compatible tangent kernel. Written from the behaviour description in
-// shared/docs/MIKKTSPACE.md; see vtkMikkTSpaceKernel.h for the contract.
+// MikkTSpace-compatible tangent kernel, written from a description of the reference
+// mikktspace.c's behaviour; see vtkMikkTSpaceKernel.h for the contract.
 //
 // Phases (parallel with vtkSMPTools unless noted):
 //  1. Weld points: a hash of the 8 values per point (parallel), a radix sort by hash and an
@@ -122,10 +122,10 @@ struct Frame
 };
 
 // Frame of a triangle corner whose face corner has several writers, kept until they merge.
-struct SideFrame
+struct PendingFrame
 {
   Frame F;
-  Idx Key; // seed corner of the group (group creation order); -1: not written
+  Idx Seed; // seed corner of the group (group creation order); -1: not written
   uint8_t Orient;
 };
 
@@ -325,7 +325,7 @@ struct Kernel
 
   // fans: corners of non-degenerate triangles grouped by welded id, ascending
   std::vector<Idx> FanStart, Fan;
-  std::vector<SideFrame> Side; // 3 per triangle if AnyMulti
+  std::vector<PendingFrame> Pending; // 3 per triangle if AnyMulti
 
   // `res.Corners` holds one frame per face corner (CheckInput).
   Kernel(const MeshInput& in, Result& res)
@@ -432,9 +432,9 @@ struct Kernel
   void CornerMath(Idx v, Scratch& s) const;
   void ResolveGroup(Scratch& s, const Idx* members, size_t count);
   Frame Eval(const Scratch& s, const Idx* members, size_t count) const;
-  void GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx key);
+  void GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx seed);
   bool SameFace(Idx ta, Idx tb) const;
-  void Write(const Member& m, const Frame& f, uint8_t orient, Idx key);
+  void Write(const Member& m, const Frame& f, uint8_t orient, Idx seed);
   void MergeMultiWriters();
   void CopyToQuadCorner(Idx b, Idx t);
   void CopyDegenerates();
@@ -516,14 +516,23 @@ void Kernel::Weld()
   std::vector<Idx> heads;
   float values[8], other[8];
   const auto equalValues = [&](Idx h)
-  { return LoadPoint(In, h, other), std::equal(values, values + 8, other); };
+  {
+    LoadPoint(In, h, other);
+    return std::equal(values, values + 8, other);
+  };
   for (size_t r0 = 0, r1; r0 < keys.size(); r0 = r1)
   {
-    for (r1 = r0 + 1; r1 < keys.size() && keys[r1] >> 32 == keys[r0] >> 32; ++r1)
+    r1 = r0 + 1;
+    while (r1 < keys.size() && keys[r1] >> 32 == keys[r0] >> 32)
     {
+      ++r1;
+    }
+    if (r1 - r0 == 1)
+    {
+      continue; // a hash of its own: nothing to weld
     }
     heads.clear();
-    for (size_t j = r0; j < r1 && r1 - r0 > 1; ++j)
+    for (size_t j = r0; j < r1; ++j)
     {
       const Idx p = Idx(uint32_t(keys[j]));
       if (Rep[size_t(p)] >= 0)
@@ -1141,7 +1150,11 @@ Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
 
 // The reference's sub-groups: the list of member f holds every member t with (either GWA) or
 // (same face) or (cosS > -1 and cosT > -1); equal lists share a frame.
-void Kernel::GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx key)
+void Kernel::GeneralSubgroups(Scratch& s,
+  const Idx* members,
+  size_t count,
+  uint8_t orient,
+  Idx seed)
 {
   s.SubList.clear();
   s.SubStart.assign(1, 0);
@@ -1174,7 +1187,7 @@ void Kernel::GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint
       s.SubList.insert(s.SubList.end(), s.List.begin(), s.List.end());
       s.SubStart.push_back(Idx(s.SubList.size()));
     }
-    Write(mf, s.SubFrames[found], orient, key);
+    Write(mf, s.SubFrames[found], orient, seed);
   }
 }
 
@@ -1186,12 +1199,12 @@ bool Kernel::SameFace(Idx ta, Idx tb) const
     std::any_of(a.begin(), a.end(), [&b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
 }
 
-void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx key)
+void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
 {
   const Idx i = m.Corner % 3;
   if (m.Flags & (kMulti0 << i))
   {
-    Side[size_t(m.Corner)] = SideFrame{ f, key, orient }; // merged in MergeMultiWriters
+    Pending[size_t(m.Corner)] = PendingFrame{ f, seed, orient }; // merged in MergeMultiWriters
   }
   else
   {
@@ -1207,7 +1220,7 @@ void Kernel::MergeMultiWriters()
   ForEachFaceChunk(
     [&](long long c)
     {
-      // {face corner, group key, triangle corner} of each frame to merge, sorted in that order
+      // {face corner, group seed, triangle corner} of each frame to merge, sorted in that order
       std::vector<std::array<Idx, 3>> list;
       ForEachTriangulatedFace(c,
         [&](long long b, long long e, Idx t)
@@ -1221,23 +1234,23 @@ void Kernel::MergeMultiWriters()
           for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
           {
             if ((Tris[size_t(corner / 3)].Flags & (kMulti0 << (corner % 3))) &&
-              Side[size_t(corner)].Key >= 0)
+              Pending[size_t(corner)].Seed >= 0)
             {
-              list.push_back({ SlotOf(corner), Side[size_t(corner)].Key, corner });
+              list.push_back({ SlotOf(corner), Pending[size_t(corner)].Seed, corner });
             }
           }
           std::sort(list.begin(), list.end());
           for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
           {
             const Idx slot = list[r0][0];
-            const SideFrame* sf = &Side[size_t(list[r0][2])];
-            Frame f = sf->F;
+            const PendingFrame* pf = &Pending[size_t(list[r0][2])];
+            Frame f = pf->F;
             for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
             {
-              sf = &Side[size_t(list[r1][2])];
-              f = Average(f, sf->F);
+              pf = &Pending[size_t(list[r1][2])];
+              f = Average(f, pf->F);
             }
-            Out[size_t(slot)] = ToCornerFrame(f.S, sf->Orient);
+            Out[size_t(slot)] = ToCornerFrame(f.S, pf->Orient);
           }
         });
     });
@@ -1294,9 +1307,13 @@ void Kernel::CopyDegenerates()
           }
           // a degenerate fan triangle only fills face corners no good triangle covers
           covered.assign(size_t(n), 0);
-          for (Idx u = t; n > 4 && u < t + nTri; ++u)
+          for (Idx u = t; u < t + nTri; ++u)
           {
-            for (int i = 0; i < 3 && !(Tris[size_t(u)].Flags & kDegenerate); ++i)
+            if (Tris[size_t(u)].Flags & kDegenerate)
+            {
+              continue;
+            }
+            for (int i = 0; i < 3; ++i)
             {
               covered[size_t(SlotOf(3 * u + i) - b)] = 1;
             }
@@ -1404,7 +1421,7 @@ void Kernel::ProcessVertices()
 {
   if (AnyMulti)
   {
-    Side.assign(3 * size_t(NumTris), SideFrame{ {}, -1, 0 });
+    Pending.assign(3 * size_t(NumTris), PendingFrame{ {}, -1, 0 });
   }
   vtkSMPThreadLocal<Scratch> scratch;
   vtkSMPTools::For(0,

@@ -4,8 +4,8 @@
  * @brief MikkTSpace-compatible per-corner tangent frames (plain C++17 kernel, no vtkObject).
  *
  * ComputeMikkTSpace() reproduces the behaviour of the reference mikktspace.c
- * (genTangSpaceDefault, angular threshold 180 degrees) as described in
- * shared/docs/MIKKTSPACE.md, reimplemented from that description:
+ * (Morten Mikkelsen's, github.com/mmikk/MikkTSpace: genTangSpaceDefault, angular threshold 180
+ * degrees), reimplemented from a description of that behaviour:
  *
  * - Triangles and quads follow the reference exactly: quads are split on the shorter UV
  *   diagonal (position diagonal on an exact tie), welding is by exact value equality of
@@ -40,14 +40,14 @@
  * sequentially, run on the calling thread; the adoption only visits vertices touching such
  * triangles.
  *
- * Limits: 3 * (number of face corners) + NumberOfPoints must be below 2^31; larger inputs
- * return Result::TooLarge with default frames.
+ * Limits: 3 * (number of face corners) + NumberOfPoints must be at most 2^31 - 17 (32-bit
+ * indices); larger inputs return Result::TooLarge with default frames.
  *
  * Arithmetic: scalar float operations in the reference's order, acos evaluated in double and
  * rounded to float. Compile this translation unit without -ffast-math and without
  * floating-point contraction (the module's CMake adds -ffp-contract=off for GCC and Clang, the
- * source carries the STDC pragma for other compilers): a fused multiply-add changes results
- * compared to the reference by up to ~2e-7.
+ * source carries the STDC pragma for other compilers): a fused multiply-add changes the last
+ * bits, and the output would no longer be the reference's.
  */
 #ifndef vtkMikkTSpaceKernel_h
 #define vtkMikkTSpaceKernel_h
@@ -71,7 +71,8 @@ struct MeshInput
   const float* TCoords = nullptr;   ///< 2 per point
 };
 
-/// Tangent of one face corner: unit tangent and sign (+1/-1, MikkTSpace convention).
+/// Tangent of one face corner: tangent (unit unless IsCancelled) and sign (+1/-1, MikkTSpace
+/// convention).
 struct CornerFrame
 {
   float Tangent[3];
@@ -97,9 +98,11 @@ struct Result
 constexpr CornerFrame DefaultCornerFrame = { { 1.0f, 0.0f, 0.0f }, -1.0f };
 
 /**
- * Whether a corner's tangent is not unit: where a group's tangents cancel, the reference returns
- * their sum unnormalized (zero, or below about 1e-19). A normalized tangent is unit within a few
- * float ulps; the bound, |length - 1| <= 1e-6, is what the weighted methods' float output meets.
+ * Whether a corner's tangent is not unit (|length - 1| > 1e-6; a normalized float tangent is
+ * unit within a few ulps). The reference normalizes a group's summed tangent, in float, only
+ * where a component exceeds FLT_MIN: where the group's tangents cancel, the sum comes back as
+ * it is (every component at most FLT_MIN), or, with a squared length below FLT_MIN, normalized
+ * only roughly. Sums that normalize to a non-finite tangent count as non-finite instead.
  */
 inline bool IsCancelled(const CornerFrame& f)
 {

@@ -202,7 +202,7 @@ public:
   /// For MIKKTSPACE: face corners MikkTSpace cannot resolve, which get (1, 0, 0) made
   /// perpendicular to the normal: those it leaves at its default ((1, 0, 0), sign -1, which the
   /// reference outputs whatever the normal) and those whose summed tangents cancel (the
-  /// reference outputs that sum unnormalised, zero or below ~1e-19; the sign is kept).
+  /// reference outputs that sum unnormalised, or nearly zero; the sign is kept).
   vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
   /// Points whose triangles disagree on handedness (mirror seams); for MIKKTSPACE, points whose
   /// corners have different frames.

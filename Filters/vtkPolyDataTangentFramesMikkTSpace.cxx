@@ -7,7 +7,8 @@
 //   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
 //   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
 //   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0);
-//   positions at unit extent, by a power of two, and centred when far away (KernelPositions).
+//   positions scaled by a power of two when their extent lies outside [2^-16, 2^16] or they
+//   are centred, and non-float positions centred when far from the origin (KernelPositions).
 // * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
 //   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
 //   strip triangle containing it. Strip corners whose triangles disagree (bitwise) make their
@@ -19,17 +20,16 @@
 //   frame are re-pointed to it.
 // * The filter's contract (finite unit tangents perpendicular to the unit normal), applied to
 //   each output point's frame with the point's own normal, without touching the kernel's bits
-//   where they already meet it: a tangent that is not unit within 1e-6 (the reference returns
-//   a sum that cancels at a corner unnormalised: zero or below ~1e-19) is a cancelled corner
-//   and gets the fallback frame, (1,0,0) made perpendicular to the normal, keeping its sign; a
-//   unit tangent with |T.N| above 1e-4 (MikkTSpace's default (1,0,0) where the normal is not
-//   perpendicular to it, normals clearly off unit length, which the kernel takes as they are)
-//   is Gram-Schmidt-ed against the normal in double. Both use
-//   vtkNormalMapping::PerpendicularTangent (Duff et al.'s fixed basis where the tangent is
-//   parallel to the normal). Points used by no polygon or strip get the default frame treated
-//   the same way. Points are assigned and split on the kernel's frames (the contract is a
-//   function of the frame and the point's normal, so corners that share a frame share the
-//   result). NumberOfFallbackPoints counts the kernel's default corners and the cancelled ones.
+//   where they already meet it: a tangent that is not unit (mikk::IsCancelled: the reference
+//   leaves a sum that cancels at a corner unnormalised) is a cancelled corner and gets the fallback
+//   frame, (1,0,0) made perpendicular to the normal, keeping its sign; a unit tangent with |T.N|
+//   above 1e-4 (MikkTSpace's default (1,0,0) where the normal is not perpendicular to it, normals
+//   clearly off unit length, which the kernel takes as they are) is Gram-Schmidt-ed against the
+//   normal in double. Both use vtkNormalMapping::PerpendicularTangent (Duff et al.'s fixed basis
+//   where the tangent is parallel to the normal). Points used by no polygon or strip get the
+//   default frame treated the same way. Points are assigned and split on the kernel's frames (the
+//   contract is a function of the frame and the point's normal, so corners that share a frame share
+//   the result). NumberOfFallbackPoints counts the kernel's default corners and the cancelled ones.
 // * Cell tangents: the sum of the cell's kernel-corner tangents (corners that had the
 //   default's bits or cancelled excluded), made perpendicular to the cell's geometric normal (sum
 //   of the cross products of its kernel triangles) and normalised; if that fails the fixed
@@ -91,11 +91,11 @@ bool IsDefault(const CornerFrame& f)
 }
 
 /// |T.N| (unit N) allowed before a kernel tangent is Gram-Schmidt-ed. MikkTSpace projects with
-/// the normal as given, so a normal off unit length by e leaves T.N of about 2e. Normals in real
-/// files are not unit to float precision: on the shared reference meshes |N| - 1 reaches 4.4e-5
-/// (Khronos' NormalTangentMirrorTest) and T.N 1.13e-5. 1e-4 (0.0057 degrees, far below the
-/// 1/127 rad step of an 8-bit normal map) keeps all of those bit for bit, as the reference
-/// gives them, and corrects the default (1,0,0) and clearly non-unit normals.
+/// the normal as given, so a normal off unit length by e leaves T.N of about 2e, and normals in
+/// real files are often off unit length by more than float rounding (docs/mikktspace.md). 1e-4
+/// (0.0057 degrees, far below the 1/127 rad step of an 8-bit normal map) keeps such tangents
+/// bit for bit, as the reference gives them, and corrects the default (1,0,0) and clearly
+/// non-unit normals.
 constexpr double kPerpendicularTolerance = 1e-4;
 
 /// The kernel frame `f` of a point with normal `n` (as given, any length; zero or non-finite:
@@ -206,14 +206,14 @@ struct ConvertPositions
  * products of edges under- or overflow for meshes far from unit size, and whose rounding to
  * float loses what a double mesh far from the origin needs. So the positions are multiplied by
  * the power of two 2^k that brings the mesh's extent (the largest side of its bounding box)
- * into [0.5, 1) when it lies outside [2^-16, 2^16], and a mesh stored in another type than float
- * whose largest coordinate exceeds 16 times its extent is first moved, in double, to its bounding
- * box's centre. Multiplying by 2^k commutes with the rounding to float and with every operation of
- * the kernel (it normalizes directions and compares magnitudes with each other; its FLT_MIN tests
- * only matter where something under- or overflows), so float input, and other input within 16
- * extents of the origin, give the reference's frames bit for bit wherever the reference neither
- * under- nor overflows. Float input is never moved: the reference rounds nothing, so neither does
- * this. A mesh without a finite, non-zero extent goes in unchanged.
+ * into [0.5, 1) when it lies outside [2^-16, 2^16] or the mesh is centred: a mesh stored in
+ * another type than float whose largest coordinate exceeds 16 times its extent is first moved,
+ * in double, to its bounding box's centre. Multiplying by 2^k commutes with the rounding to float
+ * and with every operation of the kernel (it normalizes directions and compares magnitudes with
+ * each other; its FLT_MIN tests only matter where something under- or overflows), so float input,
+ * and other input within 16 extents of the origin, give the reference's frames bit for bit wherever
+ * the reference neither under- nor overflows. Float input is never moved: the reference rounds
+ * nothing, so neither does this. A mesh without a finite, non-zero extent goes in unchanged.
  */
 const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>& storage)
 {
@@ -756,7 +756,7 @@ std::string KernelProblem(const mikk::Result& result, vtkIdType numPoints)
 } // namespace
 
 //------------------------------------------------------------------------------
-int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
+void RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
 {
   counts = MikkTSpaceCounts();
   vtkPolyDataTangentFrames* filter = request.Filter;
@@ -766,13 +766,8 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
     vtkErrorWithObjectMacro(
       filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");
     output->ShallowCopy(input);
-    return 1;
   };
-  const auto abort = [&]()
-  {
-    output->Initialize();
-    return 1;
-  };
+  const auto abort = [&]() { output->Initialize(); };
   const vtkIdType numPoints = input->GetNumberOfPoints();
   if (!request.TCoords || request.TCoords->GetNumberOfTuples() < numPoints || !request.Normals ||
     request.Normals->GetNumberOfComponents() != 3 ||
@@ -843,7 +838,6 @@ int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSp
       request, surface, result.Corners, positions, contractNormals, assignment, output);
   }
   filter->UpdateProgress(1.0);
-  return 1;
 }
 } // namespace detail
 } // namespace vtkNormalMapping

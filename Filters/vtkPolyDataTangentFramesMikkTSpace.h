@@ -48,9 +48,9 @@ struct MikkTSpaceCounts
   vtkIdType SplitPoints = 0; // points appended (one per extra distinct frame)
 };
 
-/// Fills output; returns 1 on success or after an error (input passed through, with a
-/// vtkErrorMacro message on the filter), and 1 with an empty output when aborted.
-int RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts);
+/// Fills output with the frames; after an error, with the input passed through (and a
+/// vtkErrorMacro message on the filter); when aborted, empty.
+void RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts);
 }
 }
 

@@ -34,7 +34,8 @@ namespace vtkNormalMapping
  * accept tangents and normals stored as 8-bit normalized integers (KHR_mesh_quantization:
  * rounding each component to a step of 1/127 moves a unit vector by up to sqrt(3)/254, about
  * 0.007, in length and in its dot product with an exact unit vector; twice that between two
- * rounded ones) and reject the defects real files have (0.2 to 1 for |T.N|, see the docs).
+ * rounded ones) and reject defects large enough to show in shading (docs/filter.md lists those
+ * of real files).
  */
 struct FrameCheckTolerances
 {
