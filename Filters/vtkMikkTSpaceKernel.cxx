@@ -1503,6 +1503,7 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
     return res;
   }
   K.Finish(res);
+  res.NumberOfTriangles = K.NumTris;
   res.NumberOfDegenerateTriangles = K.NumDegenerate;
   res.NumberOfGroupWithAnyTriangles = K.NumGWA;
   res.NumberOfSkippedFaces = K.NumSkipped;

@@ -83,6 +83,7 @@ struct Result
 {
   /// One per face corner, same layout as FaceConnectivity (size FaceOffsets[NumberOfFaces]).
   std::vector<CornerFrame> Corners;
+  long long NumberOfTriangles = 0;             ///< after splitting quads and fanning larger faces
   long long NumberOfDegenerateTriangles = 0;   ///< triangles with two equal corner positions
   long long NumberOfDefaultCorners = 0;        ///< corners left at the default (1,0,0), -1
   long long NumberOfNonFiniteCorners = 0;      ///< of those, corners whose result was not finite

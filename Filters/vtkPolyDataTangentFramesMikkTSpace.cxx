@@ -812,6 +812,7 @@ void RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTS
   {
     return fail(problem);
   }
+  counts.Triangles = result.NumberOfTriangles;
   counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
   counts.DefaultCorners = result.NumberOfDefaultCorners;
   const ContractNormals contractNormals(request.Normals, numPoints, normals);

@@ -35,6 +35,7 @@ struct MikkTSpaceRequest
 
 struct MikkTSpaceCounts
 {
+  vtkIdType Triangles = 0;           // kernel triangles (quads split, larger polygons fanned)
   vtkIdType DegenerateTriangles = 0; // kernel triangles with two equal corner positions
   // Kernel corners (polygon corners, 3 per strip triangle) left at MikkTSpace's default frame,
   // tangent (1,0,0) and sign -1.

@@ -885,6 +885,9 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
   vtkIdType FirstSurfaceCell = 0;
   Triangles Tris;
+  /// The triangles this execution computed frames for (the weighted methods' Tris, or
+  /// MikkTSpace's), for the warning when none has a frame.
+  vtkIdType NumberOfTriangles = 0;
   std::unique_ptr<TriangleFrames> Frames;
   /// Per corner, the handedness its triangle gives it.
   std::unique_ptr<CornerSides> Sides;
@@ -913,6 +916,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       this->Output->ShallowCopy(this->Input);
       return false;
     }
+    this->NumberOfTriangles = this->Tris.Count;
     return true;
   }
 
@@ -1215,6 +1219,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     request.CellTangents = self->ComputeCellTangents;
     vtkNormalMapping::detail::MikkTSpaceCounts counts;
     vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
+    this->NumberOfTriangles = counts.Triangles;
     self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
     self->NumberOfFallbackPoints += counts.FallbackCorners;
     self->NumberOfHandednessConflicts += counts.Conflicts;
@@ -1367,7 +1372,7 @@ int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
   Internals run{ block, this };
   const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
   const int result = this->DoubleOutput(block.Input) ? run.Run<double>() : run.Run<float>();
-  const vtkIdType triangles = run.Tris.Count;
+  const vtkIdType triangles = run.NumberOfTriangles;
   if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
   {
     // Not an error (the output is complete), but no frame came from the texture coordinates.

@@ -1053,6 +1053,44 @@ TEST(PolyDataTangentFramesMikkTSpace, NonFiniteInputGivesFiniteOutput)
 }
 
 //------------------------------------------------------------------------------
+// A mesh whose every triangle has two equal corner positions gets the default frame everywhere,
+// and says so, whether the normals come with the input or are computed (the two take different
+// routes through the filter).
+TEST(PolyDataTangentFramesMikkTSpace, WarnsWhenNoTriangleHasAFrame)
+{
+  TestMesh m;
+  for (int k = 0; k < 4; ++k)
+  {
+    // a triangle (p, p, q): its first two corners coincide, its texture coordinates do not
+    const float x = float(k);
+    const vtkIdType a = m.AddPoint({ x, 0.0f, 0.0f }, { 0.0f, 0.0f, 1.0f }, { x, 0.0f });
+    const vtkIdType b = m.AddPoint({ x, 0.0f, 0.0f }, { 0.0f, 0.0f, 1.0f }, { x + 0.5f, 0.0f });
+    const vtkIdType c = m.AddPoint({ x, 1.0f, 0.0f }, { 0.0f, 0.0f, 1.0f }, { x, 1.0f });
+    m.Polys.push_back({ a, b, c });
+  }
+  for (const bool withNormals : { true, false })
+  {
+    SCOPED_TRACE(withNormals ? "input normals" : "computed normals");
+    vtkSmartPointer<vtkPolyData> input = m.Build();
+    if (!withNormals)
+    {
+      input->GetPointData()->SetNormals(nullptr);
+    }
+    const FilterRun run = RunFilter(input);
+    EXPECT_TRUE(run.Errors.empty()) << Join(run.Errors);
+    EXPECT_EQ(run.Degenerate, 4);
+    // Computing normals adds a warning of its own.
+    EXPECT_EQ(std::count_if(run.Warnings.begin(),
+                run.Warnings.end(),
+                [](const std::string& w) {
+                  return w.find("None of the 4 triangles has a usable frame") != std::string::npos;
+                }),
+      1)
+      << Join(run.Warnings);
+  }
+}
+
+//------------------------------------------------------------------------------
 // The filter's contract for MikkTSpace: finite unit tangents perpendicular to the normal, where
 // the kernel (like the reference) gives a zero tangent (cancelled), the default (1,0,0) whatever
 // the normal, or a tangent off perpendicular because the normal is not unit.
