@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Python wrapping of VTK::NormalMapping in the standalone build, with VTK's own wrapping tools.
 # (Inside a VTK source tree VTK wraps the module itself, into its vtkmodules package.)
 #

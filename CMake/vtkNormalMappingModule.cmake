@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The body of the VTK::NormalMapping module: its classes and private kernels.
 # NORMALMAPPING_SOURCE_DIR is the project root.
 find_package(glm REQUIRED)

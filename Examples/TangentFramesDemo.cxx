@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The built-in demo: tangent frames for a generated torus with mirrored UV halves, with what
 // the filter produced, how long it took and how far it is from the true tangents.
 //

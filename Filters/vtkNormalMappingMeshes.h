@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   vtkNormalMappingMeshes.h
  * @brief  Generated meshes with texture coordinates whose true tangent frames are known.

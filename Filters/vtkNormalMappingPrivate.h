@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   vtkNormalMappingPrivate.h
  * @brief  Private helpers shared by the filter's translation units (not installed).

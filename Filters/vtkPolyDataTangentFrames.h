@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkPolyDataTangentFrames
  * @brief   per-point tangent frames (tangent, handedness sign, bitangent) from texture coordinates

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   vtkPolyDataTangentFramesMikkTSpace.h
  * @brief  Private: the MikkTSpace method of vtkPolyDataTangentFrames (not installed).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   vtkTangentFrameKernels.h
  * @brief  The math of tangent frames, as free functions over GLM vectors.

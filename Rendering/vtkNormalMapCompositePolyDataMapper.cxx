@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkNormalMapCompositePolyDataMapper.h"
 
 #if VTK_NORMALMAPPING_BATCHED_COMPOSITE

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkNormalMapCompositePolyDataMapper
  * @brief   VTK's composite polydata mapper with the normal mapping of vtkNormalMapPolyDataMapper.

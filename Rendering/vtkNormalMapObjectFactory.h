@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkNormalMapObjectFactory
  * @brief   Makes VTK's object factory create the module's normal-mapping mappers.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkNormalMapPolyDataMapper
  * @brief   A polydata mapper that applies normal maps correctly, and only when a scene needs it.

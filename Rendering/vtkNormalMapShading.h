@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * The normal-mapping logic that vtkNormalMapPolyDataMapper and the per-block helpers of
  * vtkNormalMapCompositePolyDataMapper share: which tangent frame a dataset gets, the warnings,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the module to a prefix, builds Examples/ as a separate project against it with
 # find_package(NormalMapping), and runs the example and the normalmap tool: the packaging,
 # tested on every change.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the module the way a VTK source tree builds a remote module: a top-level project named
 # VTK scans <tree>/Remote/NormalMapping/vtk.module and lets vtk_module_build add that directory,
 # so the root CMakeLists.txt runs as the module's body. (The real VTK tree is too large to build

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Coefficients of the double-precision arctangent of the weighted methods (AtanMinimaxDouble in
 Filters/vtkTangentFrameKernels.h): atan(z) ~ z + z*x*Q(x), x = z^2, z in [0, tan(pi/8)], with Q the
 polynomial of the given degree that minimizes the largest relative error of atan (Remez exchange

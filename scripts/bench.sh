@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs the benchmark set and writes docs/benchmarks.md and docs/benchmarks.png:
 #   bash scripts/bench.sh [--smoke] [--out DIR] [--build DIR] [--headless offscreen|xvfb]
 # `bash scripts/bootstrap.sh bench` builds the project and runs this. The programs are in

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Set up a fresh Debian (bookworm) machine, build, and run one job:
 #   bash scripts/bootstrap.sh demo   # build and run `normalmap demo`: renders normalmap-demo.png
 #                                    # in the current folder

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # What the scripts share; each sources this file.
 
 # sudo for the commands that need root, when not root already.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The module and its tests against a newer VTK than Debian's:
 #   bash scripts/newvtk.sh <VTK source tree>         # builds that VTK once, into a cache folder
 #   bash scripts/newvtk.sh <VTK build or install>    # uses the VTK found there as it is

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The OSMesa test job (bash scripts/bootstrap.sh osmesa): every test of the module, rendering
 # and image tests included, against a VTK that renders through OSMesa, with DISPLAY unset and
 # no X server, the way build servers with an OSMesa (or EGL) VTK run them.

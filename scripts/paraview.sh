@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Build the ParaView plugin (ParaView/) against Debian's ParaView 5.11 and run its tests:
 #   bash scripts/paraview.sh [test]     # install what is missing, build, run the pvbatch tests
 #   bash scripts/paraview.sh build      # install what is missing and build

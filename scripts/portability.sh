@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Compiles the module library's sources for 64-bit ARM with Debian's cross compiler
 # (g++-aarch64-linux-gnu), against VTK's headers:
 #   bash scripts/portability.sh [BUILD]

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the project with clang, AddressSanitizer + UndefinedBehaviorSanitizer (+ LeakSanitizer,
 # part of ASan) and the libFuzzer targets in ./build-asan (ASAN_BUILD_DIR overrides), then
 #   bash scripts/sanitize.sh                   # every ctest test there, the fuzz smoke runs too

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Tangent frames and normal mapping from Python, with the vtknormalmapping package.
 
 Builds a torus whose two halves use the same texture mirrored, computes its tangent frames with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The picture docs/paraview.png: ParaView's window with the plugin loaded (PV_PLUGIN_PATH, as a
 user would), the mirrored quads through Tangent Frames, shown as a Normal Mapped Surface (top)
 and, for comparison, as ParaView's own Surface with the same normal texture (bottom), where the

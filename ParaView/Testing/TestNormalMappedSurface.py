@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The Normal Mapped Surface representation: the plugin adds it to ParaView's list, it renders
 the mirrored quads symmetric where ParaView's Surface does not (TestSurfaceMirrorControl), with
 the Tangent Frames filter's tangents and without any tangents, its image matches the baseline,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The control of the mirror-symmetry check: ParaView's own Surface representation, normal
 mapping with the Tangent Frames filter's tangents, shades the mirrored half wrong, and the
 check sees it; without the normal map the same scene is symmetric, so what the check sees is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The Tangent Frames filter in ParaView: every setting reaches vtkPolyDataTangentFrames, and its
 arrays and counts on a mirrored mesh are those of the mirror seam.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Shared pieces of the plugin's pvbatch tests: the plugin, a mirrored test scene, pixel checks.
 
 Every test runs as `pvbatch Test.py <plugin.so> <work dir> [<baseline dir>]`, under Xvfb. A

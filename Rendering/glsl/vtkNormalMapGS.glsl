@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Geometry-shader pieces of vtkNormalMapPolyDataMapper, used when VTK draws through a
 // geometry shader (for example surfaces with edges): the tangent passes through unchanged.
 

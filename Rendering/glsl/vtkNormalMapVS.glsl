@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Vertex-shader pieces of vtkNormalMapPolyDataMapper. Each block between "//NM::Begin <name>"
 // and "//NM::End" is inserted at one of VTK's shader tags when the scene needs it.
 

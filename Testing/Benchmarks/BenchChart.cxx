@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The speed-versus-accuracy chart of docs/benchmarks.md, drawn with VTK's charts (vtkChartXY in
 // a vtkContextActor, rendered offscreen: run it under Testing/Rendering/RunHeadless.sh).
 //

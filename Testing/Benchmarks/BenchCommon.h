@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the benchmark programs of scripts/bench.sh share: the tangent filters they compare, number
 // formatting for the markdown tables, and the files they write (a markdown fragment and a CSV
 // table per program, in the output folder that bench.sh assembles into docs/benchmarks.md).

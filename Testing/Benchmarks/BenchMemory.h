@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Peak resident memory of one phase of a benchmark program (Linux), and the bytes of a filter's
 // output that its input does not share. Used by BenchTangentFrames and TangentFramesLargeInput.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rendering cost and accuracy of normal mapping on the software rasterizer (Mesa llvmpipe):
 // VTK's stock mapper without and with its own normal mapping (with the texture as given, and
 // with its mipmaps on: trilinear filtering), and

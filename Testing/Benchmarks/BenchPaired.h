@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the paired measurements of BenchTangentFrames and BenchMikkTSpace share: the meshes that
 // are not ours (VTK's sources and the largest glTF model of the shared data), and timed runs of
 // several subjects in rounds, with the ratios of their times within each round.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # ctest BenchmarkSmoke: runs scripts/bench.sh --smoke (tiny meshes, few repetitions) into
 # WORK_DIR and checks that it wrote benchmarks.md with every section and every table complete
 # (the expected number of rows, every row as wide as its header, no empty, NaN or infinite

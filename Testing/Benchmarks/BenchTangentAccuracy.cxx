@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Accuracy of the tangent filters (vtkPolyDataTangentFrames with every method, and VTK's
 // vtkPolyDataTangents):
 // - the angle between each output point's tangent and the analytic dP/du on a sphere, a torus

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Filter throughput and peak memory, in one process on the same meshes: vtkPolyDataTangentFrames
 // with every method, VTK's vtkPolyDataTangents, and a floor (a pass that reads the filters'
 // inputs and writes vtkPolyDataTangentFrames' outputs once, with no tangent math: what memory

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Large input: vtkPolyDataTangentFrames on a generated 20-million-triangle torus (mirrored UVs,
 // so seam points are split and the cells re-pointed). For each method it reports the time and
 // the peak memory of the run against a bound stated from the output size, then aborts a run

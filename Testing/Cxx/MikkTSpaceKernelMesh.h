@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A mesh held in the MikkTSpace kernel's input layout, for its tests and benchmark.
 #ifndef MikkTSpaceKernelMesh_h
 #define MikkTSpaceKernelMesh_h

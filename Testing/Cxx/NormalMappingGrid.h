@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A parametric grid with texture coordinates and normals, for the tests and the benchmarks.
 #ifndef NormalMappingGrid_h
 #define NormalMappingGrid_h

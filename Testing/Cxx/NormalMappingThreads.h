@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs code with a given number of vtkSMPTools threads, for tests and benchmarks.
 #ifndef NormalMappingThreads_h
 #define NormalMappingThreads_h

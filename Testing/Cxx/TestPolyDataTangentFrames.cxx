@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkPolyDataTangentFrames through the pipeline.
 #include "NormalMappingGrid.h"
 #include "NormalMappingThreads.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unit tests of the tangent-frame kernels, called directly without a pipeline.
 #include "vtkTangentFrameKernels.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkPolyDataTangentFrames on composite input: every polydata block as if filtered alone, the
 // counts summed over the blocks.
 #include "vtkNormalMappingMeshes.h"

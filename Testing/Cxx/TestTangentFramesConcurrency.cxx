@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkPolyDataTangentFrames run from several std::threads at once, each on its own input, while
 // each filter also runs its own vtkSMPTools loops: every output must be bit-identical to the
 // output of the same filter run alone. (Thread counts of one filter: the BitIdentical* tests.)

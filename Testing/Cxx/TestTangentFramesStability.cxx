@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Numerical stability of vtkPolyDataTangentFrames at the extremes: scaled, translated and
 // near-degenerate input, a vertex of very high valence, and meshes of degenerate triangles.
 #include "NormalMappingTestData.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The three weightings of vtkPolyDataTangentFrames told apart: a planar fan around one point
 // whose triangles carry two different tangents, split into triangles in two ways. Each method's
 // tangent at the fan's centre has a closed form, and the three differ.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target for the normalmap tool's glTF path: arbitrary bytes are read as a .gltf
 // (JSON) or .glb (binary, by its "glTF" magic) with NormalMapGLTF, and when they read, every
 // triangle primitive goes through the tool's `tangents` path (NormalMapTangents::Compute, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A main() for a libFuzzer target without libFuzzer: runs LLVMFuzzerTestOneInput once on every
 // file named on the command line (folders: every file in them, in name order). Built with the
 // normal compiler in every build, it replays the checked-in corpus and its regression inputs

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs a libFuzzer target for RUNS inputs (seed 1) from CORPUS, writing new inputs and any
 # crashing input under WORK_DIR (emptied first). Fails when the fuzzer reports a problem.
 # Optional: MAX_LEN (default 4096), DICT (a libFuzzer dictionary file).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: arbitrary bytes -> vtkPolyData -> vtkPolyDataTangentFrames with every method,
 // with and without splitting, and the documented invariants checked on every output. Any
 // violation aborts, so libFuzzer reports it with the input that caused it.

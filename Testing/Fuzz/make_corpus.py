@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the seed corpus of FuzzTangentFrames (Testing/Fuzz/corpus/*.bin).
 
 Each seed is a small mesh in the byte layout that FuzzTangentFrames.cxx documents at its top:

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the seed corpus of FuzzNormalMapGLTF (Testing/Fuzz/gltf-corpus/).
 
 Small hand-made glTF 2.0 files, .gltf (JSON, buffers as base64 data URIs) and .glb: valid ones

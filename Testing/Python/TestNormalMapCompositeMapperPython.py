@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """vtkNormalMapCompositePolyDataMapper from Python, offscreen (ctest
 NormalMappingPython.CompositeMapper, under Testing/Rendering/RunHeadless.sh).
 

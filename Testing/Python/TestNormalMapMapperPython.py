@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """vtkNormalMapPolyDataMapper from Python, offscreen (ctest NormalMappingPython.Mapper, under
 Testing/Rendering/RunHeadless.sh).
 

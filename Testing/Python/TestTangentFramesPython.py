@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """vtkPolyDataTangentFrames from Python: the wrapped filter on a curved mesh with mirrored UVs.
 
 Run by ctest (NormalMappingPython.TangentFrames) with PYTHONPATH set to the build tree's

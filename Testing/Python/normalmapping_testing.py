@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Helpers of the Python tests: a checklist that reports every check, textured polydata, and
 offscreen renders of flat scenes whose pixel values are known in closed form."""
 import math

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Not a test: the contact sheet of the image tests' baselines, each tile labelled with its test.
 //   NormalMappingRenderingTests MakeBaselineSheet <baseline dir> <sheet.png>
 // The build target NormalMappingBaselines runs it after rewriting the baselines.

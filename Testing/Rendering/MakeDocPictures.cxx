@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Not a test: writes the README's mapper pictures into the directory given as argument.
 //   NormalMappingRenderingTests MakeDocPictures <dir>
 // VTK's stock mapper (left) and vtkNormalMapPolyDataMapper (right), same data, same tangents

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * The image tests' harness: a scene compared with its baseline in Testing/Data/Baseline, and
  * the proof that the comparison sees the regressions the scene is there to catch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * Scenes for the mapper's tests: procedural normal maps with analytic normals, meshes with
  * tangent frames, a headless render window, pixel read-back and a small check recorder.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # Run one rendering test headless, on Mesa's llvmpipe software rasterizer:
 #   RunHeadless.sh offscreen|xvfb <command...>
 # offscreen: VTK is built without X (OSMesa or EGL) and renders with no X server at all.

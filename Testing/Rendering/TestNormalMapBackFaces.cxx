@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a rivets-mapped quad from the front and from the back (turned 180 degrees about
 // y) with two-sided lighting: the back sees the mirror of the front's perturbed normal (a dome
 // seen from behind is a dimple), so it is lit and shows the relief. It fails when the back's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the mapper does with input it cannot use as asked: it renders, warns once per actor and
 // reason (through VTK's warning events), and draws without the map where the map cannot apply.
 #include "NormalMapTestScenes.h"

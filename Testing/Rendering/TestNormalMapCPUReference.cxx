@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The rendered pixels of a normal-mapped flat quad against the same shading computed on the
 // CPU in double precision from the analytic normals of the map's height field.
 #include "NormalMapTestScenes.h"

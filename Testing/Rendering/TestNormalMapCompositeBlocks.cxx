@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Multiblock data through vtkNormalMapCompositePolyDataMapper: the mirror-symmetry and the
 // CPU-reference checks of the polydata mapper, on datasets whose blocks store their tangents
 // differently (float with a sign array, glTF-style double with the sign in w, none), plus a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One actor, one vtkNormalMapCompositePolyDataMapper, one Rivets map, seven blocks:
 // top row, quads: float tangents + signs; mirrored with glTF-style double 4-component
 // tangents; mirrored without tangents (derivatives). Bottom row: a sphere with tangents, a

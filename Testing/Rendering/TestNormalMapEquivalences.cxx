@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Encodings, frame sources and strength that describe the same surface must render the same
 // image, and the shader must hold only what each scene needs.
 #include "NormalMapTestScenes.h"

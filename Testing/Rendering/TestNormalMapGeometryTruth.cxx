@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A normal-mapped flat quad against real geometry: a finely tessellated quad displaced by the
 // same height field, whose point normals are the field's analytic normals. Both are rendered
 // with the same camera and light; the normal map should light the flat quad like the geometry.

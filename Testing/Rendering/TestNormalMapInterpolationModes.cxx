@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: one rivets-mapped sphere in Flat, Gouraud, Phong and PBR interpolation, left to
 // right; each shows the domes (VTK lights every model per fragment). It fails when any one of
 // the four draws without the map.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: the Khronos NormalTangentTest (left) and NormalTangentMirrorTest (right) models
 // (glTF sample models by Ed Mackey, (c) 2017-2018 Analytical Graphics, Inc., CC-BY 4.0; read
 // from ../shared/data/gltf) with MikkTSpace tangents and signs: in each row of their grids the

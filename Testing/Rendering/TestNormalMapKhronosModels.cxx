@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Khronos NormalTangentTest and NormalTangentMirrorTest models (glTF sample models by Ed
 // Mackey, (c) 2017-2018 Analytical Graphics, Inc., CC-BY 4.0; read from ../shared/data/gltf
 // with VTK's glTF reader). In each row of their test grid the left cell is real geometry and

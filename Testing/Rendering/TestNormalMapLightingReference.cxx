@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rendered pixels against independent answers for what TestNormalMapCPUReference leaves out:
 // Flat and Gouraud interpolation and the two-channel DirectX encoding against the CPU
 // reference shading; PBR against the displaced geometry it stands for; and an object-space map

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A quad and its mirror image (mirrored geometry and mirrored texture coordinates, the same
 // map), under a light on the mirror plane, must render as mirror images of each other. VTK's
 // stock mapper fails this: it takes the bitangent as cross(N, T) on both sides.

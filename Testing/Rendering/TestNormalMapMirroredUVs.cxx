@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a quad with rivets (u along +x) next to its mirror image (u along -x), both with
 // point tangents and their signs, under a light on the mirror plane: the picture is symmetric
 // and every dome is lit from above. It fails when the signs are dropped (the mirrored quad's

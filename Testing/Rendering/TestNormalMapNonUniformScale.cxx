@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a quad with rivets under actor scale (1, 0.35, 1) and a sphere under
 // (1.6, 0.6, 1): the perturbed normals transform like those of the displaced geometry, so the
 // squashed domes are steeper across their short axis. It fails when the scene is drawn with

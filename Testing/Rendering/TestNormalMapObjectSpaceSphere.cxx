@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: an object-space map of rivets on a sphere without tangents, turned by the actor
 // (rotations about x and y), so the map's normals go through a frame that changes over the
 // surface and through the actor's rotation. Every dome is lit from the upper left, as with a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a torus with mirrored texture coordinates (the two halves use the texture
 // mirrored) and no tangents: the frame comes from screen-space derivatives, which follow the
 // mirroring by themselves, so every dome on both halves is lit from the light's side. It fails

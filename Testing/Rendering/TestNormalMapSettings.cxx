@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One view per setting of the mapper. Top row: the four encodings of one bricks map on a quad
 // (OpenGL, DirectX, two-channel, object space), the derivative frame on a quad without
 // tangents, and the quad seen from the back with two-sided lighting (bevels still lit from the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Plane (bricks), sphere (rivets) and torus (sine bump), each with tangents from
 // vtkPolyDataTangentFrames, in Phong (top row) and PBR (bottom row). It fails when every map's
 // green is read in the other convention, or the maps are dropped.

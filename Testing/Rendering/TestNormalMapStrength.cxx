@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a rivets-mapped quad at strength (vtkProperty::NormalScale) 0, 0.5 and 1, left to
 // right: flat, shallow domes, full domes. It fails when any one of them is drawn at another of
 // these strengths (VTK's default comparison passes strength 1 drawn as 0 with an error of 0).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a two-channel (RG, z reconstructed) OpenGL map of rivets on a quad and a sphere, each
 // dome lit from the upper left like the light. It fails when the map's green is read in the other
 // convention or the map is dropped (NormalMapImageTest.h).

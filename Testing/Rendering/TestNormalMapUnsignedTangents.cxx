@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image test: a sphere with rivets and three-component tangents without signs (as VTK's
 // vtkPolyDataTangents writes them), used with sign +1: on this unmirrored surface every dome
 // is lit from the upper left. It fails when the sign is taken as -1 (the bitangent flipped) or

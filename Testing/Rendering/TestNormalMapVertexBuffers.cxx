@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The vertex buffers both mappers build hold only what the scene uses: the point tangents (and
 // their signs) when a tangent-space map reads them, and VTK's own tangent attribute (tangentMC)
 // only when VTK's shader reads it (PBR anisotropy), never on the derivative path or without a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """VTK::NormalMapping for Python.
 
 vtkPolyDataTangentFrames computes per-point tangent frames (tangents, handedness signs, optional

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Runs the normalmap tool once and checks how it ends. Inputs:
 #   TOOL       the normalmap executable
 #   WORK_DIR   a folder of this test's own (emptied first)

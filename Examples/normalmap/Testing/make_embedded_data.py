@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the test data for normal textures embedded in glTF files (Testing/Data/embedded/).
 
     /usr/bin/python3 make_embedded_data.py [OUTPUT_FOLDER]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkNormalMappedSurfaceRepresentation
  * @brief   ParaView's surface representation, drawn through vtkNormalMapCompositePolyDataMapper.
