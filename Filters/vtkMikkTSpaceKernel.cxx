@@ -188,13 +188,13 @@ struct TriangleRows
   }
 };
 
-// Per-thread scratch of the vertex phase.
+// Per-thread scratch of the vertex phase (and of the sequential FloodGroup).
 struct Scratch
 {
-  std::vector<Member> M;
+  std::vector<Member> Members; // the fan of the vertex at hand
   std::vector<uint64_t> Edges; // index of PairEdges
   std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
-  std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart;
+  std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart, Stack;
   std::vector<Frame> SubFrames;
 };
 
@@ -418,15 +418,8 @@ struct Kernel
   void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
-  // Scratch of FloodGroup.
-  struct Flood
-  {
-    std::vector<Member> Members;
-    std::vector<uint64_t> Edges;
-    std::vector<Idx> Stack;
-  };
   void AdoptGroupWithAnyOrientation();
-  void FloodGroup(Idx c, Idx v, std::vector<uint8_t>& assigned, Flood& f);
+  void FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s);
   void ProcessVertices();
   void ProcessVertex(Idx v, Scratch& s);
   void CornerMath(Idx v, Scratch& s) const;
@@ -892,7 +885,7 @@ void Kernel::AdoptGroupWithAnyOrientation()
     }
   }
   std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
-  Flood flood;
+  Scratch scratch;
   for (Idx t = 0; t < NumTris; ++t)
   {
     if (Tris[size_t(t)].Flags & (kExcluded | kGWA))
@@ -904,28 +897,29 @@ void Kernel::AdoptGroupWithAnyOrientation()
       const Idx v = WeldOf(c);
       if (gwaVertex[size_t(v)] && !assigned[size_t(c)])
       {
-        FloodGroup(c, v, assigned, flood);
+        FloodGroup(c, assigned, scratch);
       }
     }
   }
 }
 
-// The reference's group flood from corner c at welded vertex v across the fan's paired edges,
+// The reference's group flood from corner c across the fan of its welded vertex's paired edges,
 // through corners not assigned to a group yet: a GWA triangle none of whose corners has a group
 // takes the seed's orientation, and the flood goes on through corners of that orientation.
-void Kernel::FloodGroup(Idx c, Idx v, std::vector<uint8_t>& assigned, Flood& f)
+void Kernel::FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s)
 {
-  std::vector<Member>& m = f.Members;
+  const Idx v = WeldOf(c);
+  std::vector<Member>& m = s.Members;
   GatherFan(v, m);
-  PairEdges(m, f.Edges);
+  PairEdges(m, s.Edges);
   const Idx* fan = Fan.data() + FanStart[size_t(v)];
   const uint8_t orient = Tris[size_t(c / 3)].Flags & kOrient;
   assigned[size_t(c)] = 1;
-  f.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
-  while (!f.Stack.empty())
+  s.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
+  while (!s.Stack.empty())
   {
-    const Idx j = f.Stack.back();
-    f.Stack.pop_back();
+    const Idx j = s.Stack.back();
+    s.Stack.pop_back();
     for (const Idx q : m[size_t(j)].Link)
     {
       if (q < 0 || assigned[size_t(fan[q])])
@@ -942,7 +936,7 @@ void Kernel::FloodGroup(Idx c, Idx v, std::vector<uint8_t>& assigned, Flood& f)
       if ((fq & kOrient) == orient)
       {
         assigned[size_t(fan[q])] = 1;
-        f.Stack.push_back(q);
+        s.Stack.push_back(q);
       }
     }
   }
@@ -973,7 +967,7 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
 {
   const Idx pv = PointOfWeld(v);
   const V3 n = Nrm(pv), p = Pos(pv);
-  const size_t k = s.M.size();
+  const size_t k = s.Members.size();
   // rows [0, k): S of each member, [k, 2k): T, [2k, 3k): the edge to Next, then the edges to
   // Prev of members whose in-edge is unpaired (a paired one is its partner's edge to Next)
   s.X.resize(4 * k);
@@ -989,7 +983,7 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   size_t rows = 3 * k;
   for (size_t j = 0; j < k; ++j)
   {
-    const Member& a = s.M[j];
+    const Member& a = s.Members[j];
     const Triangle& tri = Tris[size_t(a.Corner / 3)];
     set(j, tri.S);
     set(k + j, tri.T);
@@ -1003,14 +997,14 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   // the cosines of all members first, then the acos calls
   for (size_t j = 0, extra = 3 * k; j < k; ++j)
   {
-    Member& a = s.M[j];
+    Member& a = s.Members[j];
     a.S = get(j);
     a.T = get(k + j);
     const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
     const float c = Dot(e1, get(2 * k + j));
     a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
   }
-  for (Member& a : s.M)
+  for (Member& a : s.Members)
   {
     a.Angle = (a.Flags & kGWA) ? 0.0f : float(std::acos(double(a.Angle)));
   }
@@ -1051,7 +1045,7 @@ Idx LabelGroups(std::vector<Member>& m)
 // ResolveGroup.
 void Kernel::ProcessVertex(Idx v, Scratch& s)
 {
-  std::vector<Member>& m = s.M;
+  std::vector<Member>& m = s.Members;
   GatherFan(v, m);
   PairEdges(m, s.Edges);
   CornerMath(v, s);
@@ -1089,13 +1083,13 @@ void Kernel::ProcessVertex(Idx v, Scratch& s)
 // member; a group of GWA triangles only is never seeded and its corners stay default.
 void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
 {
-  const Idx* seed =
-    std::find_if(members, members + count, [&s](Idx j) { return !(s.M[size_t(j)].Flags & kGWA); });
+  const Idx* seed = std::find_if(
+    members, members + count, [&s](Idx j) { return !(s.Members[size_t(j)].Flags & kGWA); });
   if (seed == members + count)
   {
     return;
   }
-  const Member& first = s.M[size_t(*seed)];
+  const Member& first = s.Members[size_t(*seed)];
   const uint8_t orient = first.Flags & kOrient;
   // Sub-groups (threshold cos = -1) split two non-GWA triangles of different faces only if
   // their projected directions have cos <= -1 (or NaN). A sufficient test that none split:
@@ -1105,7 +1099,7 @@ void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
     members + count,
     [&](Idx j)
     {
-      const Member& a = s.M[size_t(j)];
+      const Member& a = s.Members[size_t(j)];
       return (a.Flags & kGWA) || (Dot(first.S, a.S) > 0.01f && Dot(first.T, a.T) > 0.01f);
     });
   if (!single)
@@ -1116,7 +1110,7 @@ void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
   const Frame f = Eval(s, members, count);
   for (size_t j = 0; j < count; ++j)
   {
-    Write(s.M[size_t(members[j])], f, orient, first.Corner);
+    Write(s.Members[size_t(members[j])], f, orient, first.Corner);
   }
 }
 
@@ -1127,7 +1121,7 @@ Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
   float angleSum = 0;
   for (size_t j = 0; j < count; ++j)
   {
-    const Member& a = s.M[size_t(members[j])];
+    const Member& a = s.Members[size_t(members[j])];
     if (a.Flags & kGWA)
     {
       continue;
@@ -1161,11 +1155,11 @@ void Kernel::GeneralSubgroups(Scratch& s,
   s.SubFrames.clear();
   for (size_t a = 0; a < count; ++a)
   {
-    const Member& mf = s.M[size_t(members[a])];
+    const Member& mf = s.Members[size_t(members[a])];
     s.List.clear();
     for (size_t j = 0; j < count; ++j)
     {
-      const Member& mt = s.M[size_t(members[j])];
+      const Member& mt = s.Members[size_t(members[j])];
       if (((mf.Flags | mt.Flags) & kGWA) || SameFace(mf.Corner / 3, mt.Corner / 3) ||
         (Dot(mf.S, mt.S) > -1.0f && Dot(mf.T, mt.T) > -1.0f))
       {
