@@ -60,7 +60,7 @@ struct FrameOutput
 };
 
 /// The number of points whose defects include any bit of `mask`.
-vtkIdType CountDefects(const vtkNormalMapping::FrameCheck& check, unsigned char mask)
+vtkIdType CountPointsWith(const vtkNormalMapping::FrameCheck& check, unsigned char mask)
 {
   return static_cast<vtkIdType>(std::count_if(check.Defects.begin(),
     check.Defects.end(),
@@ -204,11 +204,11 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   this->NumberOfNonFiniteTangents += counts.NonFinite;
   this->NumberOfNonUnitTangents += counts.NotUnit;
   this->NumberOfNonPerpendicularTangents += counts.NotPerpendicular;
-  this->NumberOfWrongSignTangents += CountDefects(check,
+  this->NumberOfWrongSignTangents += CountPointsWith(check,
     vtkNormalMapping::DefectSignNotUnit | vtkNormalMapping::DefectSignAgainstWinding |
       vtkNormalMapping::DefectMixedWinding);
   const unsigned char replaced = keepValid ? 0xff : vtkNormalMapping::DefectNonFinite;
-  const vtkIdType numReplaced = CountDefects(check, replaced);
+  const vtkIdType numReplaced = CountPointsWith(check, replaced);
   this->NumberOfReplacedTangents += numReplaced;
   if (!keepValid && numReplaced > 0)
   {

@@ -114,38 +114,48 @@ std::vector<unsigned char> PointWindings(vtkPolyData* mesh,
   return windings;
 }
 
-/// How far a finite tangent is from unit length, and |cos| of its angle to the normal: 0 for a
-/// zero tangent, -1 when the normal is zero or non-finite (nothing to measure against).
-struct FrameMeasures
+/// A point's supplied frame measured against its normal; nothing but Finite when the tangent or
+/// the sign is not finite.
+struct PointMeasures
 {
-  double LengthError;
-  double Cosine;
+  bool Finite = false;
+  double Sign = 0.0;
+  double LengthError = 0.0; ///< | |T| - 1 |
+  double Cosine = 0.0;      ///< |T.N| / |T|, 0 for a zero tangent
+  bool HasNormal = false;   ///< false: the normal is zero or non-finite, nothing to measure against
 };
 
-FrameMeasures Measure(const glm::dvec3& normal, const glm::dvec3& tangent)
+PointMeasures Measure(const glm::dvec3& normal, const glm::dvec3& tangent, double sign)
 {
+  PointMeasures m;
+  m.Finite = detail::IsFinite(tangent) && std::isfinite(sign);
+  if (!m.Finite)
+  {
+    return m;
+  }
   const double length = glm::length(tangent);
   const glm::dvec3 n = SafeNormalize(normal);
-  const double cosine = length > 0.0 ? std::abs(glm::dot(n, tangent)) / length : 0.0;
-  return { std::abs(length - 1.0), n == glm::dvec3(0.0) ? -1.0 : cosine };
+  m.Sign = sign;
+  m.LengthError = std::abs(length - 1.0);
+  m.HasNormal = n != glm::dvec3(0.0);
+  m.Cosine = m.HasNormal && length > 0.0 ? std::abs(glm::dot(n, tangent)) / length : 0.0;
+  return m;
 }
 
 /// The FrameDefect bits of one point.
-unsigned char PointDefects(const glm::dvec3& normal,
-  const glm::dvec3& tangent,
-  double sign,
+unsigned char PointDefects(const PointMeasures& m,
   unsigned char winding,
   bool vDown,
   const FrameCheckTolerances& tol)
 {
-  if (!detail::IsFinite(tangent) || !std::isfinite(sign))
+  if (!m.Finite)
   {
     return DefectNonFinite;
   }
+  const double sign = m.Sign;
   unsigned char defects = 0;
-  const FrameMeasures m = Measure(normal, tangent);
   defects |= m.LengthError > tol.Unit ? DefectNotUnit : 0;
-  defects |= m.Cosine < 0.0 || m.Cosine > tol.Perpendicular ? DefectNotPerpendicular : 0;
+  defects |= !m.HasNormal || m.Cosine > tol.Perpendicular ? DefectNotPerpendicular : 0;
   defects |= std::abs(std::abs(sign) - 1.0) > tol.Sign ? DefectSignNotUnit : 0;
   if (winding == (PositiveWinding | NegativeWinding))
   {
@@ -159,11 +169,10 @@ unsigned char PointDefects(const glm::dvec3& normal,
   return defects;
 }
 
-/// The counts of a check.
+/// The counts of a check, from its points' defects and measures.
 FrameCheckCounts CountDefects(const std::vector<unsigned char>& defects,
   const std::vector<unsigned char>& windings,
-  vtkDataArray* normals,
-  const SuppliedFrameArrays& supplied)
+  const std::vector<PointMeasures>& measures)
 {
   FrameCheckCounts counts;
   counts.Points = static_cast<vtkIdType>(defects.size());
@@ -182,14 +191,12 @@ FrameCheckCounts CountDefects(const std::vector<unsigned char>& defects,
     counts.SignAgreesWithWinding +=
       !noWinding && !(d & (DefectNonFinite | DefectSignAgainstWinding | DefectMixedWinding)) ? 1
                                                                                              : 0;
-    if (d & DefectNonFinite)
+    const PointMeasures& m = measures[p];
+    if (!m.Finite)
     {
       continue;
     }
-    double t[3], sign;
-    SuppliedFrame(supplied, p, t, sign);
-    const FrameMeasures m = Measure(Tuple3(normals, p), glm::dvec3(t[0], t[1], t[2]));
-    counts.PositiveSigns += sign > 0.0 ? 1 : 0;
+    counts.PositiveSigns += m.Sign > 0.0 ? 1 : 0;
     counts.MaxLengthError = std::max(counts.MaxLengthError, m.LengthError);
     counts.MaxCosineToNormal = std::max(counts.MaxCosineToNormal, m.Cosine);
   }
@@ -302,6 +309,7 @@ FrameCheck CheckSuppliedFrames(vtkPolyData* mesh,
   const std::vector<unsigned char> windings =
     uvs ? PointWindings(mesh, normals, uvs) : std::vector<unsigned char>();
   check.Defects.assign(static_cast<size_t>(numPoints), 0);
+  std::vector<PointMeasures> measures(static_cast<size_t>(numPoints));
   vtkSMPTools::For(0,
     numPoints,
     [&](vtkIdType begin, vtkIdType end)
@@ -310,15 +318,12 @@ FrameCheck CheckSuppliedFrames(vtkPolyData* mesh,
       {
         double t[3], sign;
         SuppliedFrame(supplied, p, t, sign);
-        check.Defects[p] = PointDefects(Tuple3(normals, p),
-          glm::dvec3(t[0], t[1], t[2]),
-          sign,
-          windings.empty() ? 0 : windings[p],
-          vDown,
-          tolerances);
+        measures[p] = Measure(Tuple3(normals, p), glm::dvec3(t[0], t[1], t[2]), sign);
+        check.Defects[p] =
+          PointDefects(measures[p], windings.empty() ? 0 : windings[p], vDown, tolerances);
       }
     });
-  check.Counts = CountDefects(check.Defects, windings, normals, supplied);
+  check.Counts = CountDefects(check.Defects, windings, measures);
   return check;
 }
 }
