@@ -348,7 +348,7 @@ struct vtkNormalMapCompositePolyDataMapper::Internals
   /// Shared by the helpers: warnings once per actor and blocks, shader keys per program.
   vtkNormalMapShading Shading;
   /// Per flat index, the frame of the last render.
-  std::map<unsigned int, int> Frames;
+  std::map<unsigned int, int> FrameOfBlock;
 };
 
 vtkStandardNewMacro(vtkNormalMapCompositePolyDataMapper);
@@ -413,12 +413,12 @@ void vtkNormalMapCompositePolyDataMapper::PostRender(
 {
   this->Superclass::PostRender(delegators, ren, actor);
   // Each drawn block's frame, kept after the delegators are gone (released graphics resources).
-  this->Internal->Frames.clear();
+  this->Internal->FrameOfBlock.clear();
   for (const auto& delegator : delegators)
   {
     if (auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(delegator->GetDelegate()))
     {
-      ours->CollectAppliedFrames(this->Internal->Frames);
+      ours->CollectAppliedFrames(this->Internal->FrameOfBlock);
     }
   }
 }
@@ -445,12 +445,12 @@ void vtkNormalMapCompositePolyDataMapper::Render(vtkRenderer* ren, vtkActor* act
 {
   this->Superclass::Render(ren, actor);
   // Each drawn block's frame, kept after the helpers are gone (released graphics resources).
-  this->Internal->Frames.clear();
+  this->Internal->FrameOfBlock.clear();
   for (const auto& helper : this->Helpers)
   {
     if (auto* ours = vtkNormalMapCompositeMapperHelper::SafeDownCast(helper.second))
     {
-      ours->CollectAppliedFrames(this->Internal->Frames);
+      ours->CollectAppliedFrames(this->Internal->FrameOfBlock);
     }
   }
 }
@@ -459,9 +459,9 @@ void vtkNormalMapCompositePolyDataMapper::Render(vtkRenderer* ren, vtkActor* act
 //------------------------------------------------------------------------------
 int vtkNormalMapCompositePolyDataMapper::GetLastAppliedFrame(unsigned int flatIndex)
 {
-  const auto found = this->Internal->Frames.find(flatIndex);
-  return found == this->Internal->Frames.end() ? vtkNormalMapPolyDataMapper::NOT_APPLIED
-                                               : found->second;
+  const auto found = this->Internal->FrameOfBlock.find(flatIndex);
+  return found == this->Internal->FrameOfBlock.end() ? vtkNormalMapPolyDataMapper::NOT_APPLIED
+                                                     : found->second;
 }
 
 //------------------------------------------------------------------------------

@@ -48,11 +48,9 @@
 #include "vtkNormalMappingModule.h" // For export macro
 #include "vtkOpenGLPolyDataMapper.h"
 
-#include <map>    // For per-shader state
+#include <map>    // For ReplaceShaderNormal's signature
 #include <memory> // For the private state
 #include <string> // For array names
-
-class vtkDataArray;
 
 class VTKNORMALMAPPING_EXPORT vtkNormalMapPolyDataMapper : public vtkOpenGLPolyDataMapper
 {

@@ -97,7 +97,8 @@ struct ShaderPlan
   bool SRGB = false;
 };
 
-/// Copies tangents (3 or 4 components, any real type) into 4 floats per point, w the sign.
+/// Copies tangents (3 or 4 components, any numeric type) into 4 floats per point, w the sign as
+/// stored (the shader reads its sign: negative for -1, anything else for +1).
 struct PackTangents
 {
   template<typename TangentArray>
@@ -120,7 +121,7 @@ struct PackTangents
       out[i][0] = static_cast<float>(in[i][0]);
       out[i][1] = static_cast<float>(in[i][1]);
       out[i][2] = static_cast<float>(in[i][2]);
-      out[i][3] = sign < 0.0f ? -1.0f : 1.0f;
+      out[i][3] = sign;
     }
   }
 };
@@ -349,8 +350,8 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
   vtkActor* actor = context.Actor;
   vtkProperty* property = actor->GetProperty();
   vtkTexture* texture = NormalTexture(actor);
-  if (!texture || property->GetNormalScale() == 0.0 || context.DrawingVertices ||
-    property->GetRepresentation() != VTK_SURFACE || context.LightComplexity == 0)
+  if (!WantsMap(actor) || context.DrawingVertices || property->GetRepresentation() != VTK_SURFACE ||
+    context.LightComplexity == 0)
   {
     // Nothing to show: no map, zero strength, or an unlit or non-surface drawing.
     return Mapper::NOT_APPLIED;

@@ -88,7 +88,7 @@ public:
     bool SeparateSigns = false; // ... whose signs are their own attribute (nmTangentSignMC)
     bool Unsigned = false;      // every dataset with tangents has them without signs
     bool Derivatives = false;   // some dataset has none: frame from screen-space derivatives
-    /// A small number that changes whenever the shader code would.
+    /// A small number that changes whenever the shader code, or the frame it reports, would.
     unsigned Key() const;
   };
 
@@ -97,7 +97,6 @@ public:
   {
     vtkObject* Reporter = nullptr; // the mapper the application holds: warnings come from it
     vtkActor* Actor = nullptr;
-    bool SurfacePrimitive = false; // triangles or strips, not the vertex glyphs
     bool DrawingVertices = false;
     int LightComplexity = 0;
     std::string TCoordName;   // the normal texture's texture coordinate attribute

@@ -12,11 +12,27 @@
 // Inverse transpose of the model-view matrix's linear part, and its inverse.
 uniform mat3 nmNormalMatrix;
 uniform mat3 nmNormalMatrixInverse;
-// vtkProperty::NormalScale: scales the map's x and y (glTF's normalTexture.scale).
+// vtkProperty::NormalScale: a tangent-space map's x and y scale (glTF's normalTexture.scale);
+// for an object-space map, the blend from the surface normal (0) to the map's (1).
 uniform float nmNormalScale;
 // +1 when the map's green channel points along +bitangent (OpenGL), -1 when it points along
 // -bitangent (DirectX).
 uniform float nmGreenSign;
+
+// The frame (T, B, N) of the unit normal n: T the unit part of `direction` perpendicular to n
+// (Gram-Schmidt), B = sign(s) * cross(n, T) (s < 0: -1, else +1). Where that part's squared
+// length is not above minLen2 (or not a number), zero T and B columns: no perturbation.
+mat3 nmOrthoFrame(vec3 direction, float s, vec3 n, float minLen2)
+{
+  vec3 t = direction - dot(direction, n) * n;
+  float len2 = dot(t, t);
+  if (!(len2 > minLen2))
+  {
+    return mat3(vec3(0.0), vec3(0.0), n);
+  }
+  t *= inversesqrt(len2);
+  return mat3(t, (s < 0.0 ? -1.0 : 1.0) * cross(n, t), n);
+}
 //NM::End
 
 //NM::Begin TexelLinear
@@ -59,20 +75,12 @@ vec3 nmDecode(vec4 texel)
 //NM::Begin TangentDec
 in vec4 nmTangentMCVSOutput;
 
-// Frame from the interpolated point tangent: Gram-Schmidt against the normal, bitangent =
-// sign * cross(N, T). A tangent parallel to the normal gives zero T and B columns, which
-// leaves the unperturbed normal.
+// Frame from the interpolated point tangent and its sign (nmOrthoFrame). A tangent parallel to
+// the normal leaves the unperturbed normal.
 mat3 nmTangentFrameMC(vec3 normalMC)
 {
-  vec3 t = nmTangentMCVSOutput.xyz - dot(nmTangentMCVSOutput.xyz, normalMC) * normalMC;
-  float len2 = dot(t, t);
-  if (len2 <= 1e-12 * dot(nmTangentMCVSOutput.xyz, nmTangentMCVSOutput.xyz))
-  {
-    return mat3(vec3(0.0), vec3(0.0), normalMC);
-  }
-  t *= inversesqrt(len2);
-  float s = nmTangentMCVSOutput.w < 0.0 ? -1.0 : 1.0;
-  return mat3(t, s * cross(normalMC, t), normalMC);
+  vec3 t = nmTangentMCVSOutput.xyz;
+  return nmOrthoFrame(t, nmTangentMCVSOutput.w, normalMC, 1e-12 * dot(t, t));
 }
 //NM::End
 
@@ -97,18 +105,12 @@ mat3 nmDerivativeFrameMC(vec3 normalMC)
   // det * dP/du and det * dP/dv
   vec3 dpdu = dpdx * nmDTCoordDy.y - dpdy * nmDTCoordDx.y;
   vec3 dpdv = dpdy * nmDTCoordDx.x - dpdx * nmDTCoordDy.x;
-  vec3 t = det < 0.0 ? -dpdu : dpdu;
-  t -= dot(t, normalMC) * normalMC;
-  float len2 = dot(t, t);
   float scale2 = (dot(dpdx, dpdx) + dot(dpdy, dpdy)) *
     (dot(nmDTCoordDx, nmDTCoordDx) + dot(nmDTCoordDy, nmDTCoordDy));
-  if (!(len2 > 1e-10 * scale2))
-  {
-    return mat3(vec3(0.0), vec3(0.0), normalMC);
-  }
-  t *= inversesqrt(len2);
-  float s = dot(cross(dpdu, dpdv), normalMC) < 0.0 ? -1.0 : 1.0;
-  return mat3(t, s * cross(normalMC, t), normalMC);
+  return nmOrthoFrame(det < 0.0 ? -dpdu : dpdu,
+    dot(cross(dpdu, dpdv), normalMC),
+    normalMC,
+    1e-10 * scale2);
 }
 //NM::End
 
