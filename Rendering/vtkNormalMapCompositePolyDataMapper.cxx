@@ -472,6 +472,16 @@ void vtkNormalMapCompositePolyDataMapper::ReleaseGraphicsResources(vtkWindow* wi
 }
 
 //------------------------------------------------------------------------------
+void vtkNormalMapCompositePolyDataMapper::ShallowCopy(vtkAbstractMapper* mapper)
+{
+  this->Superclass::ShallowCopy(mapper);
+  if (auto* other = vtkNormalMapCompositePolyDataMapper::SafeDownCast(mapper))
+  {
+    vtkNormalMapShading::ApplySettings(this, vtkNormalMapShading::SettingsOf(other));
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkNormalMapCompositePolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -58,6 +58,9 @@ public:
 #endif
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// Also copies this class's settings from another vtkNormalMapCompositePolyDataMapper.
+  void ShallowCopy(vtkAbstractMapper* mapper) override;
+
   ///@{
   /// The normal texture's encoding (vtkNormalMapPolyDataMapper::MapEncodings; default
   /// TANGENT_SPACE_OPENGL).

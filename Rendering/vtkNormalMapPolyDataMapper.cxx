@@ -228,6 +228,16 @@ void vtkNormalMapPolyDataMapper::ReleaseGraphicsResources(vtkWindow* window)
 }
 
 //------------------------------------------------------------------------------
+void vtkNormalMapPolyDataMapper::ShallowCopy(vtkAbstractMapper* mapper)
+{
+  this->Superclass::ShallowCopy(mapper);
+  if (auto* other = vtkNormalMapPolyDataMapper::SafeDownCast(mapper))
+  {
+    vtkNormalMapShading::ApplySettings(this, vtkNormalMapShading::SettingsOf(other));
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkNormalMapPolyDataMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

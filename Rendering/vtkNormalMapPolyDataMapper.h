@@ -59,6 +59,9 @@ public:
   vtkTypeMacro(vtkNormalMapPolyDataMapper, vtkOpenGLPolyDataMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// Also copies this class's settings from another vtkNormalMapPolyDataMapper.
+  void ShallowCopy(vtkAbstractMapper* mapper) override;
+
   /// How the normal texture encodes the normal.
   enum MapEncodings
   {

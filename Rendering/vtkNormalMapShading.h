@@ -62,6 +62,16 @@ public:
     return settings;
   }
 
+  /// Gives either mapper class these settings.
+  template<class MapperType>
+  static void ApplySettings(MapperType* mapper, const Settings& settings)
+  {
+    mapper->SetMapEncoding(settings.MapEncoding);
+    mapper->SetFrameSource(settings.FrameSource);
+    mapper->SetTangentsArrayName(settings.TangentsArrayName);
+    mapper->SetTangentSignsArrayName(settings.TangentSignsArrayName);
+  }
+
   /// How one dataset's tangent frame is obtained.
   enum class TangentUse
   {
