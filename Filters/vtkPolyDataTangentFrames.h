@@ -48,17 +48,18 @@
  * KEEP_VALID read the input's tangents (a 4-component array whose w is the sign, or 3
  * components plus the point array `TangentSigns`; see SetSuppliedTangentsArrayName), which need
  * point normals to be meaningful. KEEP writes them to the outputs as they are, computing no
- * frame (only points with non-finite values, which would put NaN in the output, get computed
- * frames). KEEP_VALID checks every point's frame (vtkTangentFrameChecks.h: finite, unit,
- * perpendicular to the normal, sign +1 or -1 and agreeing with the UV winding of all the point's
- * triangles, by FrameCheckTolerances) and gives the points that fail the frame of the selected
- * Method; the others keep theirs. Points whose triangles have both windings (a mirror seam whose
- * point is shared) fail, as one sign cannot suit both sides: with Splitting they are split like
- * any seam point, and the kept points never are (a kept point that the method would have split
- * gives its copies its supplied frame too). Kept signs are written as +1 or -1 in the output's
- * convention: for the weighted methods with GLTFSignConvention on (whose signs follow the v-down
- * coordinates as stored) that is the opposite of glTF's w. Without usable supplied arrays or
- * without point normals the filter warns and computes every frame.
+ * frame (only points with non-finite values, or values too large for the output's precision,
+ * which would put NaN or infinity in the output, get computed frames). KEEP_VALID checks every
+ * point's frame (vtkTangentFrameChecks.h: finite, unit, perpendicular to the normal, sign +1 or
+ * -1 and agreeing with the UV winding of all the point's triangles, by FrameCheckTolerances) and
+ * gives the points that fail the frame of the selected Method; the others keep theirs. Points whose
+ * triangles have both windings (a mirror seam whose point is shared) fail, as one sign cannot suit
+ * both sides: with Splitting they are split like any seam point, and the kept points never are (a
+ * kept point that the method would have split gives its copies its supplied frame too). Kept signs
+ * are written as +1 or -1 in the output's convention: for the weighted methods with
+ * GLTFSignConvention on (whose signs follow the v-down coordinates as stored) that is the opposite
+ * of glTF's w. Without usable supplied arrays or without point normals the filter warns and
+ * computes every frame.
  *
  * Composite input (a multiblock from a reader, for example) gives output of the same structure:
  * every polydata block gets its frames as if it were filtered alone, other blocks pass through
@@ -218,9 +219,9 @@ public:
   /// split copies are not counted again).
   vtkGetMacro(NumberOfReplacedTangents, vtkIdType);
   /// With KEEP or KEEP_VALID, supplied frames found with each defect (a point may have several):
-  /// a NaN or infinite value; a tangent length off 1; a tangent not perpendicular to the normal;
-  /// a sign that is not +1 or -1 or, with KEEP_VALID, disagrees with the UV winding of the
-  /// point's triangles (or of some of them).
+  /// a NaN or infinite value (or one too large for the output's precision); a tangent length off 1;
+  /// a tangent not perpendicular to the normal; a sign that is not +1 or -1 or, with KEEP_VALID,
+  /// disagrees with the UV winding of the point's triangles (or of some of them).
   vtkGetMacro(NumberOfNonFiniteTangents, vtkIdType);
   vtkGetMacro(NumberOfNonUnitTangents, vtkIdType);
   vtkGetMacro(NumberOfNonPerpendicularTangents, vtkIdType);

@@ -18,6 +18,7 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <vector>
 
 namespace
@@ -196,10 +197,17 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
     return compute(input);
   }
 
-  // Which points keep their frames.
+  // Which points keep their frames: only tangents the output's precision holds, with room for
+  // the rounding of a bitangent as long.
   const bool keepValid = this->SuppliedTangents == KEEP_VALID;
-  const vtkNormalMapping::FrameCheck check = vtkNormalMapping::CheckSuppliedFrames(
-    input, normals, keepValid ? block.UVs : nullptr, supplied, this->GLTFSignConvention);
+  const double largest = 0.5 * (this->DoubleOutput(input) ? DBL_MAX : FLT_MAX);
+  const vtkNormalMapping::FrameCheck check = vtkNormalMapping::CheckSuppliedFrames(input,
+    normals,
+    keepValid ? block.UVs : nullptr,
+    supplied,
+    this->GLTFSignConvention,
+    vtkNormalMapping::FrameCheckTolerances(),
+    largest);
   const vtkNormalMapping::FrameCheckCounts& counts = check.Counts;
   this->NumberOfNonFiniteTangents += counts.NonFinite;
   this->NumberOfNonUnitTangents += counts.NotUnit;
@@ -212,8 +220,10 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   this->NumberOfReplacedTangents += numReplaced;
   if (!keepValid && numReplaced > 0)
   {
-    vtkWarningMacro(<< numReplaced << " supplied tangents have NaN or infinite values; computing "
-                    << "their frames with the " << GetMethodName(this->Method) << " method.");
+    vtkWarningMacro(<< numReplaced
+                    << " supplied tangents have NaN or infinite values, or values too large for "
+                       "the output's precision; computing their frames with the "
+                    << GetMethodName(this->Method) << " method.");
   }
 
   // Computed frames first, where some are needed; then the kept frames over them.

@@ -115,7 +115,7 @@ std::vector<unsigned char> PointWindings(vtkPolyData* mesh,
 }
 
 /// A point's supplied frame measured against its normal; nothing but Finite when the tangent or
-/// the sign is not finite.
+/// the sign is not finite, or the tangent longer than the largest length allowed.
 struct PointMeasures
 {
   bool Finite = false;
@@ -125,15 +125,21 @@ struct PointMeasures
   bool HasNormal = false;   ///< false: the normal is zero or non-finite, nothing to measure against
 };
 
-PointMeasures Measure(const glm::dvec3& normal, const glm::dvec3& tangent, double sign)
+PointMeasures Measure(const glm::dvec3& normal,
+  const glm::dvec3& tangent,
+  double sign,
+  double largest)
 {
   PointMeasures m;
-  m.Finite = detail::IsFinite(tangent) && std::isfinite(sign);
+  // The length without overflow of the squares; NaN or infinite where a component is.
+  const double largestComponent = detail::MaxAbs(tangent);
+  const double length =
+    largestComponent > 0.0 ? largestComponent * glm::length(tangent / largestComponent) : 0.0;
+  m.Finite = length <= largest && std::isfinite(sign) && detail::IsFinite(tangent);
   if (!m.Finite)
   {
     return m;
   }
-  const double length = glm::length(tangent);
   const glm::dvec3 n = SafeNormalize(normal);
   m.Sign = sign;
   m.LengthError = std::abs(length - 1.0);
@@ -302,7 +308,8 @@ FrameCheck CheckSuppliedFrames(vtkPolyData* mesh,
   vtkDataArray* uvs,
   const SuppliedFrameArrays& supplied,
   bool vDown,
-  const FrameCheckTolerances& tolerances)
+  const FrameCheckTolerances& tolerances,
+  double largest)
 {
   FrameCheck check;
   const vtkIdType numPoints = mesh->GetNumberOfPoints();
@@ -318,7 +325,7 @@ FrameCheck CheckSuppliedFrames(vtkPolyData* mesh,
       {
         double t[3], sign;
         SuppliedFrame(supplied, p, t, sign);
-        measures[p] = Measure(Tuple3(normals, p), glm::dvec3(t[0], t[1], t[2]), sign);
+        measures[p] = Measure(Tuple3(normals, p), glm::dvec3(t[0], t[1], t[2]), sign, largest);
         check.Defects[p] =
           PointDefects(measures[p], windings.empty() ? 0 : windings[p], vDown, tolerances);
       }

@@ -21,6 +21,7 @@
 #include "vtkNormalMappingModule.h" // For export macro
 #include "vtkType.h"                // For vtkIdType
 
+#include <cfloat> // For DBL_MAX
 #include <string>
 #include <vector>
 
@@ -54,7 +55,8 @@ struct FrameCheckTolerances
 /// What can be wrong with one point's supplied frame (bits of FrameCheck::Defects).
 enum FrameDefect : unsigned char
 {
-  /// A tangent component or the sign is NaN or infinite.
+  /// A tangent component or the sign is NaN or infinite, or the tangent is longer than the
+  /// largest length CheckSuppliedFrames was given (what the caller's output can hold).
   DefectNonFinite = 1,
   /// The tangent's length is not 1 within FrameCheckTolerances::Unit.
   DefectNotUnit = 2,
@@ -127,14 +129,17 @@ struct FrameCheck
  * from corner 0 and strips, as vtkPolyDataTangentFrames reads them; triangles with zero UV or
  * position area, by vtkNormalMapping::DegeneracyTolerance, are not counted). Without `uvs` the
  * winding is not checked (no DefectSignAgainstWinding nor DefectMixedWinding). Point ids outside
- * the points make their triangle count as unusable. Runs on vtkSMPTools.
+ * the points make their triangle count as unusable. A tangent longer than `largest` counts as
+ * non-finite: a caller that writes frames to float arrays passes a length they can hold. Runs
+ * on vtkSMPTools.
  */
 VTKNORMALMAPPING_EXPORT FrameCheck CheckSuppliedFrames(vtkPolyData* mesh,
   vtkDataArray* normals,
   vtkDataArray* uvs,
   const SuppliedFrameArrays& supplied,
   bool vDown,
-  const FrameCheckTolerances& tolerances = FrameCheckTolerances());
+  const FrameCheckTolerances& tolerances = FrameCheckTolerances(),
+  double largest = DBL_MAX);
 
 /// Tangent and sign of point `id` of the supplied arrays (sign: the raw w or sign value).
 VTKNORMALMAPPING_EXPORT void SuppliedFrame(const SuppliedFrameArrays& supplied,

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -319,6 +320,64 @@ TEST(TangentFramesSupplied, KeepUsesFramesAsTheyAreAndReplacesOnlyNonFinite)
   EXPECT_NEAR(-1.0, b[1], 1e-6);
   EXPECT_EQ(vtkPolyDataTangentFrames::TangentsArrayName(),
     std::string(run.Output->GetPointData()->GetTangents()->GetName()));
+}
+
+TEST(TangentFramesSupplied, KeepReplacesTangentsTooLongForTheOutputPrecision)
+{
+  // Double tangents that float output cannot hold would be written as infinity: one longer than
+  // FLT_MAX, and one whose bitangent (as long, rounded) could overflow. KEEP computes their
+  // frames, as for NaN; a long tangent float holds (1e30) is kept as it is. Double output holds
+  // all three.
+  auto mesh = Plane(false);
+  vtkNew<vtkDoubleArray> t;
+  t->SetName("TANGENT");
+  t->SetNumberOfComponents(4);
+  t->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    t->SetTuple4(p, 1.0, 0.0, 0.0, 1.0);
+  }
+  t->SetTuple4(10, 1e300, 0.0, 0.0, 1.0);
+  t->SetTuple4(11, 0.9 * FLT_MAX, 0.0, 0.0, 1.0);
+  t->SetTuple4(12, 1e30, 0.0, 0.0, 1.0);
+  mesh->GetPointData()->AddArray(t);
+  for (const int precision : { vtkAlgorithm::SINGLE_PRECISION, vtkAlgorithm::DOUBLE_PRECISION })
+  {
+    const bool single = precision == vtkAlgorithm::SINGLE_PRECISION;
+    SCOPED_TRACE(single ? "float output" : "double output");
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP);
+    run.Filter->SetOutputPrecision(precision);
+    run.Filter->ComputeBitangentsOn();
+    run.Update();
+    EXPECT_EQ(single ? 2 : 0, run.Filter->GetNumberOfReplacedTangents());
+    EXPECT_EQ(single ? 2 : 0, run.Filter->GetNumberOfNonFiniteTangents());
+    EXPECT_EQ(single,
+      run.Messages->GetWarningMessage().find("too large for the output's precision") !=
+        std::string::npos)
+      << run.Messages->GetWarningMessage();
+    vtkPointData* pd = run.Output->GetPointData();
+    for (const char* name : { "Tangents", "Bitangents" })
+    {
+      vtkDataArray* a = pd->GetArray(name);
+      ASSERT_NE(a, nullptr) << name;
+      for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+      {
+        ASSERT_TRUE(std::isfinite(a->GetComponent(i / 3, static_cast<int>(i % 3))))
+          << name << " value " << i;
+      }
+    }
+    if (single)
+    {
+      EXPECT_TRUE(HasFrame(run, 10, { 1.0, 0.0, 0.0, 1.0 }));
+      EXPECT_TRUE(HasFrame(run, 11, { 1.0, 0.0, 0.0, 1.0 }));
+    }
+    else
+    {
+      EXPECT_EQ(1e300, pd->GetArray("Tangents")->GetComponent(10, 0));
+    }
+    EXPECT_EQ(
+      single ? static_cast<double>(1e30f) : 1e30, pd->GetArray("Tangents")->GetComponent(12, 0));
+  }
 }
 
 TEST(TangentFramesSupplied, CellTangentsAreComputedWhenEveryFrameIsKept)

@@ -29,6 +29,11 @@
 //           a byte choosing i. Whether the result is malformed is judged by VTK's own
 //           vtkCellArray::IsValid (a swap of equal offsets, say, changes nothing).
 //   cell normals (normals mode 4 or 5) after everything else
+//   supplied tangents, last: a byte s; the filter's SuppliedTangents is s % 3 (RECOMPUTE, KEEP,
+//           KEEP_VALID); with KEEP or KEEP_VALID the input gets a point array "Tangents" (active
+//           tangents) of floats ((s / 3) % 2 == 0) or doubles, with 3 + (s / 6) % 2 components
+//           (3: also a float "TangentSigns" array) and the point count plus
+//           {0, 0, 0, 0, -1, -2, +1, +3}[(s / 12) % 8] tuples, then their values
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkCallbackCommand.h"
@@ -198,6 +203,9 @@ struct FuzzInput
   bool UsableTCoords = false;  // present, numeric and at least one tuple per point
   bool BadIds = false;         // a polygon or strip has a point id outside [0, points)
   bool MalformedCells = false; // a cell array that vtkCellArray::IsValid rejects
+  int SuppliedTangents = vtkPolyDataTangentFrames::RECOMPUTE;
+  /// The supplied arrays, which the output's frame arrays of the same names replace.
+  std::vector<vtkAbstractArray*> Supplied;
 };
 
 /// Makes `cells` malformed as the "malformed" bytes of the input layout say.
@@ -374,6 +382,26 @@ void Decode(const uint8_t* data, size_t size, FuzzInput& fuzz)
     FillArray(cellNormals, mesh->GetNumberOfCells() + normalDelta, in);
     mesh->GetCellData()->SetNormals(cellNormals);
   }
+
+  const uint8_t suppliedByte = in.Byte();
+  fuzz.SuppliedTangents = suppliedByte % 3;
+  if (fuzz.SuppliedTangents != vtkPolyDataTangentFrames::RECOMPUTE)
+  {
+    const int components = 3 + (suppliedByte / 6) % 2;
+    const vtkIdType tuples = numPoints + deltas[(suppliedByte / 12) % 8];
+    auto tangents =
+      MakeArray((suppliedByte / 3) % 2 == 0 ? VTK_FLOAT : VTK_DOUBLE, "Tangents", components);
+    FillArray(tangents, tuples, in);
+    pd->SetTangents(tangents);
+    fuzz.Supplied.push_back(tangents);
+    if (components == 3)
+    {
+      auto signs = MakeArray(VTK_FLOAT, "TangentSigns", 1);
+      FillArray(signs, tuples, in);
+      pd->AddArray(signs);
+      fuzz.Supplied.push_back(signs);
+    }
+  }
 }
 
 /// Errors of one filter run (the observer also keeps the filter's messages off the console).
@@ -507,12 +535,12 @@ std::vector<vtkIdType> CheckCells(vtkPolyData* in,
 
 /// Point data of `out` against `in`: every array still there; arrays with a tuple per input
 /// point keep their tuples, and with appended points gain exactly one tuple per appended point,
-/// a copy of its source; shorter arrays pass as they are. `replaced`, unusable input normals,
-/// gives way to the computed ones (checked with the frames).
+/// a copy of its source; shorter arrays pass as they are. The `replaced` arrays (unusable input
+/// normals, supplied tangents and signs) give way to the output's frames (checked with them).
 void CheckPointData(vtkPolyData* in,
   vtkPolyData* out,
   const std::vector<vtkIdType>& source,
-  vtkAbstractArray* replaced,
+  const std::vector<vtkAbstractArray*>& replaced,
   const std::string& context)
 {
   const vtkIdType numIn = in->GetNumberOfPoints();
@@ -528,7 +556,7 @@ void CheckPointData(vtkPolyData* in,
   for (int a = 0; a < pin->GetNumberOfArrays(); ++a)
   {
     vtkAbstractArray* x = pin->GetAbstractArray(a);
-    if (x == replaced)
+    if (std::find(replaced.begin(), replaced.end(), x) != replaced.end())
     {
       continue;
     }
@@ -573,8 +601,12 @@ void CheckFrames(vtkPolyData* in,
       filter->GetNumberOfHandednessConflicts() >= 0,
     context + ": negative count");
   const std::vector<vtkIdType> source = CheckCells(in, out, filter->GetSplitting(), context);
-  CheckPointData(
-    in, out, source, inputHadUsableNormals ? nullptr : in->GetPointData()->GetNormals(), context);
+  std::vector<vtkAbstractArray*> replaced = fuzz.Supplied;
+  if (!inputHadUsableNormals)
+  {
+    replaced.push_back(in->GetPointData()->GetNormals());
+  }
+  CheckPointData(in, out, source, replaced, context);
 
   vtkPointData* pd = out->GetPointData();
   vtkDataArray* t = pd->GetTangents();
@@ -603,7 +635,20 @@ void CheckFrames(vtkPolyData* in,
   // is at most 1e-4 (the documented contract: real files' normals are unit only to ~1e-5,
   // which MikkTSpace projects with as they are), Gram-Schmidt-ing the others.
   const double tolerance = 1e-6;
-  const double perpendicularTolerance = mikk ? 1e-4 : tolerance;
+  double unitTolerance = tolerance;
+  double perpendicularTolerance = mikk ? 1e-4 : tolerance;
+  // Supplied frames: KEEP writes them as they are, promising only finite values and signs of
+  // +1 or -1; KEEP_VALID keeps those within the checks' default tolerances (FrameCheckTolerances:
+  // | |T| - 1 | <= 1e-2, |T.N| / |T| <= 2e-2, so |T.N| <= 2e-2 * 1.01) and computes the others.
+  if (fuzz.SuppliedTangents == vtkPolyDataTangentFrames::KEEP)
+  {
+    unitTolerance = perpendicularTolerance = std::numeric_limits<double>::infinity();
+  }
+  else if (fuzz.SuppliedTangents == vtkPolyDataTangentFrames::KEEP_VALID)
+  {
+    unitTolerance = 1e-2 + tolerance;
+    perpendicularTolerance = 2e-2 * 1.01 + tolerance;
+  }
   for (vtkIdType p = 0; p < numOut; ++p)
   {
     double tv[3], nv[3], nu[3];
@@ -624,7 +669,7 @@ void CheckFrames(vtkPolyData* in,
       at + ": tangent not finite");
     // Every method, MikkTSpace included: where the reference's sum cancels or it keeps its
     // default (1, 0, 0), the filter gives the documented fallback frame.
-    Require(std::abs(Length(tv) - 1.0) <= tolerance, at + ": tangent not unit");
+    Require(std::abs(Length(tv) - 1.0) <= unitTolerance, at + ": tangent not unit");
     const double sign = s->GetComponent(p, 0);
     Require(sign == 1.0 || sign == -1.0, at + ": sign not +1 or -1");
     // Every tangent is perpendicular to the point normal it used: the output normal, unless
@@ -644,9 +689,10 @@ void CheckFrames(vtkPolyData* in,
     {
       double bv[3];
       b->GetTuple(p, bv);
+      // B = sign * cross(unit N, T), no longer than T
       Require(std::isfinite(bv[0]) && std::isfinite(bv[1]) && std::isfinite(bv[2]) &&
-          Length(bv) <= 1.0 + tolerance,
-        at + ": bitangent not finite or longer than 1");
+          Length(bv) <= 1.0 + unitTolerance,
+        at + ": bitangent not finite or longer than the tangent may be");
     }
   }
   if (fuzz.CellTangents)
@@ -700,6 +746,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       filter->SetOutputPrecision(fuzz.OutputPrecision);
       filter->SetComputeBitangents(fuzz.Bitangents);
       filter->SetComputeCellTangents(fuzz.CellTangents);
+      filter->SetSuppliedTangents(fuzz.SuppliedTangents);
       filter->Update();
       vtkPolyData* output = filter->GetOutput();
       const std::string context = std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +

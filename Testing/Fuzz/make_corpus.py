@@ -32,10 +32,12 @@ def cell(kind, ids, n_points):
 
 
 def mesh(points, uvs, cells, normals=None, flags=0, uv_mode=0, uv_components=2, normal_mode=1,
-         deltas=0, extra=None, malformed=None):
+         deltas=0, extra=None, malformed=None, supplied=None):
     """Bytes for one input. uvs/normals may be longer or shorter than points (set `deltas`
     accordingly); normals are per cell for normal_mode 4; extra: the 'Extra' values or None;
-    malformed: None or (cell array 0-3, defect 0-7, position byte), see the decoder."""
+    malformed: None or (cell array 0-3, defect 0-7, position byte), see the decoder;
+    supplied: None or (mode 1 KEEP / 2 KEEP_VALID, double, tangents, signs), tangents 3 or 4
+    values per point, signs (for 3) one per point."""
     if malformed:
         flags |= 64
     data = bytes([flags, uv_mode + 8 * (uv_components - 1), normal_mode, deltas, len(points)])
@@ -56,6 +58,14 @@ def mesh(points, uvs, cells, normals=None, flags=0, uv_mode=0, uv_components=2, 
         data += bytes([array + 4 * defect, where])
     for n in normals or [] if cell_normals else []:
         data += b"".join(value(c) for c in n)
+    if supplied:
+        mode, double, tangents, signs = supplied
+        components = len(tangents[0])
+        data += bytes([mode + 3 * int(double) + 6 * (components - 3)])
+        for t in tangents:
+            data += b"".join(value(c) for c in t)
+        for s in signs or []:
+            data += value(s)
     return data
 
 
@@ -133,6 +143,23 @@ def main():
                                                  [(1, 0, 0)] * 3, flags=8)
     seeds["mikktspace_default_corners"] = mesh(tri, [(0.5, 0.5)] * 3, [(2, [0, 1, 2])],
                                                [(0.625, 0, 0.75)] * 3)
+    # Supplied tangents kept as they are (KEEP) or where they pass the checks (KEEP_VALID): glTF
+    # style 4-component tangents with one NaN, 3-component doubles with signs (one not unit, one
+    # wrong sign), and doubles too large for the float output.
+    p, uv, c = grid(4, 2, True)
+    along_u = [((1 if i % 5 < 2.5 else -1), 0, 0, (1 if i % 5 < 2.5 else -1)) for i in range(len(p))]
+    along_u[3] = ("nan", 0, 0, 1)
+    seeds["supplied_keep_gltf"] = mesh(p, uv, c, [(0, 0, 1)] * len(p),
+                                       supplied=(1, False, along_u, None))
+    seeds["supplied_keep_valid_doubles"] = mesh(tri, tri_uv, [(2, [0, 1, 2])], up,
+                                                supplied=(2, True,
+                                                          [(1, 0, 0), (2, 0, 0), (1, 0, 0)],
+                                                          [1, 1, -1]))
+    seeds["supplied_keep_too_large_for_float"] = mesh(tri, tri_uv, [(2, [0, 1, 2])], up, flags=8,
+                                                      supplied=(1, True,
+                                                                [(1e300, 0, 0), (1, 0, 0),
+                                                                 (0, 1e39, 0)],
+                                                                [1, 1, 1]))
     out = pathlib.Path(__file__).resolve().parent / "corpus"
     out.mkdir(exist_ok=True)
     for old in out.glob("*.bin"):
