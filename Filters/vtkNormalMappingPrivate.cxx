@@ -4,6 +4,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 
 int vtkNormalMapping::detail::UsableThreads()
 {
@@ -87,4 +88,36 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
       }
     });
   return copy;
+}
+
+bool vtkNormalMapping::detail::PointIdsInRange(vtkPolyDataTangentFrames* filter,
+  vtkPolyData* input,
+  vtkPolyData* output)
+{
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  std::atomic<bool> bad{ false };
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    WithCellStorage(cells,
+      [&](const auto*, const auto* conn)
+      {
+        vtkSMPTools::For(0,
+          cells->GetNumberOfConnectivityIds(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            if (!IdsInRange(conn, begin, end, numPoints))
+            {
+              bad = true;
+            }
+          });
+      });
+  }
+  if (bad)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
+        << numPoints << "); passing the input through.");
+    output->ShallowCopy(input);
+  }
+  return !bad;
 }

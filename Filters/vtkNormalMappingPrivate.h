@@ -144,6 +144,13 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
 }
 
 /**
+ * Whether every point id of the polygons and strips of `input` is in [0, its number of points)
+ * (IdsInRange, in parallel); false after an error on `filter` that passes the input through to
+ * `output`. Cell arrays must be readable (see vtkPolyDataTangentFrames::ExecuteBlock).
+ */
+bool PointIdsInRange(vtkPolyDataTangentFrames* filter, vtkPolyData* input, vtkPolyData* output);
+
+/**
  * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple
  * numIn + i copies tuple source[i] (a point split in two takes all its point data along).
  * The copy keeps the array's name, component names, information and lookup table, and holds

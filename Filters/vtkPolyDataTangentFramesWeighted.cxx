@@ -91,23 +91,6 @@ struct Triangles
   }
 };
 
-/// Whether every id of [ids, ids + n) is in [0, numPoints) (detail::IdsInRange), in parallel.
-template<typename IdT>
-bool AllIdsInRange(const IdT* ids, vtkIdType n, vtkIdType numPoints)
-{
-  std::atomic<bool> bad{ false };
-  vtkSMPTools::For(0,
-    n,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      if (!vtkNormalMapping::detail::IdsInRange(ids, begin, end, numPoints))
-      {
-        bad = true;
-      }
-    });
-  return !bad;
-}
-
 /// The triangles of polygons that are all triangles, with no strips: the polygons' connectivity,
 /// shared when it is stored as vtkIdType, else copied.
 void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
@@ -195,32 +178,18 @@ void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
   }
 }
 
-/// Lists the triangles of polygons and strips; false when a cell has a point id outside
-/// [0, numPoints). polysAreTriangles: every polygon has 3 points.
-bool BuildTriangles(vtkCellArray* const cellArrays[2],
-  bool polysAreTriangles,
-  vtkIdType numPoints,
-  Triangles& out)
+/// Lists the triangles of polygons and strips, whose point ids are in range
+/// (detail::PointIdsInRange). polysAreTriangles: every polygon has 3 points.
+void BuildTriangles(vtkCellArray* const cellArrays[2], bool polysAreTriangles, Triangles& out)
 {
   out.NumberOfCells = cellArrays[0]->GetNumberOfCells() + cellArrays[1]->GetNumberOfCells();
-  for (int kind = 0; kind < 2; ++kind)
-  {
-    const bool inRange = WithCellStorage(cellArrays[kind],
-      [&](const auto*, const auto* conn)
-      { return AllIdsInRange(conn, cellArrays[kind]->GetNumberOfConnectivityIds(), numPoints); });
-    if (!inRange)
-    {
-      return false;
-    }
-  }
   if (polysAreTriangles && cellArrays[1]->GetNumberOfCells() == 0)
   {
     ShareTrianglePolygons(cellArrays[0], out);
-    return true;
+    return;
   }
   CountCellTriangles(cellArrays, out);
   ListCellTriangles(cellArrays, out);
-  return true;
 }
 
 /**
@@ -908,14 +877,11 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   /// The triangles; false after an error (input passed through).
   bool Prepare()
   {
-    if (!BuildTriangles(this->Cells, this->PolysAreTriangles, this->NumberOfPoints, this->Tris))
+    if (!vtkNormalMapping::detail::PointIdsInRange(this->Self, this->Input, this->Output))
     {
-      vtkErrorWithObjectMacro(this->Self,
-        "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
-          << this->NumberOfPoints << "); passing the input through.");
-      this->Output->ShallowCopy(this->Input);
       return false;
     }
+    BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
     this->NumberOfTriangles = this->Tris.Count;
     return true;
   }

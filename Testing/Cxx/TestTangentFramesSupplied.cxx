@@ -592,9 +592,10 @@ TEST(TangentFramesSupplied, KeptSignsFollowTheOutputConvention)
 
 TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
 {
-  // A triangle with a point id out of range: ComputeBlock's error and pass-through. The input's
-  // own Tangents / TangentSigns (3 + 1 components, one sign wrong so that frames are computed)
-  // come through unchanged.
+  // A triangle with a point id out of range: an error and pass-through in both keeping modes,
+  // with KEEP_VALID (one sign wrong, so that frames are computed) and with KEEP, which computes
+  // no frame here (every supplied value is finite). The input's own Tangents / TangentSigns
+  // (3 + 1 components) come through unchanged.
   auto mesh = Plane(false);
   auto vec4 = SuppliedVec4(mesh, 0.0, false);
   vtkNew<vtkFloatArray> tangents, signs;
@@ -610,19 +611,25 @@ TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
   mesh->GetPointData()->AddArray(signs);
   const vtkIdType bad[3] = { 0, 1, 1000 };
   mesh->GetPolys()->InsertNextCell(3, bad);
-  for (int method :
-    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  for (int mode : { vtkPolyDataTangentFrames::KEEP_VALID, vtkPolyDataTangentFrames::KEEP })
   {
-    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID, "");
-    run.Filter->SetMethod(method);
-    run.Filter->GLTFSignConventionOn(); // kept signs would be negated for the weighted method
-    run.Update();
-    EXPECT_TRUE(run.Messages->GetError()) << vtkPolyDataTangentFrames::GetMethodName(method);
-    EXPECT_EQ(tangents.Get(), run.Output->GetPointData()->GetTangents());
-    EXPECT_EQ(-1.0, signs->GetValue(0));
-    EXPECT_EQ(1.0, signs->GetValue(1));
-    EXPECT_EQ(
-      nullptr, run.Output->GetPointData()->GetArray("vtkPolyDataTangentFrames_SourcePointIds"));
+    for (int method :
+      { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetSuppliedTangentsName(mode)) + " " +
+        vtkPolyDataTangentFrames::GetMethodName(method));
+      SuppliedRun run(mesh, mode, "");
+      run.Filter->SetMethod(method);
+      run.Filter->GLTFSignConventionOn(); // kept signs would be negated for the weighted method
+      run.Update();
+      EXPECT_TRUE(run.Messages->GetError());
+      EXPECT_NE(std::string::npos, run.Messages->GetErrorMessage().find("point id outside"));
+      EXPECT_EQ(tangents.Get(), run.Output->GetPointData()->GetTangents());
+      EXPECT_EQ(-1.0, signs->GetValue(0));
+      EXPECT_EQ(1.0, signs->GetValue(1));
+      EXPECT_EQ(
+        nullptr, run.Output->GetPointData()->GetArray("vtkPolyDataTangentFrames_SourcePointIds"));
+    }
   }
 }
 

@@ -30,9 +30,10 @@
 //           vtkCellArray::IsValid (a swap of equal offsets, say, changes nothing).
 //   cell normals (normals mode 4 or 5) after everything else
 //   supplied tangents, last: a byte s; the filter's SuppliedTangents is s % 3 (RECOMPUTE, KEEP,
-//           KEEP_VALID); with KEEP or KEEP_VALID the input gets a point array "Tangents" (active
-//           tangents) of floats ((s / 3) % 2 == 0) or doubles, with 3 + (s / 6) % 2 components
-//           (3: also a float "TangentSigns" array) and the point count plus
+//           KEEP_VALID); with KEEP or KEEP_VALID the input gets a point array "Tangents" of floats
+//           ((s / 3) % 2 == 0) or doubles, with 3 + (s / 6) % 2 components (3: the active
+//           tangents, and a float "TangentSigns" array; 4: found by its name, as VTK's active
+//           tangents have 3 components) and the point count plus
 //           {0, 0, 0, 0, -1, -2, +1, +3}[(s / 12) % 8] tuples, then their values
 #include "vtkPolyDataTangentFrames.h"
 
@@ -392,10 +393,14 @@ void Decode(const uint8_t* data, size_t size, FuzzInput& fuzz)
     auto tangents =
       MakeArray((suppliedByte / 3) % 2 == 0 ? VTK_FLOAT : VTK_DOUBLE, "Tangents", components);
     FillArray(tangents, tuples, in);
-    pd->SetTangents(tangents);
     fuzz.Supplied.push_back(tangents);
-    if (components == 3)
+    if (components == 4)
     {
+      pd->AddArray(tangents);
+    }
+    else
+    {
+      pd->SetTangents(tangents);
       auto signs = MakeArray(VTK_FLOAT, "TangentSigns", 1);
       FillArray(signs, tuples, in);
       pd->AddArray(signs);

@@ -160,6 +160,10 @@ def main():
                                                                 [(1e300, 0, 0), (1, 0, 0),
                                                                  (0, 1e39, 0)],
                                                                 [1, 1, 1]))
+    # Found by the fuzzer: KEEP with every value finite computed no frame, so nothing found the
+    # out-of-range id (no error, the broken cells passed on).
+    seeds["supplied_keep_out_of_range_id"] = mesh(tri, tri_uv, [(2, [0, 1, 7])], up,
+                                                  supplied=(1, False, [(1, 0, 0)] * 3, [1] * 3))
     out = pathlib.Path(__file__).resolve().parent / "corpus"
     out.mkdir(exist_ok=True)
     for old in out.glob("*.bin"):
