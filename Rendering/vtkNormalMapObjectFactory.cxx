@@ -5,8 +5,12 @@
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkVersion.h"
+#include "vtkWeakPointer.h"
 
+#include <algorithm>
+#include <iterator>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkNormalMapObjectFactory);
 
@@ -34,6 +38,20 @@ const char* const Overrides[][2] = {
   { "vtkPolyDataMapper", "vtkNormalMapPolyDataMapper" },
   { CompositeMapper, "vtkNormalMapCompositePolyDataMapper" },
 };
+
+/// An override of another factory that Install() disabled, for Uninstall() to enable again.
+struct DisabledOverride
+{
+  vtkWeakPointer<vtkObjectFactory> Factory;
+  std::string ClassName;
+  std::string SubclassName;
+};
+
+std::vector<DisabledOverride>& DisabledOverrides()
+{
+  static std::vector<DisabledOverride> disabled;
+  return disabled;
+}
 
 /// The registered factory, or nullptr.
 vtkNormalMapObjectFactory* Registered()
@@ -91,10 +109,33 @@ void vtkNormalMapObjectFactory::Install()
     vtkNew<vtkNormalMapObjectFactory> factory;
     vtkObjectFactory::RegisterFactory(factory);
   }
-  // The first enabled override wins; VTK's OpenGL module registered its own earlier.
+  // The first enabled override wins; VTK's OpenGL module registered its own earlier. Every
+  // other factory's enabled override of the classes is disabled, and remembered.
+  vtkObjectFactoryCollection* factories = vtkObjectFactory::GetRegisteredFactories();
+  vtkCollectionSimpleIterator it;
+  factories->InitTraversal(it);
+  while (vtkObjectFactory* factory = factories->GetNextObjectFactory(it))
+  {
+    if (vtkNormalMapObjectFactory::SafeDownCast(factory))
+    {
+      continue;
+    }
+    for (int i = 0; i < factory->GetNumberOfOverrides(); ++i)
+    {
+      const std::string className = factory->GetClassOverrideName(i);
+      const bool ours = std::any_of(std::begin(Overrides),
+        std::end(Overrides),
+        [&](const auto& pair) { return className == pair[0]; });
+      if (ours && factory->GetEnableFlag(i))
+      {
+        const std::string subclassName = factory->GetClassOverrideWithName(i);
+        factory->SetEnableFlag(false, className.c_str(), subclassName.c_str());
+        DisabledOverrides().push_back({ factory, className, subclassName });
+      }
+    }
+  }
   for (const auto& pair : Overrides)
   {
-    vtkObjectFactory::SetAllEnableFlags(false, pair[0]);
     vtkObjectFactory::SetAllEnableFlags(true, pair[0], pair[1]);
   }
 }
@@ -106,10 +147,15 @@ void vtkNormalMapObjectFactory::Uninstall()
   {
     vtkObjectFactory::UnRegisterFactory(factory);
   }
-  for (const auto& pair : Overrides)
+  for (const DisabledOverride& disabled : DisabledOverrides())
   {
-    vtkObjectFactory::SetAllEnableFlags(true, pair[0]);
+    if (disabled.Factory)
+    {
+      disabled.Factory->SetEnableFlag(
+        true, disabled.ClassName.c_str(), disabled.SubclassName.c_str());
+    }
   }
+  DisabledOverrides().clear();
 }
 
 //------------------------------------------------------------------------------

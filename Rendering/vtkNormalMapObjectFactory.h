@@ -19,7 +19,8 @@
  *
  * VTK's OpenGL module registers its own vtkPolyDataMapper override first, and the factory
  * returns the first enabled override, so Install() disables the others for each overridden
- * class and Uninstall() enables them again.
+ * class and Uninstall() enables again the ones it disabled (those the application had disabled
+ * itself stay so).
  */
 #ifndef vtkNormalMapObjectFactory_h
 #define vtkNormalMapObjectFactory_h
@@ -38,7 +39,7 @@ public:
 
   /// Register the factory (once) and make its override the one in effect.
   static void Install();
-  /// Unregister it; VTK's own overrides of vtkPolyDataMapper are enabled again.
+  /// Unregister it; the overrides Install() disabled are enabled again.
   static void Uninstall();
   /// Whether Install() is in effect.
   static bool IsInstalled();

@@ -11,6 +11,7 @@
 #include "vtkNew.h"
 #include "vtkNormalMapObjectFactory.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkObjectFactoryCollection.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -19,6 +20,7 @@
 #include "vtkRenderer.h"
 
 #include <iostream>
+#include <string>
 
 namespace
 {
@@ -280,9 +282,38 @@ int TestNormalMapBadInput(int, char*[])
     auto during = vtk::TakeSmartPointer(vtkPolyDataMapper::New());
     vtkNormalMapObjectFactory::Uninstall();
     auto after = vtk::TakeSmartPointer(vtkPolyDataMapper::New());
-    check(!Mapper::SafeDownCast(before) && Mapper::SafeDownCast(during) &&
+    check(!Mapper::SafeDownCast(before) && Mapper::SafeDownCast(during) && after &&
         !Mapper::SafeDownCast(after) && !vtkNormalMapObjectFactory::IsInstalled(),
-      "object factory: Install makes vtkPolyDataMapper::New() ours, Uninstall undoes it");
+      "object factory: Install makes vtkPolyDataMapper::New() ours, Uninstall gives VTK's back");
+  }
+  { // An override the application disabled before Install() stays disabled after Uninstall().
+    vtkObjectFactory* vtkFactory = nullptr;
+    std::string subclass;
+    vtkObjectFactoryCollection* factories = vtkObjectFactory::GetRegisteredFactories();
+    vtkCollectionSimpleIterator it;
+    factories->InitTraversal(it);
+    while (vtkObjectFactory* factory = factories->GetNextObjectFactory(it))
+    {
+      for (int i = 0; !vtkFactory && i < factory->GetNumberOfOverrides(); ++i)
+      {
+        if (std::string(factory->GetClassOverrideName(i)) == "vtkPolyDataMapper" &&
+          factory->GetEnableFlag(i))
+        {
+          vtkFactory = factory;
+          subclass = factory->GetClassOverrideWithName(i);
+        }
+      }
+    }
+    check(vtkFactory != nullptr, "VTK registers an override of vtkPolyDataMapper");
+    if (vtkFactory)
+    {
+      vtkFactory->SetEnableFlag(false, "vtkPolyDataMapper", subclass.c_str());
+      vtkNormalMapObjectFactory::Install();
+      vtkNormalMapObjectFactory::Uninstall();
+      check(!vtkFactory->GetEnableFlag("vtkPolyDataMapper", subclass.c_str()),
+        "object factory: an override disabled before Install stays disabled after Uninstall");
+      vtkFactory->SetEnableFlag(true, "vtkPolyDataMapper", subclass.c_str());
+    }
   }
   return check.Result();
 }
