@@ -146,7 +146,8 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
 /**
  * Whether every point id of the polygons and strips of `input` is in [0, its number of points)
  * (IdsInRange, in parallel); false after an error on `filter` that passes the input through to
- * `output`. Cell arrays must be readable (see vtkPolyDataTangentFrames::ExecuteBlock).
+ * `output`. Cell arrays must be readable (vtkPolyDataTangentFrames::ExecuteBlock checks both,
+ * in that order, before any method runs).
  */
 bool PointIdsInRange(vtkPolyDataTangentFrames* filter, vtkPolyData* input, vtkPolyData* output);
 

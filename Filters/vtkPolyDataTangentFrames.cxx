@@ -411,6 +411,11 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   }
   vtkDataArray* cellNormals = nullptr;
   vtkDataArray* normals = PointNormalsOf(this, input, cellNormals);
+  // Checked once here for every method, and for kept supplied frames, which list no triangles.
+  if (!vtkNormalMapping::detail::PointIdsInRange(this, input, output))
+  {
+    return 1;
+  }
   const BlockInput block{
     input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
   };

@@ -184,12 +184,6 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
     withMesh.Input = mesh;
     return this->ComputeBlock(withMesh);
   };
-  // Kept frames skip ComputeBlock, which finds point ids out of range as it lists the triangles:
-  // such input is an error on this path too, whether or not a frame needs computing.
-  if (!vtkNormalMapping::detail::PointIdsInRange(this, input, output))
-  {
-    return 1;
-  }
   std::string problem;
   const vtkNormalMapping::SuppliedFrameArrays supplied =
     vtkNormalMapping::FindSuppliedFrames(input, this->SuppliedTangentsArrayName, problem);

@@ -874,16 +874,11 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     return true;
   }
 
-  /// The triangles; false after an error (input passed through).
-  bool Prepare()
+  /// The triangles (their point ids are in range: see ExecuteBlock).
+  void ListTriangles()
   {
-    if (!vtkNormalMapping::detail::PointIdsInRange(this->Self, this->Input, this->Output))
-    {
-      return false;
-    }
     BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
     this->NumberOfTriangles = this->Tris.Count;
-    return true;
   }
 
   /**
@@ -1255,7 +1250,8 @@ int vtkPolyDataTangentFrames::Internals::Run()
   }
   if (!mikkTSpace || !this->Normals)
   {
-    if (!this->Prepare() || !this->Continue(0.2))
+    this->ListTriangles();
+    if (!this->Continue(0.2))
     {
       return 1;
     }

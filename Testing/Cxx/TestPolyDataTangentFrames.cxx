@@ -2471,9 +2471,7 @@ TEST(PolyDataTangentFrames, EveryBadInputEveryMethodWithAndWithoutSplitting)
       [](vtkPolyData* m) { m->GetPointData()->GetTCoords()->SetNumberOfTuples(3); },
       "has 3 tuples for 4 points",
       "" },
-    // The weighted methods say "a polygon or strip refers to a point id outside [0, 4)";
-    // MikkTSpace, when its kernel finds them, "N polygons or strip triangles use point ids
-    // outside [0, 4)".
+    // Every method says "a polygon or strip refers to a point id outside [0, 4)".
     { "polygon id past the end",
       [&](vtkPolyData* m) {
         addCell(m, { 0, 1, 4 }, false);
