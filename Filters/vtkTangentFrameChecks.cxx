@@ -131,11 +131,12 @@ PointMeasures Measure(const glm::dvec3& normal,
   double largest)
 {
   PointMeasures m;
-  // The length without overflow of the squares; NaN or infinite where a component is.
-  const double largestComponent = detail::MaxAbs(tangent);
+  m.Finite = detail::IsFinite(tangent) && std::isfinite(sign);
+  // The length without overflow of the squares, so that a finite tangent up to `largest` passes.
+  const double largestComponent = m.Finite ? detail::MaxAbs(tangent) : 0.0;
   const double length =
     largestComponent > 0.0 ? largestComponent * glm::length(tangent / largestComponent) : 0.0;
-  m.Finite = length <= largest && std::isfinite(sign) && detail::IsFinite(tangent);
+  m.Finite = m.Finite && length <= largest;
   if (!m.Finite)
   {
     return m;

@@ -123,10 +123,10 @@ void vtkNormalMapObjectFactory::Install()
     for (int i = 0; i < factory->GetNumberOfOverrides(); ++i)
     {
       const std::string className = factory->GetClassOverrideName(i);
-      const bool ours = std::any_of(std::begin(Overrides),
+      const bool overridden = std::any_of(std::begin(Overrides),
         std::end(Overrides),
         [&](const auto& pair) { return className == pair[0]; });
-      if (ours && factory->GetEnableFlag(i))
+      if (overridden && factory->GetEnableFlag(i))
       {
         const std::string subclassName = factory->GetClassOverrideWithName(i);
         factory->SetEnableFlag(false, className.c_str(), subclassName.c_str());
