@@ -11,12 +11,14 @@
 #include "vtkCompositeMapperHelper2.h"
 #endif
 #include "vtkFloatArray.h"
+#include "vtkNew.h"
 #include "vtkNormalMapShading.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <map>
@@ -35,6 +37,26 @@ std::string BlockNames(std::vector<unsigned int> flatIndices)
     names += (i ? ", " : "") + std::to_string(flatIndices[i]);
   }
   return names + ": ";
+}
+
+/// Whether two blocks' tangents come from the same arrays, used the same way.
+bool SameArrays(const vtkNormalMapShading::Tangents& a, const vtkNormalMapShading::Tangents& b)
+{
+  return a.Use == b.Use && a.Vectors == b.Vectors && a.Signs == b.Signs;
+}
+
+/// A shallow copy of `poly` whose points are a new array sharing the same values.
+vtkSmartPointer<vtkPolyData> WithOwnPointArray(vtkPolyData* poly)
+{
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(poly);
+  vtkDataArray* values = poly->GetPoints()->GetData();
+  auto data = vtk::TakeSmartPointer(values->NewInstance());
+  data->ShallowCopy(values);
+  vtkNew<vtkPoints> points;
+  points->SetData(data);
+  copy->SetPoints(points);
+  return copy;
 }
 
 /*
@@ -119,6 +141,7 @@ protected:
     // Each block's tangents, before the superclass appends the blocks: whether blocks without
     // tangents need a zero placeholder depends on the others.
     this->BlockTangents.clear();
+    this->AppendedTangents.clear();
     this->Frames = vtkNormalMapShading::FrameMix();
     bool allUnsigned = true;
     this->ForEachBlock(
@@ -143,17 +166,27 @@ protected:
     std::vector<unsigned char>& colors,
     std::vector<float>& normals) override
   {
-    vtkPoints* points = PolyDataOf(hdata)->GetPoints();
+    vtkPolyData* block = PolyDataOf(hdata);
+    vtkPoints* points = block->GetPoints();
+    const bool hasPoints = points && points->GetNumberOfPoints() > 0;
     vtkIdType reusedOffset = 0;
     vtkIdType appendedBefore = 0;
-    if (points && points->GetNumberOfPoints() > 0)
-    {
+    const bool pointsAppended = hasPoints &&
       this->VBOs->ArrayExists("vertexMC", points->GetData(), reusedOffset, appendedBefore);
-    }
     // VTK's own code appends the block's active Tangents (tangentMC) whenever they exist; it
     // sees a copy without them unless its shader reads them.
-    vtkPolyData* block = PolyDataOf(hdata);
-    const auto forVTK = vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
+    vtkSmartPointer<vtkPolyData> forVTK =
+      vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
+    // VTK lets a block reuse the vertices appended for an earlier block with the same point,
+    // normal and texture-coordinate arrays. With other tangents it must not: a new array over
+    // the same points makes VTK append the block's vertices again.
+    const auto& tangents = this->BlockTangents[hdata];
+    const auto appended = this->AppendedTangents.find(reusedOffset);
+    if (pointsAppended && this->Frames.PointTangents &&
+      (appended == this->AppendedTangents.end() || !SameArrays(appended->second, tangents)))
+    {
+      forVTK = WithOwnPointArray(forVTK ? forVTK.Get() : block);
+    }
     if (forVTK)
     {
       PolyDataOf(hdata) = forVTK;
@@ -161,13 +194,12 @@ protected:
     this->Superclass::AppendOneBufferObject(ren, actor, hdata, voffset, colors, normals);
     PolyDataOf(hdata) = block;
     // Nothing appended (no points), or the block reuses vertices appended for an earlier block
-    // with the same point arrays (then it also has that block's tangents).
-    if (!points || points->GetNumberOfPoints() == 0 || voffset != appendedBefore ||
-      !this->Frames.PointTangents)
+    // with the same point arrays and tangents.
+    if (!hasPoints || voffset != appendedBefore || !this->Frames.PointTangents)
     {
       return;
     }
-    vtkFloatArray* packed = vtkNormalMapShading::NewPackedTangents(this->BlockTangents[hdata]);
+    vtkFloatArray* packed = vtkNormalMapShading::NewPackedTangents(tangents);
     if (!packed)
     {
       // A block without tangents: zeros keep the attribute aligned with the vertices.
@@ -178,6 +210,7 @@ protected:
     }
     this->VBOs->AppendDataArray(vtkNormalMapShading::TangentAttribute, packed, VTK_FLOAT);
     packed->Delete();
+    this->AppendedTangents[voffset] = tangents;
   }
 
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* actor) override
@@ -310,6 +343,8 @@ private:
   /// Per block, its tangents as found at the last vertex buffer build (the array pointers are
   /// read during that build only).
   std::map<const BlockData*, vtkNormalMapShading::Tangents> BlockTangents;
+  /// By first vertex, the tangents appended for the vertices from there, in the current build.
+  std::map<vtkIdType, vtkNormalMapShading::Tangents> AppendedTangents;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;

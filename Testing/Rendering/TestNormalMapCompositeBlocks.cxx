@@ -2,7 +2,8 @@
 // Multiblock data through vtkNormalMapCompositePolyDataMapper: the mirror-symmetry and the
 // CPU-reference checks of the polydata mapper, on datasets whose blocks store their tangents
 // differently (float with a sign array, glTF-style double with the sign in w, none), plus a
-// block without texture coordinates, per-block display attributes and the object factory.
+// block without texture coordinates, blocks sharing point arrays but not tangents, per-block
+// display attributes and the object factory.
 // VTK's stock composite mapper fails the same checks.
 #include "NormalMapTestScenes.h"
 
@@ -11,6 +12,8 @@
 #include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
@@ -386,6 +389,68 @@ void CPUReference(nmtest::Checks& check)
   }
 }
 
+/**
+ * Blocks that share their points, normals and texture coordinates but not their tangents, as the
+ * filter's outputs of regions of one mesh do (its output shares the input's point arrays when no
+ * point is split). VTK lets such a block reuse the vertices appended for an earlier one; its
+ * tangents must not be reused with them. Each half's tangents are turned half a turn on the
+ * points only the other half uses, so drawing either half with the other's tangents fails the
+ * reference (the helper appends the blocks in an order of its own).
+ */
+void SharedPointArrays(nmtest::Checks& check)
+{
+  const nmtest::FlatSetup setup;
+  auto quad = nmtest::WithTangents(nmtest::MakeQuad(2));
+  const auto region = [&](bool left)
+  {
+    auto block = vtkSmartPointer<vtkPolyData>::New();
+    block->ShallowCopy(quad);
+    block->SetPolys(nmtest::Half(quad, left)->GetPolys());
+    std::vector<bool> used(quad->GetNumberOfPoints(), false);
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < block->GetNumberOfCells(); ++c)
+    {
+      block->GetCellPoints(c, ids);
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+      {
+        used[ids->GetId(k)] = true;
+      }
+    }
+    vtkNew<vtkFloatArray> tangents;
+    tangents->DeepCopy(quad->GetPointData()->GetTangents());
+    for (vtkIdType p = 0; p < quad->GetNumberOfPoints(); ++p)
+    {
+      for (int k = 0; !used[p] && k < 3; ++k)
+      {
+        tangents->SetComponent(p, k, -tangents->GetComponent(p, k));
+      }
+    }
+    block->GetPointData()->SetTangents(tangents);
+    return block;
+  };
+  auto left = region(true);
+  auto right = region(false);
+  check(left->GetPoints() == right->GetPoints() &&
+      left->GetPointData()->GetTCoords() == right->GetPointData()->GetTCoords() &&
+      left->GetPointData()->GetNormals() == right->GetPointData()->GetNormals(),
+    "shared point arrays: the blocks share points, normals and texture coordinates");
+
+  auto blocks = MakeBlocks({ left, right });
+  auto texture = nmtest::MakeNormalTexture(
+    nmtest::MakeNormalMapImage(nmtest::Pattern::SineBump, 128, nmtest::Storage::OpenGL));
+  nmtest::FlatActor actor;
+  actor.Blocks = blocks;
+  actor.NormalTexture = texture;
+  const Rendered out = RenderBlocks(setup, actor);
+  // The CPU reference test's budget: 3 levels on 99.5% of the pixels.
+  const nmtest::Difference d =
+    nmtest::CompareWithReferenceShading(setup, out.Pixels, nmtest::Pattern::SineBump, 3);
+  std::cout << "shared point arrays: " << d.Compared << " pixels, " << 100.0 * d.WithinFraction
+            << "% within 3 levels, max error " << d.MaxChannel << std::endl;
+  check(d.Compared > 20000 && d.WithinFraction >= 0.995,
+    "shared point arrays: each block is drawn with its own tangents");
+}
+
 /// Per-block visibility, colour and opacity still apply, with the map on.
 void DisplayAttributes(nmtest::Checks& check)
 {
@@ -538,6 +603,7 @@ int TestNormalMapCompositeBlocks(int, char*[])
   nmtest::Checks check;
   MirrorSymmetry(check);
   CPUReference(check);
+  SharedPointArrays(check);
   DisplayAttributes(check);
   Changes(check);
   Factory(check);

@@ -2,7 +2,8 @@
 // The vertex buffers both mappers build hold only what the scene uses: the point tangents (and
 // their signs) when a tangent-space map reads them, and VTK's own tangent attribute (tangentMC)
 // only when VTK's shader reads it (PBR anisotropy), never on the derivative path or without a
-// normal texture. Read back from each mapper's vertex buffer group after a render.
+// normal texture; composite blocks share vertices only with their tangents. Read back from each
+// mapper's vertex buffer group after a render.
 #include "NormalMapTestScenes.h"
 
 #if VTK_NORMALMAPPING_BATCHED_COMPOSITE
@@ -17,6 +18,7 @@
 #endif
 
 #include "vtkActor.h"
+#include "vtkFloatArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
@@ -81,11 +83,12 @@ private:
 };
 vtkStandardNewMacro(CompositeMapperProbe);
 
-/// Per attribute present, its components and its buffer's bytes per vertex.
+/// Per attribute present, its components, its buffer's bytes per vertex and its vertices.
 struct Attribute
 {
   int Components = 0;
   int Stride = 0;
+  unsigned int Vertices = 0;
 };
 using Attributes = std::map<std::string, Attribute>;
 
@@ -97,7 +100,9 @@ Attributes Read(vtkOpenGLVertexBufferObjectGroup* group)
   {
     if (vtkOpenGLVertexBufferObject* vbo = group->GetVBO(name))
     {
-      found[name] = { group->GetNumberOfComponents(name), static_cast<int>(vbo->GetStride()) };
+      found[name] = { group->GetNumberOfComponents(name),
+        static_cast<int>(vbo->GetStride()),
+        vbo->GetNumberOfTuples() };
     }
   }
   return found;
@@ -125,10 +130,11 @@ struct Case
   bool VTKTangents = false;   // tangentMC (3 floats)
 };
 
-/// Renders the mesh (or two blocks of it) once with the case's settings; returns the vertex
-/// buffer groups of the mapper (or of each composite helper).
-std::vector<Attributes> Render(const Case& c, vtkPolyData* mesh, vtkTexture* texture, bool blocks)
+/// Renders a polydata or a multiblock dataset once with the case's settings; returns the vertex
+/// buffer groups of the polydata mapper (or of each composite helper).
+std::vector<Attributes> Render(const Case& c, vtkDataObject* input, vtkTexture* texture)
 {
+  const bool blocks = input->IsA("vtkMultiBlockDataSet");
   nmtest::FlatSetup setup;
   auto window = nmtest::MakeWindow(setup.Width, setup.Height);
   vtkNew<vtkRenderer> renderer;
@@ -146,18 +152,15 @@ std::vector<Attributes> Render(const Case& c, vtkPolyData* mesh, vtkTexture* tex
   }
   vtkNew<Mapper> single;
   vtkNew<CompositeMapperProbe> composite;
-  vtkNew<vtkMultiBlockDataSet> multiblock;
   if (blocks)
   {
-    multiblock->SetBlock(0, mesh);
-    multiblock->SetBlock(1, nmtest::Placed(mesh, 2.5, 0.0));
-    composite->SetInputDataObject(multiblock);
+    composite->SetInputDataObject(input);
     composite->SetFrameSource(c.FrameSource);
     actor->SetMapper(composite);
   }
   else
   {
-    single->SetInputData(mesh);
+    single->SetInputDataObject(input);
     single->SetFrameSource(c.FrameSource);
     actor->SetMapper(single);
   }
@@ -187,6 +190,57 @@ bool Has(const Attributes& a, const std::string& name, int components, int strid
   return found != a.end() && found->second.Components == components &&
     found->second.Stride == stride;
 }
+
+/**
+ * Two blocks with the mesh's point, normal and texture-coordinate arrays: VTK's helper appends
+ * their vertices once, unless the blocks' tangents differ (or only one has tangents); then it
+ * appends them once per block, each with its block's tangents.
+ */
+void SharedPointArrays(nmtest::Checks& check, vtkPolyData* mesh, vtkTexture* texture)
+{
+  const unsigned int n = static_cast<unsigned int>(mesh->GetNumberOfPoints());
+  const auto share = [mesh]()
+  {
+    auto block = vtkSmartPointer<vtkPolyData>::New();
+    block->ShallowCopy(mesh);
+    return block;
+  };
+  auto sameTangents = share();
+  auto ownTangents = share();
+  vtkNew<vtkFloatArray> copy;
+  copy->DeepCopy(mesh->GetPointData()->GetTangents());
+  ownTangents->GetPointData()->SetTangents(copy);
+  auto noTangents = share();
+  noTangents->GetPointData()->RemoveArray("Tangents");
+  struct SharingCase
+  {
+    const char* Name;
+    vtkPolyData* Second;
+    unsigned int Vertices;
+  };
+  const SharingCase cases[] = {
+    { "the same tangents: one copy of the vertices", sameTangents, n },
+    { "other tangents: a copy each", ownTangents, 2 * n },
+    { "no tangents in one: a copy each (zeros for that one)", noTangents, 2 * n },
+  };
+  for (const SharingCase& c : cases)
+  {
+    vtkNew<vtkMultiBlockDataSet> multiblock;
+    multiblock->SetBlock(0, mesh);
+    multiblock->SetBlock(1, c.Second);
+    const Case pointTangents{ "point tangents", true, Mapper::AUTOMATIC, false, true, false };
+    const auto groups = Render(pointTangents, multiblock, texture);
+    const Attributes a = groups.empty() ? Attributes() : groups[0];
+    const auto vertices = [&a](const char* name)
+    { return a.count(name) ? a.at(name).Vertices : 0u; };
+    std::cout << "blocks sharing point arrays, " << c.Name << ": " << groups.size()
+              << " group(s), vertexMC " << vertices("vertexMC") << ", nmTangentMC "
+              << vertices("nmTangentMC") << " vertices (" << n << " points)" << std::endl;
+    check(groups.size() == 1 && vertices("vertexMC") == c.Vertices &&
+        vertices("nmTangentMC") == c.Vertices,
+      std::string("blocks sharing point arrays, ") + c.Name);
+  }
+}
 }
 
 int TestNormalMapVertexBuffers(int, char*[])
@@ -212,7 +266,11 @@ int TestNormalMapVertexBuffers(int, char*[])
     {
       const std::string name =
         std::string(blocks ? "composite mapper, " : "polydata mapper, ") + c.Name;
-      const auto groups = Render(c, mesh, texture, blocks);
+      vtkNew<vtkMultiBlockDataSet> multiblock;
+      multiblock->SetBlock(0, mesh);
+      multiblock->SetBlock(1, nmtest::Placed(mesh, 2.5, 0.0));
+      const auto groups =
+        Render(c, blocks ? static_cast<vtkDataObject*>(multiblock) : mesh, texture);
       check(!groups.empty(), name + ": the mapper built vertex buffers");
       for (const Attributes& a : groups)
       {
@@ -235,6 +293,7 @@ int TestNormalMapVertexBuffers(int, char*[])
       }
     }
   }
+  SharedPointArrays(check, mesh, texture);
   // The mappers hide VTK's tangents through a copy: the input itself is never modified.
   check(mesh->GetMTime() == meshTime && mesh->GetPointData()->GetTangents() != nullptr,
     "the input's Tangents attribute and modification time are untouched");
