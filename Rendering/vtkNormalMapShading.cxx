@@ -342,6 +342,98 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   return false;
 }
 
+namespace
+{
+/// The frame a tangent-space map gets from the datasets' frames; perDataset: tangents for some
+/// datasets, derivatives for others.
+int FrameOf(int encoding, const vtkNormalMapShading::FrameMix& frames, bool& perDataset)
+{
+  perDataset = false;
+  if (!IsTangentSpace(encoding))
+  {
+    return Mapper::APPLIED_OBJECT_SPACE;
+  }
+  if (!frames.PointTangents)
+  {
+    return Mapper::APPLIED_DERIVATIVES;
+  }
+  perDataset = frames.Derivatives;
+  return frames.Unsigned ? Mapper::APPLIED_UNSIGNED_TANGENTS : Mapper::APPLIED_POINT_TANGENTS;
+}
+
+/// Passes the point tangents (and their signs) from the vertex shader, through the geometry
+/// shader when there is one, to the fragment shader.
+void PassTangents(std::map<vtkShader::Type, vtkShader*>& shaders, bool separateSigns)
+{
+  std::string vs = shaders[vtkShader::Vertex]->GetSource();
+  InsertBefore(vs,
+    "//VTK::Normal::Dec",
+    Block(vtkNormalMapVS, separateSigns ? "TangentSignDec" : "TangentDec"));
+  InsertBefore(vs,
+    "//VTK::Normal::Impl",
+    Block(vtkNormalMapVS, separateSigns ? "TangentSignImpl" : "TangentImpl"));
+  shaders[vtkShader::Vertex]->SetSource(vs);
+  std::string gs = shaders[vtkShader::Geometry]->GetSource();
+  if (!gs.empty())
+  {
+    InsertBefore(gs, "//VTK::Normal::Dec", Block(vtkNormalMapGS, "TangentDec"));
+    InsertBefore(gs, "//VTK::Normal::Impl", Block(vtkNormalMapGS, "TangentImpl"));
+    shaders[vtkShader::Geometry]->SetSource(gs);
+  }
+}
+
+/// Inserts the planned normal-map code into VTK's shaders.
+void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
+  const ShaderPlan& plan,
+  const vtkNormalMapShading::ShaderContext& context)
+{
+  const bool pointTangents =
+    plan.Frame == Mapper::APPLIED_POINT_TANGENTS || plan.Frame == Mapper::APPLIED_UNSIGNED_TANGENTS;
+  const bool derivatives = plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame;
+  if (pointTangents)
+  {
+    PassTangents(shaders, context.Frames.SeparateSigns);
+  }
+  std::string fs = shaders[vtkShader::Fragment]->GetSource();
+
+  // Declarations go before VTK's lighting declarations (after its normal ones, which a cell
+  // normal path consumes); the code goes just before the lighting, where the normal is final.
+  std::string declarations =
+    Block(vtkNormalMapFS, "Dec") + Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear");
+  std::string code;
+  if (plan.Frame == Mapper::APPLIED_OBJECT_SPACE)
+  {
+    code = Block(vtkNormalMapFS, "ImplObjectSpace");
+  }
+  else
+  {
+    std::string decode = Block(vtkNormalMapFS, plan.TwoChannel ? "DecodeTwoChannel" : "DecodeRGB");
+    vtkShaderProgram::Substitute(decode, "@XY@", plan.LuminanceAlpha ? "ra" : "rg");
+    declarations += decode;
+    if (pointTangents)
+    {
+      declarations += Block(vtkNormalMapFS, "TangentDec");
+    }
+    if (derivatives)
+    {
+      declarations += Block(vtkNormalMapFS, "DerivativeDec");
+      std::string flow = Block(vtkNormalMapFS, "DerivativeUniformFlow");
+      vtkShaderProgram::Substitute(flow, "@TCOORD@", context.TCoordName);
+      InsertBefore(fs, "//VTK::UniformFlow::Impl", flow);
+    }
+    declarations += Block(vtkNormalMapFS,
+      plan.PerDatasetFrame ? "FramePerDataset"
+                           : (pointTangents ? "FrameFromTangents" : "FrameFromDerivatives"));
+    code = Block(vtkNormalMapFS, "ImplTangentSpace");
+  }
+  vtkShaderProgram::Substitute(code, "@TCOORD@", context.TCoordName);
+  InsertBefore(fs, "//VTK::Light::Dec", declarations);
+  InsertBefore(fs, "//VTK::Light::Impl", code);
+
+  shaders[vtkShader::Fragment]->SetSource(fs);
+}
+}
+
 //------------------------------------------------------------------------------
 int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader*>& shaders,
   const ShaderContext& context,
@@ -418,81 +510,8 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
       "back to its stored values (turn UseSRGBColorSpace off to avoid the round trip).");
   }
 
-  const FrameMix& frames = context.Frames;
-  if (!IsTangentSpace(encoding))
-  {
-    plan.Frame = Mapper::APPLIED_OBJECT_SPACE;
-  }
-  else if (!frames.PointTangents)
-  {
-    plan.Frame = Mapper::APPLIED_DERIVATIVES;
-  }
-  else
-  {
-    plan.Frame =
-      frames.Unsigned ? Mapper::APPLIED_UNSIGNED_TANGENTS : Mapper::APPLIED_POINT_TANGENTS;
-    plan.PerDatasetFrame = frames.Derivatives;
-  }
-
-  std::string vs = shaders[vtkShader::Vertex]->GetSource();
-  std::string gs = shaders[vtkShader::Geometry]->GetSource();
-  std::string fs = shaders[vtkShader::Fragment]->GetSource();
-
-  const bool pointTangents =
-    plan.Frame == Mapper::APPLIED_POINT_TANGENTS || plan.Frame == Mapper::APPLIED_UNSIGNED_TANGENTS;
-  const bool derivatives = plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame;
-  if (pointTangents)
-  {
-    InsertBefore(vs,
-      "//VTK::Normal::Dec",
-      Block(vtkNormalMapVS, frames.SeparateSigns ? "TangentSignDec" : "TangentDec"));
-    InsertBefore(vs,
-      "//VTK::Normal::Impl",
-      Block(vtkNormalMapVS, frames.SeparateSigns ? "TangentSignImpl" : "TangentImpl"));
-    if (!gs.empty())
-    {
-      InsertBefore(gs, "//VTK::Normal::Dec", Block(vtkNormalMapGS, "TangentDec"));
-      InsertBefore(gs, "//VTK::Normal::Impl", Block(vtkNormalMapGS, "TangentImpl"));
-    }
-  }
-
-  // Declarations go before VTK's lighting declarations (after its normal ones, which a cell
-  // normal path consumes); the code goes just before the lighting, where the normal is final.
-  std::string declarations =
-    Block(vtkNormalMapFS, "Dec") + Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear");
-  std::string code;
-  if (plan.Frame == Mapper::APPLIED_OBJECT_SPACE)
-  {
-    code = Block(vtkNormalMapFS, "ImplObjectSpace");
-  }
-  else
-  {
-    std::string decode = Block(vtkNormalMapFS, plan.TwoChannel ? "DecodeTwoChannel" : "DecodeRGB");
-    vtkShaderProgram::Substitute(decode, "@XY@", plan.LuminanceAlpha ? "ra" : "rg");
-    declarations += decode;
-    if (pointTangents)
-    {
-      declarations += Block(vtkNormalMapFS, "TangentDec");
-    }
-    if (derivatives)
-    {
-      declarations += Block(vtkNormalMapFS, "DerivativeDec");
-      std::string flow = Block(vtkNormalMapFS, "DerivativeUniformFlow");
-      vtkShaderProgram::Substitute(flow, "@TCOORD@", context.TCoordName);
-      InsertBefore(fs, "//VTK::UniformFlow::Impl", flow);
-    }
-    declarations += Block(vtkNormalMapFS,
-      plan.PerDatasetFrame ? "FramePerDataset"
-                           : (pointTangents ? "FrameFromTangents" : "FrameFromDerivatives"));
-    code = Block(vtkNormalMapFS, "ImplTangentSpace");
-  }
-  vtkShaderProgram::Substitute(code, "@TCOORD@", context.TCoordName);
-  InsertBefore(fs, "//VTK::Light::Dec", declarations);
-  InsertBefore(fs, "//VTK::Light::Impl", code);
-
-  shaders[vtkShader::Vertex]->SetSource(vs);
-  shaders[vtkShader::Geometry]->SetSource(gs);
-  shaders[vtkShader::Fragment]->SetSource(fs);
+  plan.Frame = FrameOf(encoding, context.Frames, plan.PerDatasetFrame);
+  AddMapCode(shaders, plan, context);
   return plan.Frame;
 }
 
