@@ -223,15 +223,15 @@ vtkDataArray* PointArray(vtkPolyData* mesh,
   }
   if (components > 0 && array->GetNumberOfComponents() != components)
   {
-    problem = std::string(what) + " '" + (array->GetName() ? array->GetName() : "") + "' has " +
-      std::to_string(array->GetNumberOfComponents()) + " components instead of " +
+    problem = std::string(what) + " array '" + (array->GetName() ? array->GetName() : "") +
+      "' has " + std::to_string(array->GetNumberOfComponents()) + " components instead of " +
       std::to_string(components);
     return nullptr;
   }
   if (array->GetNumberOfTuples() < mesh->GetNumberOfPoints())
   {
-    problem = std::string(what) + " '" + (array->GetName() ? array->GetName() : "") + "' has " +
-      std::to_string(array->GetNumberOfTuples()) + " tuples for " +
+    problem = std::string(what) + " array '" + (array->GetName() ? array->GetName() : "") +
+      "' has " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
       std::to_string(mesh->GetNumberOfPoints()) + " points";
     return nullptr;
   }
@@ -265,12 +265,12 @@ SuppliedFrameArrays FindSuppliedFrames(vtkPolyData* mesh,
   const int components = tangents->GetNumberOfComponents();
   if (components != 3 && components != 4)
   {
-    problem = "the supplied tangents '" +
-      std::string(tangents->GetName() ? tangents->GetName() : "") + "' have " +
+    problem = "the supplied tangent array '" +
+      std::string(tangents->GetName() ? tangents->GetName() : "") + "' has " +
       std::to_string(components) + " components instead of 3 or 4";
     return result;
   }
-  tangents = PointArray(mesh, tangents, "the supplied tangents", components, problem);
+  tangents = PointArray(mesh, tangents, "the supplied tangent", components, problem);
   if (!tangents)
   {
     return result;
@@ -279,7 +279,7 @@ SuppliedFrameArrays FindSuppliedFrames(vtkPolyData* mesh,
   if (components == 3)
   {
     problem = "the supplied tangents have 3 components and there is no point array 'TangentSigns'";
-    signs = PointArray(mesh, pd->GetArray("TangentSigns"), "the supplied signs", 1, problem);
+    signs = PointArray(mesh, pd->GetArray("TangentSigns"), "the supplied sign", 1, problem);
     if (!signs)
     {
       return result;

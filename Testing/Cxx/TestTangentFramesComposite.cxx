@@ -76,16 +76,22 @@ void ExpectSameArray(vtkDataArray* a, vtkDataArray* b, const char* name)
     << name;
 }
 
-/// Counts the warnings an object emits.
+/// Counts the warnings an object emits, and keeps their text.
 struct WarningCounter
 {
   int Warnings = 0;
+  std::string Text;
   vtkNew<vtkCallbackCommand> Callback;
   explicit WarningCounter(vtkObject* object)
   {
     this->Callback->SetClientData(this);
-    this->Callback->SetCallback([](vtkObject*, unsigned long, void* self, void*)
-      { ++static_cast<WarningCounter*>(self)->Warnings; });
+    this->Callback->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void* message)
+      {
+        auto* counter = static_cast<WarningCounter*>(self);
+        ++counter->Warnings;
+        counter->Text += static_cast<const char*>(message);
+      });
     object->AddObserver(vtkCommand::WarningEvent, this->Callback);
   }
 };
@@ -167,6 +173,11 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
   ASSERT_NE(output, nullptr) << "composite input must give composite output";
   EXPECT_EQ(warnings.Warnings, 2)
     << "two warnings: the image block, and the block where no triangle has a frame";
+  // The image's flat index: the root 0, the first torus 1, the inner dataset 2, its torus 3.
+  EXPECT_NE(warnings.Text.find(
+              "Block 4 is a vtkImageData, not polydata; passing it through without frames."),
+    std::string::npos)
+    << warnings.Text;
   ASSERT_EQ(output->GetNumberOfBlocks(), 5u);
   auto* outInner = vtkMultiBlockDataSet::SafeDownCast(output->GetBlock(1));
   ASSERT_NE(outInner, nullptr);

@@ -13,6 +13,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkTestErrorObserver.h"
 
 #include <gtest/gtest.h>
@@ -530,8 +531,40 @@ TEST(TangentFramesSupplied, SuppliedArraysOfTheWrongShapeWarnAndCompute)
     SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
     run.Update();
     const std::string expected = signs
-      ? "the supplied signs 'TangentSigns' has 3 components instead of 1"
-      : "the supplied tangents 'TANGENT' have 2 components instead of 3 or 4";
+      ? "the supplied sign array 'TangentSigns' has 3 components instead of 1"
+      : "the supplied tangent array 'TANGENT' has 2 components instead of 3 or 4";
+    EXPECT_NE(std::string::npos, run.Messages->GetWarningMessage().find(expected))
+      << run.Messages->GetWarningMessage();
+    EXPECT_TRUE(HasFrame(run, 0, { 1.0, 0.0, 0.0, 1.0 })); // computed, not the supplied one
+  }
+}
+
+TEST(TangentFramesSupplied, ShortOrNonNumericSuppliedTangentsWarnAndCompute)
+{
+  // A tangent array with fewer tuples than points, and a string array by the requested name:
+  // neither holds a frame per point, so warned about and every frame computed.
+  for (const bool text : { false, true })
+  {
+    SCOPED_TRACE(text ? "a string array" : "fewer tuples than points");
+    auto mesh = Plane(false);
+    if (text)
+    {
+      vtkNew<vtkStringArray> labels;
+      labels->SetName("TANGENT");
+      labels->SetNumberOfValues(mesh->GetNumberOfPoints());
+      mesh->GetPointData()->AddArray(labels);
+    }
+    else
+    {
+      SuppliedVec4(mesh, Turn, false)->SetNumberOfTuples(mesh->GetNumberOfPoints() - 1);
+    }
+    SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP);
+    run.Update();
+    const std::string expected = text
+      ? "Cannot use the supplied tangents: the point array 'TANGENT' is not numeric"
+      : "Cannot use the supplied tangents: the supplied tangent array 'TANGENT' has " +
+        std::to_string(mesh->GetNumberOfPoints() - 1) + " tuples for " +
+        std::to_string(mesh->GetNumberOfPoints()) + " points";
     EXPECT_NE(std::string::npos, run.Messages->GetWarningMessage().find(expected))
       << run.Messages->GetWarningMessage();
     EXPECT_TRUE(HasFrame(run, 0, { 1.0, 0.0, 0.0, 1.0 })); // computed, not the supplied one
