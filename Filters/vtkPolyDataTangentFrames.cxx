@@ -16,6 +16,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cstdint>
 #include <string>
@@ -317,6 +318,20 @@ int vtkPolyDataTangentFrames::RequestDataObject(vtkInformation*,
   {
     vtkNew<vtkPolyData> polyData;
     outInfo->Set(vtkDataObject::DATA_OBJECT(), polyData);
+  }
+  return 1;
+}
+
+int vtkPolyDataTangentFrames::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  using Pipeline = vtkStreamingDemandDrivenPipeline;
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Get(Pipeline::UPDATE_NUMBER_OF_PIECES()) > 1)
+  {
+    inputVector[0]->GetInformationObject(0)->Set(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(),
+      outInfo->Get(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS()) + 1);
   }
   return 1;
 }

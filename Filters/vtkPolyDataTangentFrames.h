@@ -244,6 +244,12 @@ protected:
     vtkInformationVector*) override;
   /// The output: polydata for polydata input, the input's own type for composite input.
   virtual int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  /**
+   * For a piece of a partitioned mesh, one more level of ghost cells than asked for: a point's
+   * frame needs every triangle around it, also on the piece's boundary. The extra ghost cells
+   * stay in the output, marked as ghosts (vtkGhostType), as vtkPPolyDataNormals leaves them.
+   */
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Method = ANGLE_WEIGHTED;
