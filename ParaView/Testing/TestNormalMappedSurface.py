@@ -87,6 +87,21 @@ print("derivative frames against point tangents: %.2f%% within 8 levels, max %d"
 # Both frames are exact for this planar mesh with affine UVs; they differ only in rounding,
 # by a few levels where the lighting is steep: 8 levels on 99% of the pixels.
 check(fraction >= 0.99, "derivative frames shade like the point tangents")
+# The texture is filtered as ParaView filters a representation's textures: mipmapped only with
+# Use Mipmap Textures.
+mipmaps = []
+for use in (1, 0):
+    plain.UseMipmapTextures = use
+    plain.NormalMapTexture = None
+    plain.NormalMapTexture = texture
+    Render(view)
+    mipmaps.append(texture.GetClientSideObject().GetMipmap())
+check(mipmaps == [1, 0], "Use Mipmap Textures decides the normal texture's mipmaps (%s)" % mipmaps)
+mapper = plain.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+check(mapper.GetCompositeIdArrayName() == "vtkCompositeIndex"
+      and mapper.GetProcessIdArrayName() == "vtkProcessId",
+      "the mapper keeps ParaView's selection arrays (%s, %s)"
+      % (mapper.GetCompositeIdArrayName(), mapper.GetProcessIdArrayName()))
 Hide(reader, view)
 Show(frames, view)
 Render(view)

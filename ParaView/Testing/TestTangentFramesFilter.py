@@ -148,6 +148,13 @@ again.UpdatePropertyInformation()
 check(again.GetPropertyValue("NumberOfReplacedTangents") == computed.GetNumberOfPoints(),
       "Keep Valid replaces every frame whose sign was flipped (%s of %d)"
       % (again.GetPropertyValue("NumberOfReplacedTangents"), computed.GetNumberOfPoints()))
+defects = {name: again.GetPropertyValue(name) for name in (
+    "NumberOfNonFiniteTangents", "NumberOfNonUnitTangents", "NumberOfNonPerpendicularTangents",
+    "NumberOfWrongSignTangents")}
+check(defects == {"NumberOfNonFiniteTangents": 0, "NumberOfNonUnitTangents": 0,
+                  "NumberOfNonPerpendicularTangents": 0,
+                  "NumberOfWrongSignTangents": computed.GetNumberOfPoints()},
+      "the defect counts say why: every sign wrong, nothing else (%s)" % defects)
 check(signs_by_side(servermanager.Fetch(again)) == ({1.0}, {-1.0}),
       "the replaced frames have the computed signs")
 again.SuppliedTangents = "Keep"

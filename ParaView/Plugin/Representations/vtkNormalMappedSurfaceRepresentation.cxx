@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkNormalMappedSurfaceRepresentation.h"
 
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactory.h"
@@ -11,11 +12,21 @@ vtkStandardNewMacro(vtkNormalMappedSurfaceRepresentation);
 vtkNormalMappedSurfaceRepresentation::vtkNormalMappedSurfaceRepresentation()
 {
   // The superclass made ParaView's composite mappers; ours replace them, and SetupDefaults
-  // connects the new ones into the representation's pipeline as it did the old.
-  this->Mapper->Delete();
-  this->LODMapper->Delete();
-  this->Mapper = vtkNormalMapCompositePolyDataMapper::New();
-  this->LODMapper = vtkNormalMapCompositePolyDataMapper::New();
+  // connects the new ones into the representation's pipeline as it did the old. They keep the
+  // names of the id arrays that ParaView's selection reads.
+  for (vtkMapper** mapper : { &this->Mapper, &this->LODMapper })
+  {
+    auto* ours = vtkNormalMapCompositePolyDataMapper::New();
+    if (auto* previous = vtkCompositePolyDataMapper2::SafeDownCast(*mapper))
+    {
+      ours->SetPointIdArrayName(previous->GetPointIdArrayName());
+      ours->SetCellIdArrayName(previous->GetCellIdArrayName());
+      ours->SetCompositeIdArrayName(previous->GetCompositeIdArrayName());
+      ours->SetProcessIdArrayName(previous->GetProcessIdArrayName());
+    }
+    (*mapper)->Delete();
+    *mapper = ours;
+  }
   this->SetupDefaults();
 }
 
@@ -70,15 +81,10 @@ void vtkNormalMappedSurfaceRepresentation::SetNormalMapTexture(vtkTexture* textu
 
 void vtkNormalMappedSurfaceRepresentation::ApplyNormalTexture()
 {
-  vtkTexture* texture =
-    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture;
-  // The representation draws normal maps with trilinear filtering (mipmaps), so that a map seen
-  // from afar does not alias; the mapper itself leaves textures as they are set up.
-  if (texture && texture->GetInterpolate())
-  {
-    texture->MipmapOn();
-  }
-  this->Superclass::SetNormalTexture(texture);
+  // The superclass sets the texture's filtering from the representation's Interpolate Textures
+  // and Use Mipmap Textures, as for ParaView's own textures.
+  this->Superclass::SetNormalTexture(
+    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture);
 }
 
 void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
