@@ -2,7 +2,8 @@
 """The Normal Mapped Surface representation: the plugin adds it to ParaView's list, it renders
 the mirrored quads symmetric where ParaView's Surface does not (TestSurfaceMirrorControl), with
 the Tangent Frames filter's tangents and without any tangents, its image matches the baseline,
-its settings reach the mapper, and a saved state reloads to the same image.
+its settings reach the mapper, it is offered for image data and structured grids, and a saved
+state reloads to the same image.
 
 pvbatch TestNormalMappedSurface.py <plugin.so> <work dir> <baseline dir>
 """
@@ -103,6 +104,38 @@ check(mapper.GetCompositeIdArrayName() == "vtkCompositeIndex"
       "the mapper keeps ParaView's selection arrays (%s, %s)"
       % (mapper.GetCompositeIdArrayName(), mapper.GetProcessIdArrayName()))
 Hide(reader, view)
+
+# Image data and structured grids draw their surface through representations of their own; the
+# representation type is offered there too, and a flat image with texture coordinates renders
+# as its extracted polydata surface does (derivative frames: the map needs no tangents).
+flat = TextureMaptoPlane(Input=Wavelet(WholeExtent=[-10, 10, -10, 10, 0, 0]))
+grid = TextureMaptoPlane(Input=Transform(Input=flat))
+for name, source in (("image data", flat), ("structured grid", grid)):
+    shown = Show(source, view)
+    check(REPRESENTATION in shown.GetProperty("Representation").Available,
+          "%s (%s) offers Normal Mapped Surface" % (name, shown.GetXMLName()))
+    Hide(source, view)
+images = []
+for source in (flat, ExtractSurface(Input=flat)):
+    nm.show_mirrored(source, view, REPRESENTATION, texture, "NormalMapTexture")
+    view.CameraPosition = [0.0, 0.0, 45.0]
+    Render(view)
+    images.append(nm.capture(view, "image-data-%d" % len(images))[0])
+    Hide(source, view)
+nm.show_mirrored(flat, view, "Surface")
+view.CameraPosition = [0.0, 0.0, 45.0]
+Render(view)
+unmapped = nm.capture(view, "image-data-unmapped")[0]
+Hide(flat, view)
+same, largest = nm.difference(images[0], images[1], BASELINE_BOUND)
+shows, _ = nm.difference(images[0], unmapped, 4)
+print("image data against its polydata surface: %.2f%% within %d levels, max %d; %.1f%% of "
+      "the pixels within 4 levels of the unmapped image" % (100 * same, BASELINE_BOUND, largest,
+                                                            100 * shows))
+# The same triangles and texture coordinates: rasterization and rounding only, as for the
+# baseline; the map shows on most of the covered view.
+check(same >= BASELINE_FRACTION and shows < 0.9,
+      "image data is normal-mapped as its polydata surface is")
 Show(frames, view)
 Render(view)
 
