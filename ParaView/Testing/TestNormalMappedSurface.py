@@ -88,6 +88,27 @@ print("derivative frames against point tangents: %.2f%% within 8 levels, max %d"
 # Both frames are exact for this planar mesh with affine UVs; they differ only in rounding,
 # by a few levels where the lighting is steep: 8 levels on 99% of the pixels.
 check(fraction >= 0.99, "derivative frames shade like the point tangents")
+# Normal Map Scale is the strength of Normal Map, and ParaView's Normal Scale (which belongs to
+# its Normal Texture) does not change it: scale 0 draws the surface as without a map, and with
+# Normal Scale 0 the map is drawn as before. Same process and renderer: within 1 level.
+plain.NormalMapScale = 0.0
+Render(view)
+zero, _, _ = nm.capture(view, "normal-map-scale-0")
+plain.NormalMapScale = 1.0
+plain.NormalScale = 0.0
+Render(view)
+unscaled, _, _ = nm.capture(view, "normal-scale-0")
+plain.NormalScale = 1.0
+plain.NormalMapTexture = None
+Render(view)
+unmapped, _, _ = nm.capture(view, "no-normal-map")
+plain.NormalMapTexture = texture
+scaled_off, _ = nm.difference(zero, unmapped, 1)
+kept, _ = nm.difference(unscaled, derivatives, 1)
+print("Normal Map Scale 0 against no map: %.2f%%; Normal Scale 0 against the map: %.2f%%"
+      % (100 * scaled_off, 100 * kept))
+check(scaled_off >= BASELINE_FRACTION and kept >= BASELINE_FRACTION,
+      "Normal Map Scale sets the map's strength, Normal Scale leaves it alone")
 # The texture is filtered as ParaView filters a representation's textures: mipmapped only with
 # Use Mipmap Textures.
 mipmaps = []

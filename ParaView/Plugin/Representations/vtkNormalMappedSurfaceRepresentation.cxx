@@ -79,12 +79,25 @@ void vtkNormalMappedSurfaceRepresentation::SetNormalMapTexture(vtkTexture* textu
   this->ApplyNormalTexture();
 }
 
+void vtkNormalMappedSurfaceRepresentation::SetNormalScale(double scale)
+{
+  this->ParaViewNormalScale = scale;
+  this->ApplyNormalTexture();
+}
+
+void vtkNormalMappedSurfaceRepresentation::SetNormalMapScale(double scale)
+{
+  this->NormalMapScale = scale;
+  this->ApplyNormalTexture();
+}
+
 void vtkNormalMappedSurfaceRepresentation::ApplyNormalTexture()
 {
   // The superclass sets the texture's filtering from the representation's Interpolate Textures
   // and Use Mipmap Textures, as for ParaView's own textures.
-  this->Superclass::SetNormalTexture(
-    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture);
+  const bool ours = this->NormalMapTexture != nullptr;
+  this->Superclass::SetNormalTexture(ours ? this->NormalMapTexture : this->ParaViewNormalTexture);
+  this->Superclass::SetNormalScale(ours ? this->NormalMapScale : this->ParaViewNormalScale);
 }
 
 void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
@@ -99,4 +112,5 @@ void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent inde
      << "\n";
   os << indent << "TangentSignsArray: " << mapper->GetTangentSignsArrayName() << "\n";
   os << indent << "NormalMapTexture: " << this->NormalMapTexture.GetPointer() << "\n";
+  os << indent << "NormalMapScale: " << this->NormalMapScale << "\n";
 }

@@ -17,6 +17,7 @@
  * enabled only for data with tangents, or this representation's SetNormalMapTexture, offered for
  * any data with texture coordinates. When both are set, SetNormalMapTexture's wins. The tangent
  * array is ParaView's (SetTangentArray makes it the active tangents, which the mapper reads).
+ * Each texture has its strength: ParaView's NormalScale, and SetNormalMapScale.
  *
  * The LOD mapper (interactive rendering of large data) is ours too. The back-face mappers
  * (ParaView's Backface Representation other than "Follow Frontface") stay ParaView's own.
@@ -49,6 +50,10 @@ public:
   void SetNormalTexture(vtkTexture* texture) override;
   /// This representation's normal texture, which needs no tangent array; wins over the above.
   void SetNormalMapTexture(vtkTexture* texture);
+  /// ParaView's NormalScale property: the strength of its NormalTexture.
+  void SetNormalScale(double scale) override;
+  /// The strength of SetNormalMapTexture's texture (default 1).
+  void SetNormalMapScale(double scale);
 
 protected:
   vtkNormalMappedSurfaceRepresentation();
@@ -60,11 +65,13 @@ private:
 
   /// The full-resolution and the LOD mapper, both ours.
   vtkNormalMapCompositePolyDataMapper* NormalMapper(int which) const;
-  /// Gives the actor's property the texture in effect.
+  /// Gives the actor's property the texture in effect and its strength.
   void ApplyNormalTexture();
 
   vtkSmartPointer<vtkTexture> ParaViewNormalTexture;
   vtkSmartPointer<vtkTexture> NormalMapTexture;
+  double ParaViewNormalScale = 1.0;
+  double NormalMapScale = 1.0;
 };
 
 #endif
