@@ -244,6 +244,7 @@ TEST(MikkTSpaceKernel, MatchesGltfStoredTangents)
       static_cast<long long>(idx[t + 2]) });
   }
   const mikk::Result res = RunKernel(m);
+  ASSERT_EQ(res.Corners.size(), m.Conn.size()) << "a frame for every corner";
   Stats st;
   for (size_t c = 0; c < res.Corners.size(); ++c)
   {

@@ -150,6 +150,8 @@ void ExpectValidFrames(vtkPolyData* out, double tolerance = 1e-6)
         {
           const Vec c = Cross(nv, tv);
           const Vec bv = Get3(b, p);
+          // The filter rounds its double cross product once; the test crosses the rounded T
+          // and N, whose roundings add about two more: 4 tolerances bound the three.
           for (int k = 0; k < 3; ++k)
           {
             EXPECT_NEAR(bv[k], sign * c[k] / len, 4 * tolerance) << "point " << p;
@@ -962,6 +964,36 @@ TEST(PolyDataTangentFrames, EmptyInputAndNoSurfaceCells)
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
   EXPECT_TRUE(messages.Errors.empty());
+
+  // Points with texture coordinates, but only vertex and line cells: passed through without
+  // frames (nothing to give them to), without a message.
+  vtkNew<vtkPolyData> wire;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> uv;
+  uv->SetNumberOfComponents(2);
+  for (int i = 0; i < 3; ++i)
+  {
+    points->InsertNextPoint(i, 0, 0);
+    uv->InsertNextTuple2(0.5 * i, 0.0);
+  }
+  wire->SetPoints(points);
+  wire->GetPointData()->SetTCoords(uv);
+  vtkNew<vtkCellArray> verts, lines;
+  const vtkIdType vertex[1] = { 0 }, line[3] = { 0, 1, 2 };
+  verts->InsertNextCell(1, vertex);
+  lines->InsertNextCell(3, line);
+  wire->SetVerts(verts);
+  wire->SetLines(lines);
+  filter->SetInputData(wire);
+  filter->Update();
+  vtkPolyData* out = filter->GetOutput();
+  EXPECT_EQ(out->GetNumberOfPoints(), 3);
+  EXPECT_EQ(out->GetNumberOfVerts(), 1);
+  EXPECT_EQ(out->GetNumberOfLines(), 1);
+  EXPECT_EQ(out->GetPointData()->GetTCoords(), uv.Get());
+  EXPECT_EQ(out->GetPointData()->GetArray(vtkPolyDataTangentFrames::TangentsArrayName()), nullptr);
+  EXPECT_TRUE(messages.Errors.empty());
+  EXPECT_TRUE(messages.Warnings.empty());
 }
 
 TEST(PolyDataTangentFrames, VerticesLinesPolygonsAndStripsTogether)
@@ -2220,6 +2252,8 @@ TEST(PolyDataTangentFrames, AgreesWithVTKWhereVTKIsRightAndNotWhereItIsWrong)
   }
   std::cout << "collapsed UVs: vtkPolyDataTangents gives " << vtkNonFinite << " of "
             << collapsed->GetNumberOfPoints() << " non-finite tangents; ours 0\n";
+  // docs/filter.md: VTK's filter divides by the zero UV determinant on every point.
+  EXPECT_EQ(vtkNonFinite, collapsed->GetNumberOfPoints());
 }
 
 TEST(PolyDataTangentFrames, MikkTSpaceWithoutNormalsUsesComputedNormals)

@@ -657,7 +657,9 @@ TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
       run.Update();
       EXPECT_TRUE(run.Messages->GetError());
       EXPECT_NE(std::string::npos, run.Messages->GetErrorMessage().find("point id outside"));
+      // The input passes through: its own arrays, not frames written over them.
       EXPECT_EQ(tangents.Get(), run.Output->GetPointData()->GetTangents());
+      EXPECT_EQ(signs.Get(), run.Output->GetPointData()->GetArray("TangentSigns"));
       EXPECT_EQ(-1.0, signs->GetValue(0));
       EXPECT_EQ(1.0, signs->GetValue(1));
       EXPECT_EQ(

@@ -7,6 +7,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
+#include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkNormalMapObjectFactory.h"
@@ -19,6 +20,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -154,6 +156,7 @@ int TestNormalMapBadInput(int, char*[])
     check(scene.Warnings.empty() &&
         scene.NormalMapper->GetLastAppliedFrame() == Mapper::APPLIED_POINT_TANGENTS,
       "4-component double tangents: used with their sign, no warning");
+    // The same frames, once rounded from double to float in the vertex buffer: 1 level.
     check(Same(pixels, mapped, 1), "4-component double tangents: the same image");
   }
   { // Point tangents asked for but absent: warned, derivative frame.
@@ -267,13 +270,23 @@ int TestNormalMapBadInput(int, char*[])
     check(Same(scene.Render(), unmapped, 0), "texture removed: drawn without the map");
     scene.Actor->GetProperty()->SetNormalTexture(texture);
     check(Same(scene.Render(), mapped, 0), "texture restored: the map again");
-    auto tiny =
-      nmtest::MakeNormalTexture(nmtest::MakeNormalMapImage(Pattern::SineBump, 1, Storage::OpenGL));
+    // A 1x1 map of the flat normal (128, 128, 255), which decodes to a tilt of 0.3 degrees: the
+    // unmapped image within 1 level of the lighting's change.
+    vtkNew<vtkImageData> texel;
+    texel->SetDimensions(1, 1, 1);
+    texel->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+    const unsigned char flat[3] = { 128, 128, 255 };
+    std::copy(flat, flat + 3, static_cast<unsigned char*>(texel->GetScalarPointer()));
+    auto tiny = nmtest::MakeNormalTexture(texel);
     scene.Actor->GetProperty()->SetNormalTexture(tiny);
     const auto oneTexel = scene.Render();
-    check(!oneTexel.empty(), "1x1 normal map renders");
+    check(scene.NormalMapper->GetLastAppliedFrame() == Mapper::APPLIED_POINT_TANGENTS &&
+        Same(oneTexel, unmapped, 1),
+      "1x1 flat normal map: applied, and drawn as the flat surface");
     scene.NormalMapper->SetInputData(vtkNew<vtkPolyData>());
-    scene.Render();
+    const auto empty = scene.Render();
+    check(std::all_of(empty.begin(), empty.end(), [](unsigned char v) { return v == 0; }),
+      "empty input: only the black background");
     check(scene.Warnings.empty(), "none of these warned");
   }
   { // The object factory: opt-in, reversible.

@@ -15,6 +15,7 @@
 #              which must succeed (e.g. a reference picture for CHECK to compare with)
 #   CHECK      optional, with EXPECT ok: a command ('|'-separated, @WORK@ expanded) run after
 #              the tool, which must exit 0 (e.g. the picture checker)
+#   CHECK_STDOUT optional, with CHECK: a regular expression the check's output must match
 #   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
 #              prints "SKIPPED: ..." and ctest reports it skipped (SKIP_REGULAR_EXPRESSION)
 #   CASE       optional: writes @WORK@/case.gltf from SOURCE (a .gltf) broken one way:
@@ -106,6 +107,9 @@ if(EXPECT STREQUAL "ok")
     string(APPEND report "check: ${CHECK}\n${check_out}")
     if(NOT check_rc EQUAL 0)
       message(FATAL_ERROR "the check failed\n${report}")
+    endif()
+    if(CHECK_STDOUT AND NOT check_out MATCHES "${CHECK_STDOUT}")
+      message(FATAL_ERROR "the check's output does not match '${CHECK_STDOUT}'\n${report}")
     endif()
   endif()
 elseif(EXPECT STREQUAL "fail")
