@@ -369,11 +369,18 @@ bool ReadInput(const std::string& path, Input& input, std::string& error)
     return false;
   }
   input.Primitives.push_back(whole);
-  if (!NormalMapTangents::FindTCoords(whole.Mesh, std::string()))
+  vtkDataArray* tcoords = NormalMapTangents::FindTCoords(whole.Mesh, std::string());
+  if (!tcoords)
   {
     error = "'" + path + "' has no texture coordinates, which a normal map needs" +
       (ext == ".stl" ? " (STL files cannot store them)" : "");
     return false;
+  }
+  // A mesh the tool wrote from glTF keeps glTF's v-down coordinates, and says so.
+  if (NormalMapTangents::IsVDown(whole.Mesh))
+  {
+    whole.Mesh->GetPointData()->SetTCoords(tcoords);
+    FlipToVUp(whole.Mesh);
   }
   return true;
 }
@@ -499,26 +506,33 @@ bool ChooseMaps(const Arguments& args,
       ? file
       : (primitive.EmbeddedImage >= 0 ? "#" + std::to_string(primitive.EmbeddedImage) : "");
     auto found = known.find(key);
-    if (found == known.end() && !file.empty())
+    if (found == known.end() && !key.empty())
     {
       MapChoice choice;
-      choice.Image = NormalMapRender::ReadImage(file, error);
-      if (!choice.Image)
+      if (!file.empty())
       {
-        return false;
+        choice.Image = NormalMapRender::ReadImage(file, error);
+        if (choice.Image)
+        {
+          int dims[3];
+          choice.Image->GetDimensions(dims);
+          choice.Text =
+            file + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
+        }
       }
-      int dims[3];
-      choice.Image->GetDimensions(dims);
-      choice.Text = file + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
-      found = known.emplace(key, choice).first;
-    }
-    else if (found == known.end() && primitive.EmbeddedImage >= 0)
-    {
-      MapChoice choice;
-      choice.Image =
-        DecodeEmbeddedTexture(input.Document, primitive.EmbeddedImage, choice.Text, error);
+      else
+      {
+        choice.Image =
+          DecodeEmbeddedTexture(input.Document, primitive.EmbeddedImage, choice.Text, error);
+      }
+      if (!choice.Image && !args.NormalMap.empty())
+      {
+        return false; // the map asked for on the command line must be readable
+      }
       if (!choice.Image)
       {
+        // A material's texture that cannot be used (a missing file, a corrupt image): the
+        // picture is still drawn, with the built-in map.
         input.Warnings.push_back(
           "cannot use the file's normal texture: " + error + "; using the built-in map");
         choice = BuiltInMap(args);

@@ -12,7 +12,8 @@
 #   STDOUT     optional: a regular expression the standard output must match
 #   STDERR     optional: a regular expression the standard error must match (e.g. one warning)
 #   BEFORE     optional: the arguments ('|'-separated, @WORK@ expanded) of a run made first,
-#              which must succeed (e.g. a reference picture for CHECK to compare with)
+#              which must succeed (e.g. a reference picture for CHECK to compare with); several
+#              runs, in order, are separated by '|+|'
 #   CHECK      optional, with EXPECT ok: a command ('|'-separated, @WORK@ expanded) run after
 #              the tool, which must exit 0 (e.g. the picture checker)
 #   CHECK_STDOUT optional, with CHECK: a regular expression the check's output must match
@@ -66,17 +67,18 @@ elseif(CASE)
   file(WRITE "${WORK_DIR}/case.gltf" "${broken}")
 endif()
 
-if(BEFORE)
-  string(REPLACE "@WORK@" "${WORK_DIR}" BEFORE "${BEFORE}")
-  string(REPLACE "|" ";" BEFORE "${BEFORE}")
-  execute_process(COMMAND "${TOOL}" ${BEFORE} WORKING_DIRECTORY "${WORK_DIR}"
+string(REPLACE "@WORK@" "${WORK_DIR}" BEFORE "${BEFORE}")
+string(REPLACE "|+|" ";" runs "${BEFORE}")
+foreach(run IN LISTS runs)
+  string(REPLACE "|" ";" run "${run}")
+  execute_process(COMMAND "${TOOL}" ${run} WORKING_DIRECTORY "${WORK_DIR}"
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "the first run failed\ncommand: ${TOOL} ${BEFORE}\nexit: ${rc}\n"
+    message(FATAL_ERROR "a first run failed\ncommand: ${TOOL} ${run}\nexit: ${rc}\n"
       "stdout:\n${out}\nstderr:\n${err}")
   endif()
-  message("first run: ${TOOL} ${BEFORE}\n${out}")
-endif()
+  message("first run: ${TOOL} ${run}\n${out}")
+endforeach()
 string(REPLACE "@WORK@" "${WORK_DIR}" ARGS "${ARGS}")
 string(REPLACE "|" ";" ARGS "${ARGS}")
 string(REPLACE "@WORK@" "${WORK_DIR}" OUT "${OUT}")

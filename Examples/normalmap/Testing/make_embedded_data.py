@@ -18,6 +18,8 @@ round studs:
   quad_outside.glb     like quad_png.glb with the image's buffer view running 1000 bytes past
                        the end of the binary chunk
   quad_garbage.gltf    a data:image/png URI whose bytes are not an image
+  quad_missing_map.gltf  the image as a file beside the glTF that does not exist
+                       (no_such_normal.png)
   three_quads.gltf     one mesh of three primitives, quads side by side (x from 0, 1.25, 2.5),
                        everything in data: URIs: primitive 0 with material 0 (the PNG, scale
                        0.8), primitive 1 with TANGENT (1, 0, 0, 1) and material 1 (the JPEG,
@@ -128,11 +130,15 @@ def write_glb(path, image, extra_view_length=0):
         f.write(struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks)
 
 
-def write_gltf(path, mime_type, image):
-    """A .gltf with the mesh data and the image as data: URIs."""
+def data_uri(mime_type, data):
+    return "data:%s;base64,%s" % (mime_type, base64.b64encode(data).decode())
+
+
+def write_gltf(path, image_uri):
+    """A .gltf with the mesh data as a data: URI and the image at `image_uri`."""
     binary = b"".join(quad_bytes())
     doc = document(
-        {"uri": "data:%s;base64,%s" % (mime_type, base64.b64encode(image).decode())},
+        {"uri": image_uri},
         {"byteLength": len(binary),
          "uri": "data:application/octet-stream;base64," + base64.b64encode(binary).decode()})
     with open(path, "w") as f:
@@ -204,11 +210,12 @@ def main():
         with open(os.path.join(folder, name), "wb") as f:
             f.write(data)
     write_glb(os.path.join(folder, "quad_png.glb"), png)
-    write_gltf(os.path.join(folder, "quad_jpeg.gltf"), "image/jpeg", jpeg)
+    write_gltf(os.path.join(folder, "quad_jpeg.gltf"), data_uri("image/jpeg", jpeg))
     write_glb(os.path.join(folder, "quad_truncated.glb"), truncated)
     write_glb(os.path.join(folder, "quad_outside.glb"), png, extra_view_length=1000)
-    write_gltf(os.path.join(folder, "quad_garbage.gltf"), "image/png",
-               b"this is not an image, only text pretending to be one" * 4)
+    write_gltf(os.path.join(folder, "quad_garbage.gltf"), data_uri(
+        "image/png", b"this is not an image, only text pretending to be one" * 4))
+    write_gltf(os.path.join(folder, "quad_missing_map.gltf"), "no_such_normal.png")
     write_three_quads(os.path.join(folder, "three_quads.gltf"), png, jpeg)
     print("wrote the embedded-texture test data in " + folder)
 
