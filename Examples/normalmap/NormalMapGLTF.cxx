@@ -1628,8 +1628,16 @@ bool WriteDocument(Document& doc, NormalMapFiles::OutputTransaction& output, std
   }
   if (!doc.Model.buffers.empty())
   {
-    doc.Model.buffers[0].uri =
-      binary ? std::string() : fs::path(output.FinalPath()).stem().string() + ".bin";
+    // tinygltf writes the buffer to the file its URI names, without encoding the URI: the
+    // name keeps only characters that mean the same in both ("my model#1.gltf":
+    // "my_model_1.bin").
+    std::string name = fs::path(output.FinalPath()).stem().string();
+    std::replace_if(
+      name.begin(),
+      name.end(),
+      [](char c) { return !std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.'; },
+      '_');
+    doc.Model.buffers[0].uri = binary ? std::string() : name + ".bin";
   }
   ImageFolders folders{ doc.Path.empty() ? AbsoluteFolder(output.FinalPath())
                                          : AbsoluteFolder(doc.Path),

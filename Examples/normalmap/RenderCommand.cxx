@@ -516,8 +516,7 @@ bool ChooseMaps(const Arguments& args,
         {
           int dims[3];
           choice.Image->GetDimensions(dims);
-          choice.Text =
-            file + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
+          choice.Text = file + " (" + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + ")";
         }
       }
       else

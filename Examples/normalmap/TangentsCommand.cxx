@@ -264,11 +264,26 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
       const std::string uv = args.Tangents.TCoordsName.empty()
         ? NormalMapGLTF::NormalTextureTexCoordName(doc, id)
         : args.Tangents.TCoordsName;
+      const std::string name =
+        "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+      if (mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
+      {
+        // A strip or fan of fewer than 3 vertices: nothing to give frames to.
+        warnings.push_back(name + " has no triangle; left unchanged");
+        continue;
+      }
       if (!NormalMapTangents::FindTCoords(mesh, uv))
       {
-        warnings.push_back("mesh " + std::to_string(id.Mesh) + " primitive " +
-          std::to_string(id.Primitive) + " has no " + uv + "; left unchanged");
+        warnings.push_back(name + " has no " + uv + "; left unchanged");
         continue;
+      }
+      if (!doc.Model.meshes[id.Mesh].primitives[id.Primitive].attributes.count("NORMAL"))
+      {
+        // glTF viewers draw a primitive without NORMAL flat and ignore its TANGENT: the
+        // output needs the normals the tangents are computed with.
+        warnings.push_back(name +
+          " has no NORMAL: writing the smooth normals its tangents are computed with (without "
+          "NORMAL, glTF viewers draw it flat and ignore TANGENT)");
       }
       primitives.push_back(id);
       meshes.push_back(mesh);

@@ -20,7 +20,9 @@
 #   REQUIRES   optional: a path that must exist (the shared data); when it does not, the test
 #              prints "SKIPPED: ..." and ctest reports it skipped (SKIP_REGULAR_EXPRESSION)
 #   CASE       optional: writes @WORK@/case.gltf from SOURCE (a .gltf) broken one way:
-#              truncated | garbage | bad-accessor | bad-bufferview | bad-indices; or
+#              truncated | garbage | bad-accessor | bad-bufferview | bad-indices, or with a
+#              second primitive, a triangle strip of 2 indices (no triangle): short-strip, or
+#              without NORMAL: no-normal; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
 #              ply-truncated | ply-no-xyz | ply-bad-face;
 #              also @WORK@/not-a-folder (a file, to write "into")
@@ -54,6 +56,15 @@ elseif(CASE)
   elseif(CASE STREQUAL "bad-bufferview")
     string(REPLACE "\"byteOffset\": 108, \"byteLength\": 32" "\"byteOffset\": 4000, \"byteLength\": 32"
       broken "${text}")
+  elseif(CASE STREQUAL "no-normal")
+    string(REPLACE "\"NORMAL\": 2, " "" broken "${text}")
+  elseif(CASE STREQUAL "short-strip")
+    string(REPLACE "\"indices\": 0, \"material\": 0 } ]"
+      "\"indices\": 0, \"material\": 0 }, { \"attributes\": { \"POSITION\": 1, \"NORMAL\": 2, \"TEXCOORD_0\": 3 }, \"indices\": 4, \"mode\": 5 } ]"
+      broken "${text}")
+    string(REPLACE "\"type\": \"VEC2\" }\n"
+      "\"type\": \"VEC2\" },\n    { \"bufferView\": 0, \"componentType\": 5123, \"count\": 2, \"type\": \"SCALAR\" }\n"
+      broken "${broken}")
   elseif(CASE STREQUAL "bad-indices")
     # The 6 ushort indices read as 3 uints: (1 << 16) | 0 and the like, far out of range.
     string(REPLACE "\"componentType\": 5123, \"count\": 6" "\"componentType\": 5125, \"count\": 3"
