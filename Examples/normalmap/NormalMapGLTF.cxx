@@ -549,6 +549,19 @@ void AddField(vtkFieldData* fd, const char* name, const std::string& value)
   fd->AddArray(a);
 }
 
+/// The texture-coordinate set a normal texture reads: its texCoord, or the one its
+/// KHR_texture_transform names instead.
+int TexCoordSet(const tinygltf::NormalTextureInfo& info)
+{
+  const auto transform = info.extensions.find("KHR_texture_transform");
+  if (transform != info.extensions.end() && transform->second.Has("texCoord") &&
+    transform->second.Get("texCoord").IsInt())
+  {
+    return std::max(0, transform->second.Get("texCoord").GetNumberAsInt());
+  }
+  return std::max(0, info.texCoord);
+}
+
 void AddMaterialFields(const Document& doc, const tinygltf::Primitive& prim, vtkFieldData* fd)
 {
   const tinygltf::Model& model = doc.Model;
@@ -574,7 +587,7 @@ void AddMaterialFields(const Document& doc, const tinygltf::Primitive& prim, vtk
     }
   }
   AddField(fd, "NormalTextureImage", image);
-  AddField(fd, "NormalTextureTexCoord", info.texCoord);
+  AddField(fd, "NormalTextureTexCoord", TexCoordSet(info));
   AddField(fd, "NormalTextureScale", info.scale);
   AddField(fd, "NormalTextureURI", uri);
   AddField(fd, "NormalTextureFile", file);
@@ -1351,7 +1364,7 @@ std::string NormalTextureTexCoordName(const Document& doc, PrimitiveId id)
     static_cast<size_t>(prim->material) < doc.Model.materials.size())
   {
     const auto& info = doc.Model.materials[static_cast<size_t>(prim->material)].normalTexture;
-    set = info.index >= 0 ? std::max(0, info.texCoord) : 0;
+    set = info.index >= 0 ? TexCoordSet(info) : 0;
   }
   return "TEXCOORD_" + std::to_string(set);
 }

@@ -337,6 +337,18 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
     FlipToVUp(mesh);
     if (FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
     {
+      // A normal texture comes from the primitive's material.
+      const int material = doc.Model.meshes[id.Mesh].primitives[id.Primitive].material;
+      const auto& info = doc.Model.materials[static_cast<size_t>(material)].normalTexture;
+      const auto transform = info.extensions.find("KHR_texture_transform");
+      if (transform != info.extensions.end() &&
+        (transform->second.Has("offset") || transform->second.Has("rotation") ||
+          transform->second.Has("scale")))
+      {
+        input.Warnings.push_back(primitive.Name +
+          ": the normal texture's KHR_texture_transform offset, rotation and scale are not "
+          "applied");
+      }
       primitive.HasNormalTexture = true;
       primitive.NormalTextureFile = FieldString(mesh, "NormalTextureFile");
       primitive.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);

@@ -22,7 +22,8 @@
 #   CASE       optional: writes @WORK@/case.gltf from SOURCE (a .gltf) broken one way:
 #              truncated | garbage | bad-accessor | bad-bufferview | bad-indices, or with a
 #              second primitive, a triangle strip of 2 indices (no triangle): short-strip, or
-#              without NORMAL: no-normal; or
+#              without NORMAL: no-normal, or with a KHR_texture_transform scale on its normal
+#              texture: texture-transform; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
 #              ply-truncated | ply-no-xyz | ply-bad-face;
 #              also @WORK@/not-a-folder (a file, to write "into")
@@ -55,6 +56,10 @@ elseif(CASE)
     string(REPLACE "\"POSITION\": 1" "\"POSITION\": 42" broken "${text}")
   elseif(CASE STREQUAL "bad-bufferview")
     string(REPLACE "\"byteOffset\": 108, \"byteLength\": 32" "\"byteOffset\": 4000, \"byteLength\": 32"
+      broken "${text}")
+  elseif(CASE STREQUAL "texture-transform")
+    string(REPLACE "\"normalTexture\": { \"index\": 0, \"scale\": 0.5 }"
+      "\"normalTexture\": { \"index\": 0, \"scale\": 0.5, \"extensions\": { \"KHR_texture_transform\": { \"scale\": [ 2, 2 ] } } }"
       broken "${text}")
   elseif(CASE STREQUAL "no-normal")
     string(REPLACE "\"NORMAL\": 2, " "" broken "${text}")

@@ -217,6 +217,21 @@ TEST(NormalMapGLTF, ReadsTheQuadIntoPolyData)
   EXPECT_EQ(NormalMapGLTF::NormalTextureTexCoordName(doc, First), "TEXCOORD_0");
 }
 
+// KHR_texture_transform's texCoord overrides the normal texture's own: tangents must be
+// computed on the set the texture is sampled with.
+TEST(NormalMapGLTF, TextureTransformNamesTheTexCoordSet)
+{
+  Document doc = ReadOrFail(DataDir + "/quad.gltf");
+  tinygltf::Value::Object transform;
+  transform["texCoord"] = tinygltf::Value(1);
+  doc.Model.materials[0].normalTexture.extensions["KHR_texture_transform"] =
+    tinygltf::Value(transform);
+  EXPECT_EQ(NormalMapGLTF::NormalTextureTexCoordName(doc, First), "TEXCOORD_1");
+  vtkSmartPointer<vtkPolyData> mesh = ToPolyData(doc);
+  ASSERT_TRUE(mesh);
+  EXPECT_EQ(FieldValue(mesh, "NormalTextureTexCoord"), 1.0);
+}
+
 // TangentSigns means the same for every method and both UV conventions: bitangent =
 // sign * cross(N, T) points to the top of the image, i.e. glTF's TANGENT.w.
 TEST(NormalMapGLTF, SignFollowsGltfForEveryMethodAndUVConvention)
