@@ -13,6 +13,7 @@
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -1334,6 +1335,203 @@ bool ReadDocumentFromMemory(const unsigned char* data,
     err = e.what();
   }
   return FinishRead(ok, err, "<memory>", doc, error);
+}
+
+namespace
+{
+using Matrix4 = std::array<double, 16>; // row-major
+
+Matrix4 Multiply(const Matrix4& a, const Matrix4& b)
+{
+  Matrix4 c{};
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      for (int j = 0; j < 4; ++j)
+      {
+        c[4 * r + j] += a[4 * r + k] * b[4 * k + j];
+      }
+    }
+  }
+  return c;
+}
+
+/// The node's own transform: its matrix (stored column-major), or translation * rotation *
+/// scale (glTF 2.0, 5.25).
+Matrix4 LocalMatrix(const tinygltf::Node& node)
+{
+  Matrix4 m{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  if (node.matrix.size() == 16)
+  {
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        m[4 * r + c] = node.matrix[4 * c + r];
+      }
+    }
+    return m;
+  }
+  const double s[3] = { node.scale.size() == 3 ? node.scale[0] : 1.0,
+    node.scale.size() == 3 ? node.scale[1] : 1.0,
+    node.scale.size() == 3 ? node.scale[2] : 1.0 };
+  double x = 0, y = 0, z = 0, w = 1;
+  if (node.rotation.size() == 4)
+  {
+    x = node.rotation[0];
+    y = node.rotation[1];
+    z = node.rotation[2];
+    w = node.rotation[3];
+  }
+  const double rotation[9] = { 1 - 2 * (y * y + z * z),
+    2 * (x * y - z * w),
+    2 * (x * z + y * w),
+    2 * (x * y + z * w),
+    1 - 2 * (x * x + z * z),
+    2 * (y * z - x * w),
+    2 * (x * z - y * w),
+    2 * (y * z + x * w),
+    1 - 2 * (x * x + y * y) };
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m[4 * r + c] = rotation[3 * r + c] * s[c];
+    }
+    m[4 * r + 3] = node.translation.size() == 3 ? node.translation[r] : 0.0;
+  }
+  return m;
+}
+
+void PlaceNode(const tinygltf::Model& model,
+  int node,
+  const Matrix4& parent,
+  std::vector<bool>& onPath,
+  std::vector<std::vector<MeshPlacement>>& placements)
+{
+  // A node on its own ancestry (a cycle, which a valid file does not have) is not drawn again.
+  if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || onPath[node])
+  {
+    return;
+  }
+  onPath[node] = true;
+  const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
+  const Matrix4 world = Multiply(parent, LocalMatrix(n));
+  if (n.mesh >= 0 && static_cast<size_t>(n.mesh) < placements.size())
+  {
+    placements[static_cast<size_t>(n.mesh)].push_back({ node, world });
+  }
+  for (int child : n.children)
+  {
+    PlaceNode(model, child, world, onPath, placements);
+  }
+  onPath[node] = false;
+}
+}
+
+std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc)
+{
+  const tinygltf::Model& model = doc.Model;
+  std::vector<std::vector<MeshPlacement>> placements(model.meshes.size());
+  if (model.scenes.empty())
+  {
+    return placements;
+  }
+  const size_t scene =
+    model.defaultScene >= 0 && static_cast<size_t>(model.defaultScene) < model.scenes.size()
+    ? static_cast<size_t>(model.defaultScene)
+    : 0;
+  std::vector<bool> onPath(model.nodes.size(), false);
+  const Matrix4 identity{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  for (int root : model.scenes[scene].nodes)
+  {
+    PlaceNode(model, root, identity, onPath, placements);
+  }
+  return placements;
+}
+
+vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, const std::array<double, 16>& m)
+{
+  double linear[3][3], normalMatrix[3][3];
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear[r][c] = m[4 * r + c];
+    }
+  }
+  const double determinant = vtkMath::Determinant3x3(linear);
+  const bool mirrors = determinant < 0.0;
+
+  auto placed = vtkSmartPointer<vtkPolyData>::New();
+  placed->ShallowCopy(mesh);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(mesh->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    double x[3], y[3];
+    mesh->GetPoint(p, x);
+    vtkMath::Multiply3x3(linear, x, y);
+    points->SetPoint(p, y[0] + m[3], y[1] + m[7], y[2] + m[11]);
+  }
+  placed->SetPoints(points);
+  if (determinant == 0.0)
+  {
+    // A scale of 0 (glTF's way to hide a node) flattens every triangle: nothing is drawn, and
+    // the normals and tangents, which have no transformed direction, stay as they are.
+    return placed;
+  }
+  vtkMath::Invert3x3(linear, normalMatrix);
+  vtkMath::Transpose3x3(normalMatrix, normalMatrix);
+  const auto transformed = [&](vtkDataArray* vectors, double matrix[3][3])
+  {
+    auto out = vtk::TakeSmartPointer(vectors->NewInstance());
+    out->DeepCopy(vectors);
+    for (vtkIdType p = 0; p < vectors->GetNumberOfTuples(); ++p)
+    {
+      double v[3], w[3];
+      vectors->GetTuple(p, v);
+      vtkMath::Multiply3x3(matrix, v, w);
+      vtkMath::Normalize(w);
+      out->SetTuple(p, w);
+    }
+    return out;
+  };
+  vtkPointData* pd = placed->GetPointData();
+  if (vtkDataArray* normals = mesh->GetPointData()->GetNormals())
+  {
+    pd->SetNormals(transformed(normals, normalMatrix));
+  }
+  vtkDataArray* tangents = mesh->GetPointData()->GetArray("Tangents");
+  if (tangents && tangents->GetNumberOfComponents() == 3)
+  {
+    const bool active = mesh->GetPointData()->GetTangents() == tangents;
+    auto moved = transformed(tangents, linear);
+    pd->RemoveArray("Tangents");
+    if (active)
+    {
+      pd->SetTangents(moved);
+    }
+    else
+    {
+      pd->AddArray(moved);
+    }
+  }
+  vtkDataArray* signs = mesh->GetPointData()->GetArray("TangentSigns");
+  if (signs && mirrors)
+  {
+    auto flipped = vtk::TakeSmartPointer(signs->NewInstance());
+    flipped->DeepCopy(signs);
+    for (vtkIdType p = 0; p < signs->GetNumberOfTuples(); ++p)
+    {
+      flipped->SetComponent(p, 0, -signs->GetComponent(p, 0));
+    }
+    pd->RemoveArray("TangentSigns");
+    pd->AddArray(flipped);
+  }
+  return placed;
 }
 
 std::vector<PrimitiveId> TrianglePrimitives(const Document& doc)

@@ -38,6 +38,7 @@
 #include <tiny_gltf.h>
 #include <vtkSmartPointer.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,28 @@ bool ReadDocumentFromMemory(const unsigned char* data,
 
 /// The triangle primitives (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), mesh by mesh.
 std::vector<PrimitiveId> TrianglePrimitives(const Document& doc);
+
+/// A node of the scene that draws a mesh, and its world matrix (row-major: the product of its
+/// ancestors' transforms and its own).
+struct MeshPlacement
+{
+  int Node = -1;
+  std::array<double, 16> Matrix{};
+};
+
+/**
+ * Per mesh (by index), the nodes of the default scene (the first scene when none is marked)
+ * that draw it. A mesh no node of that scene draws has none; so has every mesh of a file
+ * without scenes.
+ */
+std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc);
+
+/**
+ * A copy of `mesh` placed by the row-major matrix `m`: points by m, normals by the inverse
+ * transpose of its linear part and tangents by that part (both unit again), and the
+ * TangentSigns negated when m mirrors, so that sign * cross(N, T) still follows the bitangent.
+ */
+vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, const std::array<double, 16>& m);
 
 /// The texture coordinate set the primitive's normal texture uses ("TEXCOORD_<texCoord>"), or
 /// TEXCOORD_0 when its material has no normal texture.

@@ -13,15 +13,18 @@
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkNormalMapPolyDataMapper.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataNormals.h>
 #include <vtkStringArray.h>
 #include <vtkTexture.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -262,6 +265,7 @@ struct Primitive
 {
   vtkSmartPointer<vtkPolyData> Mesh;
   std::string Name;                // "mesh 0 primitive 1" (glTF), empty for other files
+  int GLTFMesh = -1;               // glTF: the mesh it belongs to
   bool HasNormalTexture = false;   // its glTF material has a normal texture:
   std::string NormalTextureFile;   // as a file (resolved), or
   int EmbeddedImage = -1;          // embedded in the glTF file
@@ -325,6 +329,7 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
     }
     primitive.Name =
       "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+    primitive.GLTFMesh = id.Mesh;
     vtkPolyData* mesh = primitive.Mesh;
     const std::string uv = NormalMapGLTF::NormalTextureTexCoordName(doc, id);
     vtkDataArray* tcoords = NormalMapTangents::FindTCoords(mesh, uv);
@@ -621,6 +626,17 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
   std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> blocks;
   std::vector<std::string> mapTexts;
   std::map<std::pair<vtkImageData*, double>, size_t> parts; // by image and strength
+  // Each glTF primitive where the scene's nodes place it (once per node that draws its mesh),
+  // or as it is stored when no node of the scene draws it.
+  const auto placements = input.GLTF ? NormalMapGLTF::PlaceMeshes(input.Document)
+                                     : std::vector<std::vector<NormalMapGLTF::MeshPlacement>>();
+  size_t placedBlocks = 0;
+  double bounds[6] = { VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX };
   for (size_t i = 0; i < input.Primitives.size(); ++i)
   {
     const MapChoice& choice = choices[i];
@@ -645,8 +661,32 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
       mapTexts.push_back(text.str());
     }
     NormalMapRender::Part& target = scene.Parts[part->second];
-    target.Blocks->SetBlock(target.Blocks->GetNumberOfBlocks(), input.Primitives[i].Mesh);
-    target.BlockNames.push_back(input.Primitives[i].Name);
+    const Primitive& primitive = input.Primitives[i];
+    const auto* nodes =
+      primitive.GLTFMesh >= 0 ? &placements[static_cast<size_t>(primitive.GLTFMesh)] : nullptr;
+    const auto addBlock = [&](vtkPolyData* mesh, const std::string& name)
+    {
+      target.Blocks->SetBlock(target.Blocks->GetNumberOfBlocks(), mesh);
+      target.BlockNames.push_back(name);
+      double b[6];
+      mesh->GetBounds(b);
+      for (int k = 0; k < 3; ++k)
+      {
+        bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]);
+        bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
+      }
+    };
+    if (!nodes || nodes->empty())
+    {
+      addBlock(primitive.Mesh, primitive.Name);
+      continue;
+    }
+    for (const NormalMapGLTF::MeshPlacement& node : *nodes)
+    {
+      addBlock(NormalMapGLTF::Placed(primitive.Mesh, node.Matrix),
+        primitive.Name + (nodes->size() > 1 ? ", node " + std::to_string(node.Node) : ""));
+      ++placedBlocks;
+    }
   }
   if (!input.GLTF)
   {
@@ -707,6 +747,13 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
       }
     }
     std::cout << "\n";
+  }
+  if (input.GLTF)
+  {
+    std::cout << "  scene         " << placedBlocks
+              << " primitive(s) placed by their nodes; bounds (" << bounds[0] << ", " << bounds[2]
+              << ", " << bounds[4] << ") to (" << bounds[1] << ", " << bounds[3] << ", "
+              << bounds[5] << ")\n";
   }
   std::cout << "  frame         " << frameText << "; the mapper applied: " << rendered.AppliedFrame
             << "\n"

@@ -23,7 +23,8 @@
 #              truncated | garbage | bad-accessor | bad-bufferview | bad-indices, or with a
 #              second primitive, a triangle strip of 2 indices (no triangle): short-strip, or
 #              without NORMAL: no-normal, or with a KHR_texture_transform scale on its normal
-#              texture: texture-transform; or
+#              texture: texture-transform, or drawn by a node (scale 2 in x) under a node
+#              (translation 3 in x): nodes; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
 #              ply-truncated | ply-no-xyz | ply-bad-face;
 #              also @WORK@/not-a-folder (a file, to write "into")
@@ -56,6 +57,10 @@ elseif(CASE)
     string(REPLACE "\"POSITION\": 1" "\"POSITION\": 42" broken "${text}")
   elseif(CASE STREQUAL "bad-bufferview")
     string(REPLACE "\"byteOffset\": 108, \"byteLength\": 32" "\"byteOffset\": 4000, \"byteLength\": 32"
+      broken "${text}")
+  elseif(CASE STREQUAL "nodes")
+    string(REPLACE "\"nodes\": [ { \"mesh\": 0, \"name\": \"quad\" } ]"
+      "\"nodes\": [ { \"children\": [ 1 ], \"translation\": [ 3, 0, 0 ] }, { \"mesh\": 0, \"name\": \"quad\", \"scale\": [ 2, 1, 1 ] } ]"
       broken "${text}")
   elseif(CASE STREQUAL "texture-transform")
     string(REPLACE "\"normalTexture\": { \"index\": 0, \"scale\": 0.5 }"

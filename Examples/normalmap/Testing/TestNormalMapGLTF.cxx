@@ -13,6 +13,7 @@
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -21,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -215,6 +217,83 @@ TEST(NormalMapGLTF, ReadsTheQuadIntoPolyData)
   EXPECT_EQ(FieldString(mesh, "NormalTextureFile"),
     (fs::path(DataDir) / "quad_normal.png").lexically_normal().string());
   EXPECT_EQ(NormalMapGLTF::NormalTextureTexCoordName(doc, First), "TEXCOORD_0");
+}
+
+// The scene's nodes place each mesh: a parent's translation after its child's translation,
+// rotation and scale (glTF 2.0, 5.25), once per node that draws the mesh; a mesh no node
+// draws has no placement.
+TEST(NormalMapGLTF, NodesPlaceTheirMeshes)
+{
+  Document doc = ReadOrFail(DataDir + "/quad.gltf");
+  tinygltf::Node parent;
+  parent.children = { 0, 2 };
+  parent.translation = { 3.0, 0.0, 0.0 };
+  doc.Model.nodes[0].rotation = { 0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5) }; // 90 deg about z
+  doc.Model.nodes[0].scale = { 2.0, 1.0, 1.0 };
+  tinygltf::Node second;
+  second.mesh = 0;
+  second.matrix = { -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1 }; // x mirrored, z + 5
+  doc.Model.nodes.push_back(parent);
+  doc.Model.nodes.push_back(second);
+  doc.Model.scenes[0].nodes = { 1 };
+  const auto placements = NormalMapGLTF::PlaceMeshes(doc);
+  ASSERT_EQ(placements.size(), 1u);
+  ASSERT_EQ(placements[0].size(), 2u);
+  EXPECT_EQ(placements[0][0].Node, 0);
+  EXPECT_EQ(placements[0][1].Node, 2);
+
+  // The quad [0, 1]^2: scaled to [0, 2] x [0, 1], turned to [-1, 0] x [0, 2], moved by 3. The
+  // matrices are products of a few exact values and of sqrt(0.5)^2: 1e-12 is rounding.
+  vtkSmartPointer<vtkPolyData> quad = ToPolyData(doc);
+  ASSERT_TRUE(quad);
+  double b[6];
+  NormalMapGLTF::Placed(quad, placements[0][0].Matrix)->GetBounds(b);
+  const double expected[6] = { 2, 3, 0, 2, 0, 0 };
+  for (int k = 0; k < 6; ++k)
+  {
+    EXPECT_NEAR(b[k], expected[k], 1e-12) << "bound " << k;
+  }
+
+  // The mirrored placement with tangents: the normal stays +z, the tangent turns to -x and the
+  // sign flips, so that sign * cross(N, T) is the placed bitangent, +y, as before.
+  vtkNew<vtkFloatArray> tangents, signs;
+  tangents->SetName("Tangents");
+  tangents->SetNumberOfComponents(3);
+  signs->SetName("TangentSigns");
+  for (vtkIdType p = 0; p < quad->GetNumberOfPoints(); ++p)
+  {
+    tangents->InsertNextTuple3(1.0, 0.0, 0.0);
+    signs->InsertNextValue(-1.0); // B = -cross(+z, +x) = -y
+  }
+  quad->GetPointData()->SetTangents(tangents);
+  quad->GetPointData()->AddArray(signs);
+  vtkSmartPointer<vtkPolyData> mirrored = NormalMapGLTF::Placed(quad, placements[0][1].Matrix);
+  vtkPointData* pd = mirrored->GetPointData();
+  double n[3], t[3];
+  pd->GetNormals()->GetTuple(0, n);
+  pd->GetTangents()->GetTuple(0, t);
+  const double sign = pd->GetArray("TangentSigns")->GetComponent(0, 0);
+  EXPECT_NEAR(n[2], 1.0, 1e-12);
+  EXPECT_NEAR(t[0], -1.0, 1e-12);
+  EXPECT_EQ(sign, 1.0);
+  double bitangent[3];
+  vtkMath::Cross(n, t, bitangent);
+  // Before: -1 * cross(+z, +x) = -y; the mirror in x keeps y: still -y.
+  EXPECT_NEAR(sign * bitangent[1], -1.0, 1e-12);
+  EXPECT_EQ(quad->GetPointData()->GetArray("TangentSigns")->GetComponent(0, 0), -1.0)
+    << "the input is not modified";
+
+  // A node scaled to 0 (hidden): its points collapse, its normals stay finite.
+  std::array<double, 16> hidden{};
+  hidden[15] = 1.0;
+  vtkSmartPointer<vtkPolyData> flat = NormalMapGLTF::Placed(quad, hidden);
+  flat->GetPointData()->GetNormals()->GetTuple(0, n);
+  EXPECT_TRUE(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]));
+  flat->GetBounds(b);
+  EXPECT_EQ(b[1] - b[0] + b[3] - b[2] + b[5] - b[4], 0.0);
+
+  doc.Model.scenes[0].nodes.clear();
+  EXPECT_TRUE(NormalMapGLTF::PlaceMeshes(doc)[0].empty()) << "a scene without nodes draws none";
 }
 
 // KHR_texture_transform's texCoord overrides the normal texture's own: tangents must be
