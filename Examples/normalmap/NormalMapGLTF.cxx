@@ -1404,30 +1404,6 @@ Matrix4 LocalMatrix(const tinygltf::Node& node)
   return m;
 }
 
-void PlaceNode(const tinygltf::Model& model,
-  int node,
-  const Matrix4& parent,
-  std::vector<bool>& onPath,
-  std::vector<std::vector<MeshPlacement>>& placements)
-{
-  // A node on its own ancestry (a cycle, which a valid file does not have) is not drawn again.
-  if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || onPath[node])
-  {
-    return;
-  }
-  onPath[node] = true;
-  const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
-  const Matrix4 world = Multiply(parent, LocalMatrix(n));
-  if (n.mesh >= 0 && static_cast<size_t>(n.mesh) < placements.size())
-  {
-    placements[static_cast<size_t>(n.mesh)].push_back({ node, world });
-  }
-  for (int child : n.children)
-  {
-    PlaceNode(model, child, world, onPath, placements);
-  }
-  onPath[node] = false;
-}
 }
 
 std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc)
@@ -1442,11 +1418,37 @@ std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc)
     model.defaultScene >= 0 && static_cast<size_t>(model.defaultScene) < model.scenes.size()
     ? static_cast<size_t>(model.defaultScene)
     : 0;
-  std::vector<bool> onPath(model.nodes.size(), false);
+  // Depth first, in the order of the nodes' children, without recursion: a hierarchy may be
+  // as deep as a file is long. Each node is placed once (a valid file's nodes have one parent
+  // and no cycle).
   const Matrix4 identity{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
-  for (int root : model.scenes[scene].nodes)
+  std::vector<std::pair<int, Matrix4>> pending;
+  const std::vector<int>& roots = model.scenes[scene].nodes;
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root)
   {
-    PlaceNode(model, root, identity, onPath, placements);
+    pending.emplace_back(*root, identity);
+  }
+  std::vector<bool> placed(model.nodes.size(), false);
+  while (!pending.empty())
+  {
+    const int node = pending.back().first;
+    const Matrix4 parent = pending.back().second;
+    pending.pop_back();
+    if (node < 0 || static_cast<size_t>(node) >= model.nodes.size() || placed[node])
+    {
+      continue;
+    }
+    placed[node] = true;
+    const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
+    const Matrix4 world = Multiply(parent, LocalMatrix(n));
+    if (n.mesh >= 0 && static_cast<size_t>(n.mesh) < placements.size())
+    {
+      placements[static_cast<size_t>(n.mesh)].push_back({ node, world });
+    }
+    for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
+    {
+      pending.emplace_back(*child, world);
+    }
   }
   return placements;
 }

@@ -296,6 +296,29 @@ TEST(NormalMapGLTF, NodesPlaceTheirMeshes)
   EXPECT_TRUE(NormalMapGLTF::PlaceMeshes(doc)[0].empty()) << "a scene without nodes draws none";
 }
 
+// A hierarchy as deep as the file is long is placed without recursion (a recursive walk needs a
+// stack frame per level), and a cycle, which a valid file does not have, ends.
+TEST(NormalMapGLTF, DeepAndCyclicNodeHierarchies)
+{
+  Document doc = ReadOrFail(DataDir + "/quad.gltf");
+  const int depth = 200000;
+  for (int k = 0; k < depth; ++k)
+  {
+    tinygltf::Node link;
+    link.children = { static_cast<int>(doc.Model.nodes.size()) - 1 };
+    link.translation = { 1.0, 0.0, 0.0 };
+    doc.Model.nodes.push_back(link);
+  }
+  doc.Model.scenes[0].nodes = { static_cast<int>(doc.Model.nodes.size()) - 1 };
+  auto placements = NormalMapGLTF::PlaceMeshes(doc);
+  ASSERT_EQ(placements[0].size(), 1u);
+  EXPECT_EQ(placements[0][0].Matrix[3], static_cast<double>(depth)); // integers: exact
+
+  doc.Model.nodes[0].children = { static_cast<int>(doc.Model.nodes.size()) - 1 }; // a cycle
+  placements = NormalMapGLTF::PlaceMeshes(doc);
+  EXPECT_EQ(placements[0].size(), 1u);
+}
+
 // KHR_texture_transform's texCoord overrides the normal texture's own: tangents must be
 // computed on the set the texture is sampled with.
 TEST(NormalMapGLTF, TextureTransformNamesTheTexCoordSet)
