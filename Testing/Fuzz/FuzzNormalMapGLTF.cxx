@@ -11,7 +11,9 @@
 // - a primitive that reads and has the normal texture's UV set gets tangents (the filter
 //   reports no error on what the reader built);
 // - what the tool writes reads back; each updated primitive's TANGENT is unit (1e-6), its w
-//   exactly +1 or -1, one per vertex of the filter's output, perpendicular to a usable NORMAL.
+//   exactly +1 or -1, one per vertex of the filter's output, perpendicular to a usable NORMAL;
+// - `render`'s placement by the scene's nodes ends (also on deep or cyclic hierarchies), places
+//   each node at most once, and its placed copies keep the primitive's points and cells.
 //
 // The seed corpus (Testing/Fuzz/gltf-corpus, written by make_gltf_corpus.py) holds small valid
 // and nearly valid files; gltf.dict is a dictionary of glTF's keys and values for -dict=.
@@ -170,6 +172,10 @@ void RunTangents(NormalMapGLTF::Document doc, int method, bool splitting, bool b
       RequireCleanError(error, where + " (reading)");
       return; // the tool stops at the first corrupt primitive
     }
+    if (mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
+    {
+      continue; // no triangle: left unchanged, as the tool does (with a warning)
+    }
     NormalMapTangents::Options options;
     options.Method = method;
     options.Splitting = splitting;
@@ -219,6 +225,35 @@ void RunTangents(NormalMapGLTF::Document doc, int method, bool splitting, bool b
   for (const char* name : { "/out.glb", "/out.gltf", "/out.bin" })
   {
     fs::remove(WorkDir + name, ignored);
+  }
+}
+/// What `render` does with the scene's nodes: every placement of every triangle primitive
+/// (a copy with as many points, normals and tangents), and each node placed at most once.
+void RunPlacements(const NormalMapGLTF::Document& doc)
+{
+  const auto placements = NormalMapGLTF::PlaceMeshes(doc);
+  Require(placements.size() == doc.Model.meshes.size(), "placements: one list per mesh");
+  size_t total = 0;
+  for (const auto& mesh : placements)
+  {
+    total += mesh.size();
+  }
+  Require(total <= doc.Model.nodes.size(), "placements: a node placed more than once");
+  std::string error;
+  for (const NormalMapGLTF::PrimitiveId& id : NormalMapGLTF::TrianglePrimitives(doc))
+  {
+    vtkSmartPointer<vtkPolyData> mesh = NormalMapGLTF::PrimitiveToPolyData(doc, id, error);
+    if (!mesh)
+    {
+      return;
+    }
+    for (const NormalMapGLTF::MeshPlacement& node : placements[static_cast<size_t>(id.Mesh)])
+    {
+      vtkSmartPointer<vtkPolyData> placed = NormalMapGLTF::Placed(mesh, node.Matrix);
+      Require(placed->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
+          placed->GetNumberOfCells() == mesh->GetNumberOfCells(),
+        "placements: the placed copy has other points or cells");
+    }
   }
 }
 } // namespace
@@ -273,5 +308,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   RunTangents(doc, vtkPolyDataTangentFrames::MIKKTSPACE, true, glb);
   RunTangents(doc, vtkPolyDataTangentFrames::ANGLE_WEIGHTED, true, !glb);
   RunTangents(doc, vtkPolyDataTangentFrames::MIKKTSPACE, false, !glb);
+  RunPlacements(doc);
   return 0;
 }
