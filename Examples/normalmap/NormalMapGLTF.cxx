@@ -14,6 +14,7 @@
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkMath.h>
+#include <vtkMatrix4x4.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -1341,22 +1342,6 @@ namespace
 {
 using Matrix4 = std::array<double, 16>; // row-major
 
-Matrix4 Multiply(const Matrix4& a, const Matrix4& b)
-{
-  Matrix4 c{};
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int k = 0; k < 4; ++k)
-    {
-      for (int j = 0; j < 4; ++j)
-      {
-        c[4 * r + j] += a[4 * r + k] * b[4 * k + j];
-      }
-    }
-  }
-  return c;
-}
-
 /// The node's own transform: its matrix (stored column-major), or translation * rotation *
 /// scale (glTF 2.0, 5.25).
 Matrix4 LocalMatrix(const tinygltf::Node& node)
@@ -1376,28 +1361,23 @@ Matrix4 LocalMatrix(const tinygltf::Node& node)
   const double s[3] = { node.scale.size() == 3 ? node.scale[0] : 1.0,
     node.scale.size() == 3 ? node.scale[1] : 1.0,
     node.scale.size() == 3 ? node.scale[2] : 1.0 };
-  double x = 0, y = 0, z = 0, w = 1;
+  // glTF stores the quaternion as (x, y, z, w), vtkMath takes (w, x, y, z) and normalizes it;
+  // a zero or non-finite one (invalid glTF) leaves the rotation out.
+  double rotation[3][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
   if (node.rotation.size() == 4)
   {
-    x = node.rotation[0];
-    y = node.rotation[1];
-    z = node.rotation[2];
-    w = node.rotation[3];
+    const double q[4] = { node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2] };
+    const double norm2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    if (std::isfinite(norm2) && norm2 > 0.0)
+    {
+      vtkMath::QuaternionToMatrix3x3(q, rotation);
+    }
   }
-  const double rotation[9] = { 1 - 2 * (y * y + z * z),
-    2 * (x * y - z * w),
-    2 * (x * z + y * w),
-    2 * (x * y + z * w),
-    1 - 2 * (x * x + z * z),
-    2 * (y * z - x * w),
-    2 * (x * z - y * w),
-    2 * (y * z + x * w),
-    1 - 2 * (x * x + y * y) };
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
     {
-      m[4 * r + c] = rotation[3 * r + c] * s[c];
+      m[4 * r + c] = rotation[r][c] * s[c];
     }
     m[4 * r + 3] = node.translation.size() == 3 ? node.translation[r] : 0.0;
   }
@@ -1440,7 +1420,9 @@ std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc)
     }
     placed[node] = true;
     const tinygltf::Node& n = model.nodes[static_cast<size_t>(node)];
-    const Matrix4 world = Multiply(parent, LocalMatrix(n));
+    const Matrix4 local = LocalMatrix(n);
+    Matrix4 world;
+    vtkMatrix4x4::Multiply4x4(parent.data(), local.data(), world.data());
     if (n.mesh >= 0 && static_cast<size_t>(n.mesh) < placements.size())
     {
       placements[static_cast<size_t>(n.mesh)].push_back({ node, world });
