@@ -82,22 +82,28 @@ void vtkNormalMappedSurfaceRepresentation::SetNormalMapTexture(vtkTexture* textu
 void vtkNormalMappedSurfaceRepresentation::SetNormalScale(double scale)
 {
   this->ParaViewNormalScale = scale;
-  this->ApplyNormalTexture();
+  this->ApplyNormalScale();
 }
 
 void vtkNormalMappedSurfaceRepresentation::SetNormalMapScale(double scale)
 {
   this->NormalMapScale = scale;
-  this->ApplyNormalTexture();
+  this->ApplyNormalScale();
 }
 
 void vtkNormalMappedSurfaceRepresentation::ApplyNormalTexture()
 {
   // The superclass sets the texture's filtering from the representation's Interpolate Textures
   // and Use Mipmap Textures, as for ParaView's own textures.
-  const bool ours = this->NormalMapTexture != nullptr;
-  this->Superclass::SetNormalTexture(ours ? this->NormalMapTexture : this->ParaViewNormalTexture);
-  this->Superclass::SetNormalScale(ours ? this->NormalMapScale : this->ParaViewNormalScale);
+  this->Superclass::SetNormalTexture(
+    this->NormalMapTexture ? this->NormalMapTexture : this->ParaViewNormalTexture);
+  this->ApplyNormalScale();
+}
+
+void vtkNormalMappedSurfaceRepresentation::ApplyNormalScale()
+{
+  this->Superclass::SetNormalScale(
+    this->NormalMapTexture ? this->NormalMapScale : this->ParaViewNormalScale);
 }
 
 void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent indent)

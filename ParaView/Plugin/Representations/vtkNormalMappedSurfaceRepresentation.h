@@ -65,8 +65,10 @@ private:
 
   /// The full-resolution and the LOD mapper, both ours.
   vtkNormalMapCompositePolyDataMapper* NormalMapper(int which) const;
-  /// Gives the actor's property the texture in effect and its strength.
+  /// Gives the actor's property the texture in effect (and its strength).
   void ApplyNormalTexture();
+  /// Gives the actor's property the strength of the texture in effect.
+  void ApplyNormalScale();
 
   vtkSmartPointer<vtkTexture> ParaViewNormalTexture;
   vtkSmartPointer<vtkTexture> NormalMapTexture;
