@@ -24,7 +24,7 @@ same mesh (median, p99, max) and the sign agreement; and a one-line verdict nami
 
   FILE   .gltf or .glb (every triangle primitive, with the UVs of its normal texture), or
          .vtp / .vtk with point Normals, texture coordinates and tangents (4 components, or 3
-         plus the point array TangentSigns)
+         plus the point array TangentSigns), or .vtm (every polydata block, as a .vtp)
 
 options:
   --json             one JSON object on stdout instead of the text report
@@ -84,17 +84,23 @@ int NormalMapTool::CheckCommand(int argc, char* argv[])
   const std::string& path = positional.front();
   if (!IsMeshFile(path))
   {
-    return Fail(
-      Name, "'" + path + "': unknown input format (.vtp .vtk .ply .obj .stl .gltf .glb)", Usage);
+    return Fail(Name,
+      "'" + path + "': unknown input format (.vtp .vtm .vtk .ply .obj .stl .gltf .glb)",
+      Usage);
   }
   std::vector<NormalMapCheck::Report> reports;
+  std::vector<std::string> warnings;
   std::string error;
   {
     NormalMapFiles::VTKMessageCapture messages; // the reports say what matters
-    if (!NormalMapCheck::CheckFile(path, tangentsName, vDown, reports, error))
+    if (!NormalMapCheck::CheckFile(path, tangentsName, vDown, reports, error, &warnings))
     {
       return Fail(Name, error, Unreadable);
     }
+  }
+  for (const std::string& w : warnings)
+  {
+    std::cerr << "normalmap " << Name << ": warning: " << w << "\n";
   }
   if (json)
   {

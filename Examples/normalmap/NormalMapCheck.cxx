@@ -338,9 +338,29 @@ bool CheckFile(const std::string& path,
   const std::string& tangentsName,
   bool vDown,
   std::vector<Report>& reports,
-  std::string& error)
+  std::string& error,
+  std::vector<std::string>* warnings)
 {
   const std::string ext = NormalMapFiles::Extension(path);
+  if (ext == ".vtm")
+  {
+    std::vector<NormalMapFiles::Block> blocks;
+    std::vector<std::string> skipped;
+    const bool read = NormalMapFiles::ReadVTMBlocks(path, blocks, skipped, error);
+    if (warnings)
+    {
+      warnings->insert(warnings->end(), skipped.begin(), skipped.end());
+    }
+    if (!read)
+    {
+      return false;
+    }
+    for (const NormalMapFiles::Block& block : blocks)
+    {
+      reports.push_back(CheckMesh(block.Mesh, block.Name, block.TCoordsName, tangentsName, vDown));
+    }
+    return true;
+  }
   if (ext != ".gltf" && ext != ".glb")
   {
     vtkSmartPointer<vtkPolyData> mesh = NormalMapFiles::ReadVTKMesh(path, error);
@@ -364,8 +384,7 @@ bool CheckFile(const std::string& path,
       error = "'" + path + "': " + error;
       return false;
     }
-    const std::string name =
-      "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+    const std::string name = NormalMapGLTF::PrimitiveName(id);
     reports.push_back(
       CheckMesh(mesh, name, NormalMapGLTF::NormalTextureTexCoordName(doc, id), tangentsName, true));
   }

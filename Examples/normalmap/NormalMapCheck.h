@@ -79,15 +79,17 @@ Report CheckMesh(vtkPolyData* mesh,
 
 /**
  * Reports on every triangle primitive of a .gltf / .glb file (with the texture coordinates of its
- * normal texture), or on the mesh of a VTK-readable file; false with `error` when the file cannot
- * be read. `vDown` forces glTF's sign convention for non-glTF files (TCoordsVDown field data sets
- * it too).
+ * normal texture), on every polydata block of a .vtm file, or on the mesh of a VTK-readable file;
+ * false with `error` when the file cannot be read. `vDown` forces glTF's sign convention for
+ * non-glTF files (TCoordsVDown field data sets it too). `warnings`, when given, receives what
+ * was skipped (blocks of a .vtm that are not polydata with polygons).
  */
 bool CheckFile(const std::string& path,
   const std::string& tangentsName,
   bool vDown,
   std::vector<Report>& reports,
-  std::string& error);
+  std::string& error,
+  std::vector<std::string>* warnings = nullptr);
 
 /// The reports as text (one block per primitive) or as one JSON object.
 void PrintText(std::ostream& os, const std::string& path, const std::vector<Report>& reports);

@@ -3,15 +3,25 @@
 
 #include <vtkAbstractPolyDataReader.h>
 #include <vtkCellArray.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDataObjectTreeIterator.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
 #include <vtkLogger.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 #include <vtkPLYReader.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataReader.h>
 #include <vtkSTLReader.h>
+#include <vtkStringArray.h>
+#include <vtkXMLMultiBlockDataReader.h>
+#include <vtkXMLMultiBlockDataWriter.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -463,15 +473,20 @@ vtkSmartPointer<vtkPolyData> ReadVTKMesh(const std::string& path, std::string& e
   return copy;
 }
 
-bool WriteVTP(vtkPolyData* mesh, const std::string& path, std::string& error)
+namespace
+{
+bool WriteXML(vtkXMLWriter* writer,
+  vtkDataObject* data,
+  const std::string& path,
+  std::string& error)
 {
   VTKMessageCapture messages;
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->SetInputData(mesh);
+  writer->SetInputData(data);
   // Arrays inline (base64, compressed), not in VTK's default appended section: the XML reader of
   // ParaView 5.11 (VTK 9.2) stops expat at that section, which fails ("junk after document
   // element", or an empty mesh) with the libexpat1 of Debian bookworm's security updates, whose
-  // reparse deferral holds back the parser's callbacks.
+  // reparse deferral holds back the parser's callbacks. A multiblock writer passes the mode on
+  // to the writers of its blocks.
   writer->SetDataModeToBinary();
   writer->SetFileName(path.c_str());
   const int ok = writer->Write();
@@ -479,6 +494,150 @@ bool WriteVTP(vtkPolyData* mesh, const std::string& path, std::string& error)
   {
     error = "cannot write '" + path +
       "': " + (messages.Errors().empty() ? "write failed" : messages.Errors().front());
+    return false;
+  }
+  return true;
+}
+
+// Why `folder`, the block folder of a .vtm output, cannot be replaced; empty when it can: it
+// does not exist, or holds only .vtp files (what a multiblock writer puts there).
+std::string BlockFolderConflict(const fs::path& folder)
+{
+  std::error_code ec;
+  const fs::file_status status = fs::status(folder, ec);
+  if (!fs::exists(status))
+  {
+    return std::string();
+  }
+  if (!fs::is_directory(status))
+  {
+    return "'" + folder.string() + "', where its blocks go, exists and is not a folder";
+  }
+  ec.clear();
+  for (const auto& entry : fs::directory_iterator(folder, ec))
+  {
+    std::error_code entryError;
+    if (!entry.is_regular_file(entryError) || Extension(entry.path().string()) != ".vtp")
+    {
+      return "its block folder '" + folder.string() +
+        "' holds files other than .vtp, which replacing it would delete";
+    }
+  }
+  return ec ? "cannot read its block folder '" + folder.string() + "': " + ec.message()
+            : std::string();
+}
+
+// A block's NormalTextureFile is relative to its file's folder; in memory, as NormalMapGLTF's
+// polydata, it is resolved against that folder.
+void ResolveTextureFile(vtkPolyData* mesh, const fs::path& folder)
+{
+  const fs::path file = FieldString(mesh, "NormalTextureFile");
+  if (!file.empty() && file.is_relative())
+  {
+    SetFieldString(mesh, "NormalTextureFile", (folder / file).lexically_normal().string());
+  }
+}
+}
+
+std::string FieldString(vtkPolyData* mesh, const char* name)
+{
+  auto* array = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(name));
+  return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
+}
+
+void SetFieldString(vtkPolyData* mesh, const char* name, const std::string& value)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(mesh->GetFieldData());
+  fields->AddArray(array); // replaces the array of that name
+  mesh->SetFieldData(fields);
+}
+
+bool WriteVTP(vtkPolyData* mesh, const std::string& path, std::string& error)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  return WriteXML(writer, mesh, path, error);
+}
+
+std::string BlockFolder(const std::string& vtmPath)
+{
+  const fs::path path(vtmPath);
+  return (path.parent_path() / path.stem()).string();
+}
+
+bool WriteVTM(vtkMultiBlockDataSet* blocks, const std::string& path, std::string& error)
+{
+  vtkNew<vtkXMLMultiBlockDataWriter> writer;
+  return WriteXML(writer, blocks, path, error);
+}
+
+bool ReadVTMBlocks(const std::string& path,
+  std::vector<Block>& blocks,
+  std::vector<std::string>& warnings,
+  std::string& error)
+{
+  if (!FileIsReadable(path, error))
+  {
+    return false;
+  }
+  vtkNew<vtkXMLMultiBlockDataReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+  {
+    error = "'" + path + "' is not a VTK XML multiblock file";
+    return false;
+  }
+  reader->SetFileName(path.c_str());
+  {
+    VTKMessageCapture messages;
+    reader->Update();
+    if (!messages.Errors().empty())
+    {
+      error = "cannot read '" + path + "': " + messages.Errors().front();
+      return false;
+    }
+  }
+  auto* tree = vtkDataObjectTree::SafeDownCast(reader->GetOutputDataObject(0));
+  if (tree)
+  {
+    vtkSmartPointer<vtkDataObjectTreeIterator> it = vtk::TakeSmartPointer(tree->NewTreeIterator());
+    it->VisitOnlyLeavesOn();
+    it->SkipEmptyNodesOff();
+    int index = 0;
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem(), ++index)
+    {
+      std::string name = "block " + std::to_string(index);
+      if (it->HasCurrentMetaData() && it->GetCurrentMetaData()->Has(vtkCompositeDataSet::NAME()))
+      {
+        name = it->GetCurrentMetaData()->Get(vtkCompositeDataSet::NAME());
+      }
+      vtkDataObject* data = it->GetCurrentDataObject();
+      auto* mesh = vtkPolyData::SafeDownCast(data);
+      if (!mesh || mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
+      {
+        warnings.push_back("'" + path + "': " + name +
+          (!data ? " is empty" : (mesh ? " has no polygons" : std::string(" is not polydata"))) +
+          "; skipped");
+        continue;
+      }
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(mesh);
+      ResolveTextureFile(copy, fs::path(path).parent_path());
+      std::string tcoords;
+      vtkDataArray* set = mesh->GetFieldData()->GetArray("NormalTextureTexCoord");
+      if (set && set->GetNumberOfTuples() == 1)
+      {
+        tcoords = "TEXCOORD_" + std::to_string(static_cast<int>(set->GetComponent(0, 0)));
+        tcoords = mesh->GetPointData()->GetArray(tcoords.c_str()) ? tcoords : std::string();
+      }
+      blocks.push_back({ name, copy, tcoords });
+    }
+  }
+  if (blocks.empty())
+  {
+    error = "'" + path + "' has no polydata block with polygons";
     return false;
   }
   return true;
@@ -504,6 +663,15 @@ bool OutputTransaction::Begin(const std::string& finalPath, std::string& error)
   {
     error = "cannot write '" + finalPath + "': it is a directory";
     return false;
+  }
+  if (Extension(finalPath) == ".vtm")
+  {
+    const std::string conflict = BlockFolderConflict(BlockFolder(finalPath));
+    if (!conflict.empty())
+    {
+      error = "cannot write '" + finalPath + "': " + conflict;
+      return false;
+    }
   }
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::string pattern = (folder / ("." + target.filename().string() + ".tmp-XXXXXX")).string();
@@ -545,7 +713,8 @@ bool OutputTransaction::Commit(std::string& error)
     error = "cannot write '" + this->Final + "': nothing was written";
     return false;
   }
-  // Side files (a .gltf's .bin) first, so the main file never refers to a missing one.
+  // Side files (a .gltf's .bin, a .vtm's block folder) first, so the main file never refers to
+  // a missing one.
   std::vector<fs::path> files;
   for (const auto& entry : fs::directory_iterator(this->TempDir, ec))
   {
@@ -557,14 +726,24 @@ bool OutputTransaction::Commit(std::string& error)
   files.push_back(main);
   for (const fs::path& file : files)
   {
-    fs::rename(file, folder / file.filename(), ec);
+    const fs::path target = folder / file.filename();
+    std::error_code ignored; // a path that does not exist is not a folder
+    if (fs::is_directory(file, ignored) && fs::is_directory(target, ignored))
+    {
+      // A block folder of an earlier run (Begin checked it): moved aside, deleted below.
+      fs::rename(target, fs::path(this->TempDir) / ".replaced", ec);
+    }
+    if (!ec)
+    {
+      fs::rename(file, target, ec);
+    }
     if (ec)
     {
-      error = "cannot write '" + (folder / file.filename()).string() + "': " + ec.message();
+      error = "cannot write '" + target.string() + "': " + ec.message();
       return false;
     }
   }
-  fs::remove(this->TempDir, ec);
+  fs::remove_all(this->TempDir, ec);
   this->TempDir.clear();
   return true;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+class vtkMultiBlockDataSet;
 class vtkPolyData;
 
 namespace NormalMapFiles
@@ -37,6 +38,13 @@ private:
   Internals* Internal;
 };
 
+/// The first value of the string array `name` of `mesh`'s field data; empty when there is none.
+std::string FieldString(vtkPolyData* mesh, const char* name);
+
+/// Sets the string array `name` of `mesh`'s field data to `value`, in a copy of its field data,
+/// so that meshes sharing them keep theirs.
+void SetFieldString(vtkPolyData* mesh, const char* name, const std::string& value);
+
 /// Reads .vtp, .vtk (legacy polydata), .ply, .obj or .stl into polydata; nullptr with `error`
 /// set (one line) when the file is missing, unreadable, of another format or has no cells.
 vtkSmartPointer<vtkPolyData> ReadVTKMesh(const std::string& path, std::string& error);
@@ -44,11 +52,41 @@ vtkSmartPointer<vtkPolyData> ReadVTKMesh(const std::string& path, std::string& e
 /// Writes `mesh` as VTK XML polydata (binary, zlib-compressed) to `path`.
 bool WriteVTP(vtkPolyData* mesh, const std::string& path, std::string& error);
 
+/// The folder a VTK XML multiblock file keeps its blocks in: beside it, named after it without
+/// its extension ("out/scene.vtm" -> "out/scene").
+std::string BlockFolder(const std::string& vtmPath);
+
+/// Writes `blocks` as a VTK XML multiblock file: `path` (.vtm) and its BlockFolder, which holds
+/// one .vtp per block, written as WriteVTP writes them.
+bool WriteVTM(vtkMultiBlockDataSet* blocks, const std::string& path, std::string& error);
+
+/// A polydata block of a multiblock file and its name.
+struct Block
+{
+  std::string Name; // the block's name in the file, else "block <i>" (its index among leaves)
+  vtkSmartPointer<vtkPolyData> Mesh;
+  /// The texture coordinates of its glTF material's normal texture ("TEXCOORD_<n>" from the
+  /// field data NormalTextureTexCoord) when it has that array; else empty (the active ones).
+  std::string TCoordsName;
+};
+
+/**
+ * The polydata blocks with polygons of the VTK XML multiblock file `path`, in the file's order;
+ * other blocks are skipped with a warning each. False with `error` (one line) when the file is
+ * missing, unreadable or has no such block.
+ */
+bool ReadVTMBlocks(const std::string& path,
+  std::vector<Block>& blocks,
+  std::vector<std::string>& warnings,
+  std::string& error);
+
 /**
  * An output written all-or-nothing. Begin() makes a temporary folder in the output's folder
  * (so it fails at once when that folder is not writable); writers put their files in it with
  * PathFor(); Commit() renames them into the output's folder, the main file last. Anything not
  * committed is deleted when the object goes away, so no partial output is ever left behind.
+ * A .vtm output's BlockFolder replaces the one a previous run wrote; Begin() refuses a folder of
+ * that name that holds anything but .vtp files, which are not such a run's.
  */
 class OutputTransaction
 {

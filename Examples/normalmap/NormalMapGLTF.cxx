@@ -48,11 +48,6 @@ std::string Where(const char* what, int index)
   return std::string(what) + " " + std::to_string(index);
 }
 
-std::string PrimitiveName(PrimitiveId id)
-{
-  return "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
-}
-
 // a + b <= limit, without overflow.
 bool FitsSum(uint64_t a, uint64_t b, uint64_t limit)
 {
@@ -1384,6 +1379,11 @@ Matrix4 LocalMatrix(const tinygltf::Node& node)
   return m;
 }
 
+}
+
+std::string PrimitiveName(PrimitiveId id)
+{
+  return "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
 }
 
 std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc)

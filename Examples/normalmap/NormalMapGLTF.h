@@ -68,6 +68,9 @@ struct PrimitiveId
   int Primitive = -1;
 };
 
+/// "mesh M primitive P", as messages and the tool's reports name a primitive.
+std::string PrimitiveName(PrimitiveId id);
+
 /// Reads a .gltf (external or embedded buffers) or a .glb (detected by its magic number).
 /// Image files are not decoded (nor needed).
 bool ReadDocument(const std::string& path, Document& doc, std::string& error);

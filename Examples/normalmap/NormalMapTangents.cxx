@@ -14,6 +14,8 @@
 #include <vtkPolyData.h>
 
 #include <algorithm>
+#include <string>
+#include <vector>
 
 namespace NormalMapTangents
 {
@@ -29,6 +31,47 @@ void MarkVDown(vtkPolyData* mesh)
   flag->SetName(VDownArrayName);
   flag->InsertNextValue(1);
   mesh->GetFieldData()->AddArray(flag);
+}
+
+void FlipToVUp(vtkPolyData* mesh)
+{
+  vtkPointData* pd = mesh->GetPointData();
+  vtkDataArray* active = pd->GetTCoords();
+  std::vector<vtkDataArray*> sets;
+  for (int k = 0; k < pd->GetNumberOfArrays(); ++k)
+  {
+    vtkDataArray* array = pd->GetArray(k);
+    const char* name = array ? array->GetName() : nullptr;
+    if (array &&
+      (array == active ||
+        (name && std::string(name).rfind("TEXCOORD_", 0) == 0 &&
+          array->GetNumberOfComponents() == 2)))
+    {
+      sets.push_back(array);
+    }
+  }
+  for (vtkDataArray* uv : sets)
+  {
+    auto flipped = vtk::TakeSmartPointer(uv->NewInstance());
+    flipped->DeepCopy(uv);
+    for (vtkIdType i = 0; i < uv->GetNumberOfTuples(); ++i)
+    {
+      flipped->SetComponent(i, 1, 1.0 - uv->GetComponent(i, 1));
+    }
+    if (uv == active)
+    {
+      pd->SetTCoords(flipped); // replaces the array of its name
+    }
+    else
+    {
+      pd->AddArray(flipped); // replaces the array of its name, in its place
+    }
+  }
+  // The mark goes from this mesh only, not from meshes that share its field data.
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(mesh->GetFieldData());
+  fields->RemoveArray(VDownArrayName);
+  mesh->SetFieldData(fields);
 }
 
 void Counts::Add(const Counts& other)

@@ -25,6 +25,13 @@ namespace NormalMapTangents
 constexpr const char* VDownArrayName = "TCoordsVDown";
 bool IsVDown(vtkPolyData* mesh);
 void MarkVDown(vtkPolyData* mesh);
+/**
+ * Turns `mesh`'s v-down texture coordinates to VTK's v up (v' = 1 - v): the active TCoords and
+ * every 2-component point array named TEXCOORD_<n>, as new arrays of the same types, and removes
+ * the TCoordsVDown mark. The tangents and their signs stay valid: the bitangent still points to
+ * the top of the image.
+ */
+void FlipToVUp(vtkPolyData* mesh);
 
 struct Options
 {

@@ -51,7 +51,7 @@ int NormalMapTool::Fail(const char* command, const std::string& message, int cod
 bool NormalMapTool::IsMeshFile(const std::string& path)
 {
   const std::string ext = NormalMapFiles::Extension(path);
-  for (const char* known : { ".vtp", ".vtk", ".ply", ".obj", ".stl", ".gltf", ".glb" })
+  for (const char* known : { ".vtp", ".vtm", ".vtk", ".ply", ".obj", ".stl", ".gltf", ".glb" })
   {
     if (ext == known)
     {
@@ -77,7 +77,7 @@ std::string NormalMapTool::CheckInputAndOutput(const std::vector<std::string>& p
   }
   if (!IsMeshFile(input))
   {
-    return "'" + input + "': unknown input format (.vtp .vtk .ply .obj .stl .gltf .glb)";
+    return "'" + input + "': unknown input format (.vtp .vtm .vtk .ply .obj .stl .gltf .glb)";
   }
   return std::string();
 }

@@ -47,7 +47,8 @@ Draws IN offscreen and writes the picture as PNG.
   IN   .vtp, .vtk, .ply, .obj (vtkNormalMapPolyDataMapper), .gltf or .glb with texture
        coordinates: every triangle primitive with its material's normal texture, as blocks of
        vtkNormalMapCompositePolyDataMapper (one per normal texture; primitives whose material
-       has none are drawn without a map, unless no material has one)
+       has none are drawn without a map, unless no material has one); .vtm: every polydata
+       block so, with the normal texture file its field data names (as 'tangents' writes it)
 
 options:
   -o, --output OUT.png      the picture (written whole or not at all)
@@ -228,36 +229,10 @@ std::string Parse(int argc, char* argv[], Arguments& args)
   return std::string();
 }
 
-std::string FieldString(vtkPolyData* mesh, const char* name)
-{
-  auto* array = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(name));
-  return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
-}
-
 double FieldNumber(vtkPolyData* mesh, const char* name, double fallback)
 {
   vtkDataArray* array = mesh->GetFieldData()->GetArray(name);
   return array && array->GetNumberOfTuples() > 0 ? array->GetComponent(0, 0) : fallback;
-}
-
-// glTF stores v pointing down; the mapper and vtkPNGReader's images have v up. Flipping v
-// keeps the tangents and their signs, which point the bitangent to the top of the image.
-void FlipToVUp(vtkPolyData* mesh)
-{
-  vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
-  vtkNew<vtkFloatArray> flipped;
-  flipped->SetName(uv->GetName());
-  flipped->SetNumberOfComponents(2);
-  flipped->SetNumberOfTuples(uv->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < uv->GetNumberOfTuples(); ++i)
-  {
-    flipped->SetTypedTuple(i,
-      std::array<float, 2>{ static_cast<float>(uv->GetComponent(i, 0)),
-        static_cast<float>(1.0 - uv->GetComponent(i, 1)) }
-        .data());
-  }
-  mesh->GetPointData()->SetTCoords(flipped);
-  mesh->GetFieldData()->RemoveArray(NormalMapTangents::VDownArrayName);
 }
 
 /// One mesh of the input: a glTF triangle primitive, or the whole file.
@@ -276,6 +251,7 @@ struct Input
 {
   std::vector<Primitive> Primitives;
   bool GLTF = false;
+  bool Blocks = false;              // drawn as blocks of the composite mapper (glTF, .vtm)
   NormalMapGLTF::Document Document; // glTF: the embedded images
   std::vector<std::string> Warnings;
 };
@@ -318,6 +294,7 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
     return false;
   }
   input.GLTF = true;
+  input.Blocks = true;
   for (const auto& id : NormalMapGLTF::TrianglePrimitives(doc))
   {
     Primitive primitive;
@@ -327,8 +304,7 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
       error = "'" + path + "': " + error;
       return false;
     }
-    primitive.Name =
-      "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+    primitive.Name = NormalMapGLTF::PrimitiveName(id);
     primitive.GLTFMesh = id.Mesh;
     vtkPolyData* mesh = primitive.Mesh;
     const std::string uv = NormalMapGLTF::NormalTextureTexCoordName(doc, id);
@@ -339,7 +315,8 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
       continue;
     }
     mesh->GetPointData()->SetTCoords(tcoords);
-    FlipToVUp(mesh);
+    // glTF's v points down; the mapper and the images read from files have v up.
+    NormalMapTangents::FlipToVUp(mesh);
     if (FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
     {
       // A normal texture comes from the primitive's material.
@@ -355,7 +332,7 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
           "applied");
       }
       primitive.HasNormalTexture = true;
-      primitive.NormalTextureFile = FieldString(mesh, "NormalTextureFile");
+      primitive.NormalTextureFile = NormalMapFiles::FieldString(mesh, "NormalTextureFile");
       primitive.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
       if (primitive.NormalTextureFile.empty())
       {
@@ -372,12 +349,68 @@ bool ReadGLTF(const std::string& path, Input& input, std::string& error)
   return true;
 }
 
+/**
+ * The polydata blocks of a VTK multiblock file, each drawn as a glTF primitive is: with the
+ * texture coordinates and normal texture file its field data names (as `tangents` writes them
+ * from glTF), v flipped where they are v-down.
+ */
+bool ReadBlocks(const std::string& path, Input& input, std::string& error)
+{
+  std::vector<NormalMapFiles::Block> blocks;
+  if (!NormalMapFiles::ReadVTMBlocks(path, blocks, input.Warnings, error))
+  {
+    return false;
+  }
+  input.Blocks = true;
+  for (const NormalMapFiles::Block& block : blocks)
+  {
+    Primitive primitive;
+    primitive.Mesh = block.Mesh;
+    primitive.Name = block.Name;
+    vtkPolyData* mesh = primitive.Mesh;
+    vtkDataArray* tcoords = NormalMapTangents::FindTCoords(mesh, block.TCoordsName);
+    if (!tcoords)
+    {
+      input.Warnings.push_back(block.Name + " has no texture coordinates; not drawn");
+      continue;
+    }
+    mesh->GetPointData()->SetTCoords(tcoords);
+    if (NormalMapTangents::IsVDown(mesh))
+    {
+      NormalMapTangents::FlipToVUp(mesh);
+    }
+    const std::string file = NormalMapFiles::FieldString(mesh, "NormalTextureFile");
+    if (!file.empty())
+    {
+      primitive.HasNormalTexture = true;
+      primitive.NormalTextureFile = file;
+      primitive.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
+    }
+    else if (FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
+    {
+      input.Warnings.push_back(block.Name +
+        ": its normal texture was embedded in the glTF file, which this file does not hold");
+    }
+    input.Primitives.push_back(primitive);
+  }
+  if (input.Primitives.empty())
+  {
+    error = "'" + path + "' has no block with texture coordinates";
+    return false;
+  }
+  return true;
+}
+
 bool ReadInput(const std::string& path, Input& input, std::string& error)
 {
   const std::string ext = NormalMapFiles::Extension(path);
   if (ext == ".gltf" || ext == ".glb")
   {
     return ReadGLTF(path, input, error);
+  }
+  if (ext == ".vtm")
+  {
+    return ReadBlocks(path, input, error);
   }
   Primitive whole;
   whole.Mesh = NormalMapFiles::ReadVTKMesh(path, error);
@@ -393,11 +426,11 @@ bool ReadInput(const std::string& path, Input& input, std::string& error)
       (ext == ".stl" ? " (STL files cannot store them)" : "");
     return false;
   }
-  // A mesh the tool wrote from glTF keeps glTF's v-down coordinates, and says so.
+  // A mesh whose v points down says so (TCoordsVDown field data).
   if (NormalMapTangents::IsVDown(whole.Mesh))
   {
     whole.Mesh->GetPointData()->SetTCoords(tcoords);
-    FlipToVUp(whole.Mesh);
+    NormalMapTangents::FlipToVUp(whole.Mesh);
   }
   return true;
 }
@@ -688,7 +721,7 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
       ++placedBlocks;
     }
   }
-  if (!input.GLTF)
+  if (!input.Blocks)
   {
     // Other files are one mesh, drawn with vtkNormalMapPolyDataMapper.
     scene.Mesh = input.Primitives[0].Mesh;
@@ -748,12 +781,13 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
     }
     std::cout << "\n";
   }
-  if (input.GLTF)
+  if (input.Blocks)
   {
-    std::cout << "  scene         " << placedBlocks
-              << " primitive(s) placed by their nodes; bounds (" << bounds[0] << ", " << bounds[2]
-              << ", " << bounds[4] << ") to (" << bounds[1] << ", " << bounds[3] << ", "
-              << bounds[5] << ")\n";
+    std::cout << "  scene         "
+              << (input.GLTF ? std::to_string(placedBlocks) + " primitive(s) placed by their nodes"
+                             : std::to_string(input.Primitives.size()) + " block(s)")
+              << "; bounds (" << bounds[0] << ", " << bounds[2] << ", " << bounds[4] << ") to ("
+              << bounds[1] << ", " << bounds[3] << ", " << bounds[5] << ")\n";
   }
   std::cout << "  frame         " << frameText << "; the mapper applied: " << rendered.AppliedFrame
             << "\n"

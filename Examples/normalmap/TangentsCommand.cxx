@@ -7,12 +7,17 @@
 #include "NormalMapTool.h"
 
 #include <vtkAppendPolyData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <string>
@@ -29,8 +34,10 @@ const char* UsageText =
 
 Computes tangent frames (unit tangents and handedness signs) for normal mapping.
 
-  IN   .vtp, .vtk, .ply, .obj, .stl (has no UVs: always an error), .gltf or .glb
-  OUT  .vtp (point arrays Tangents and TangentSigns), or .gltf / .glb (TANGENT, vec4)
+  IN   .vtp, .vtm (each polydata block), .vtk, .ply, .obj, .stl (has no UVs: always an
+       error), .gltf or .glb
+  OUT  .vtp (point arrays Tangents and TangentSigns), .vtm (the same, a block per glTF
+       primitive where the scene's nodes place it), or .gltf / .glb (TANGENT, vec4)
 
 options:
   -o, --output OUT   the output file (written whole or not at all)
@@ -48,7 +55,8 @@ options:
 
 glTF input: every triangle primitive with the texture coordinates is computed on its own and
 written back into the file, which otherwise stays as it was (materials, textures, nodes, other
-primitives). Written to .vtp, several primitives are appended into one mesh.
+primitives). Written to .vtp, several primitives are appended into one mesh, in their meshes'
+coordinates; written to .vtm, each is a block of its own, once per node that draws it.
 )";
 
 struct Arguments
@@ -148,9 +156,9 @@ std::string Parse(int argc, char* argv[], Arguments& args)
     return error;
   }
   const std::string out = NormalMapFiles::Extension(args.Output);
-  if (out != ".vtp" && out != ".gltf" && out != ".glb")
+  if (out != ".vtp" && out != ".vtm" && out != ".gltf" && out != ".glb")
   {
-    return "'" + args.Output + "': unknown output format (.vtp .gltf .glb)";
+    return "'" + args.Output + "': unknown output format (.vtp .vtm .gltf .glb)";
   }
   return std::string();
 }
@@ -208,6 +216,76 @@ double Milliseconds(std::chrono::steady_clock::time_point since)
     .count();
 }
 
+/**
+ * `mesh` as a VTK file in `folder` stores it: `uv` as the active texture coordinates, v up when
+ * `vUp` (glTF's v-down coordinates turned to VTK's, so that ParaView and VTK's texture readers
+ * agree with them), and the field data's NormalTextureFile (resolved against the current folder)
+ * relative to `folder`, so that the file and its textures can move together.
+ */
+vtkSmartPointer<vtkPolyData> ForFile(vtkPolyData* mesh,
+  const std::string& uv,
+  bool vUp,
+  const std::filesystem::path& folder)
+{
+  namespace fs = std::filesystem;
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(mesh);
+  if (vtkDataArray* tcoords = NormalMapTangents::FindTCoords(mesh, uv))
+  {
+    copy->GetPointData()->SetTCoords(tcoords);
+  }
+  if (vUp && NormalMapTangents::IsVDown(copy))
+  {
+    NormalMapTangents::FlipToVUp(copy);
+  }
+  const std::string file = NormalMapFiles::FieldString(copy, "NormalTextureFile");
+  if (!file.empty())
+  {
+    std::error_code ec;
+    const fs::path texture = fs::absolute(file, ec).lexically_normal();
+    const fs::path base = fs::absolute(folder, ec).lexically_normal();
+    NormalMapFiles::SetFieldString(
+      copy, "NormalTextureFile", texture.lexically_relative(base).generic_string());
+  }
+  return copy;
+}
+
+/**
+ * The framed meshes as blocks named `names`: a glTF primitive (`primitives`, empty for other
+ * input) once per node of the default scene that draws its mesh, placed by that node
+ * (NormalMapGLTF::Placed) and named as `render` names it, or as stored when no node draws it.
+ */
+vtkSmartPointer<vtkMultiBlockDataSet> SceneBlocks(const NormalMapGLTF::Document& doc,
+  const std::vector<NormalMapGLTF::PrimitiveId>& primitives,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& framed,
+  const std::vector<std::string>& names)
+{
+  auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+  const auto add = [&](vtkPolyData* mesh, const std::string& name)
+  {
+    const unsigned int index = blocks->GetNumberOfBlocks();
+    blocks->SetBlock(index, mesh);
+    blocks->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
+  };
+  const auto placements = NormalMapGLTF::PlaceMeshes(doc);
+  for (size_t i = 0; i < framed.size(); ++i)
+  {
+    const auto* nodes =
+      primitives.empty() ? nullptr : &placements[static_cast<size_t>(primitives[i].Mesh)];
+    if (!nodes || nodes->empty())
+    {
+      add(framed[i], names[i]);
+      continue;
+    }
+    for (const NormalMapGLTF::MeshPlacement& node : *nodes)
+    {
+      add(NormalMapGLTF::Placed(framed[i], node.Matrix),
+        names[i] + (nodes->size() > 1 ? ", node " + std::to_string(node.Node) : ""));
+    }
+  }
+  return blocks;
+}
+
 void PrintWarnings(const std::vector<std::string>& warnings)
 {
   for (const std::string& w : warnings)
@@ -242,11 +320,13 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
 
   // Read: one mesh, or one mesh per glTF triangle primitive.
   const std::string inExt = NormalMapFiles::Extension(args.Input);
+  const std::string outExt = NormalMapFiles::Extension(args.Output);
   const bool gltfIn = inExt == ".gltf" || inExt == ".glb";
   NormalMapGLTF::Document doc;
   std::vector<NormalMapGLTF::PrimitiveId> primitives;
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   std::vector<std::string> uvNames;
+  std::vector<std::string> names; // of the meshes, for .vtm blocks
   std::vector<std::string> warnings;
   if (gltfIn)
   {
@@ -264,8 +344,7 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
       const std::string uv = args.Tangents.TCoordsName.empty()
         ? NormalMapGLTF::NormalTextureTexCoordName(doc, id)
         : args.Tangents.TCoordsName;
-      const std::string name =
-        "mesh " + std::to_string(id.Mesh) + " primitive " + std::to_string(id.Primitive);
+      const std::string name = NormalMapGLTF::PrimitiveName(id);
       if (mesh->GetNumberOfPolys() + mesh->GetNumberOfStrips() == 0)
       {
         // A strip or fan of fewer than 3 vertices: nothing to give frames to.
@@ -288,12 +367,45 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
       primitives.push_back(id);
       meshes.push_back(mesh);
       uvNames.push_back(uv);
+      names.push_back(name);
     }
     if (meshes.empty())
     {
       return Fail(Name,
         "'" + args.Input + "' has no triangle primitive with texture coordinates" +
           (args.Tangents.TCoordsName.empty() ? "" : " '" + args.Tangents.TCoordsName + "'"));
+    }
+  }
+  else if (inExt == ".vtm")
+  {
+    std::vector<NormalMapFiles::Block> blocks;
+    if (!NormalMapFiles::ReadVTMBlocks(args.Input, blocks, warnings, error))
+    {
+      return Fail(Name, error);
+    }
+    for (const NormalMapFiles::Block& block : blocks)
+    {
+      const std::string uv =
+        args.Tangents.TCoordsName.empty() ? block.TCoordsName : args.Tangents.TCoordsName;
+      if (!NormalMapTangents::FindTCoords(block.Mesh, uv))
+      {
+        warnings.push_back(block.Name + " has no texture coordinates" +
+          (uv.empty() ? std::string() : " '" + uv + "'") + "; left out");
+        continue;
+      }
+      meshes.push_back(block.Mesh);
+      uvNames.push_back(uv);
+      names.push_back(block.Name);
+    }
+    if (meshes.empty())
+    {
+      return Fail(Name, "'" + args.Input + "' has no block with texture coordinates");
+    }
+    if (meshes.size() > 1 && outExt != ".vtm" && outExt != ".vtp")
+    {
+      return Fail(Name,
+        "'" + args.Input + "' has " + std::to_string(meshes.size()) +
+          " blocks with texture coordinates, and glTF output takes one mesh: write .vtm or .vtp");
     }
   }
   else
@@ -319,6 +431,7 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
     }
     meshes.push_back(mesh);
     uvNames.push_back(args.Tangents.TCoordsName);
+    names.push_back("mesh");
   }
   const double readMs = Milliseconds(start);
 
@@ -347,7 +460,15 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
 
   // Write.
   const auto writeStart = std::chrono::steady_clock::now();
-  const std::string outExt = NormalMapFiles::Extension(args.Output);
+  vtkSmartPointer<vtkMultiBlockDataSet> blocks;
+  if (outExt == ".vtp" || outExt == ".vtm")
+  {
+    const std::filesystem::path folder = std::filesystem::path(args.Output).parent_path();
+    for (size_t i = 0; i < framed.size(); ++i)
+    {
+      framed[i] = ForFile(framed[i], uvNames[i], gltfIn, folder);
+    }
+  }
   if (outExt == ".vtp")
   {
     vtkSmartPointer<vtkPolyData> result = framed.front();
@@ -362,6 +483,14 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
       result = append->GetOutput();
     }
     if (!NormalMapFiles::WriteVTP(result, output.MainPath(), error))
+    {
+      return Fail(Name, error);
+    }
+  }
+  else if (outExt == ".vtm")
+  {
+    blocks = SceneBlocks(doc, primitives, framed, names);
+    if (!NormalMapFiles::WriteVTM(blocks, output.MainPath(), error))
     {
       return Fail(Name, error);
     }
@@ -401,6 +530,11 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
   if (gltfIn)
   {
     std::cout << "  primitives            " << meshes.size() << " computed\n";
+  }
+  if (blocks)
+  {
+    std::cout << "  blocks                " << blocks->GetNumberOfBlocks()
+              << (gltfIn ? " (placed by the scene's nodes)" : "") << "\n";
   }
   std::cout << "  points                " << total.InputPoints << " in, " << total.OutputPoints
             << " out\n"

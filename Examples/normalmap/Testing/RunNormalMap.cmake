@@ -26,8 +26,11 @@
 #              texture: texture-transform, or drawn by a node (scale 2 in x) under a node
 #              (translation 3 in x): nodes; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
-#              ply-truncated | ply-no-xyz | ply-bad-face;
-#              also @WORK@/not-a-folder (a file, to write "into")
+#              ply-truncated | ply-no-xyz | ply-bad-face; or @WORK@/out/notes.txt, a file in the
+#              folder where out.vtm's blocks would go: taken-folder; or @WORK@/case.vtm, whose
+#              block file is missing: missing-block; or @WORK@/case.vtk, the quad with glTF's
+#              v-down texture coordinates and the field data TCoordsVDown: vdown-vtk;
+#              also @WORK@/not-a-folder (a file, to write "into") and the empty folder @WORK@/sub
 if(REQUIRES AND NOT EXISTS "${REQUIRES}")
   message("SKIPPED: shared test data not found at ${REQUIRES}")
   return()
@@ -35,6 +38,7 @@ endif()
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 file(WRITE "${WORK_DIR}/not-a-folder" "a file, not a folder\n")
+file(MAKE_DIRECTORY "${WORK_DIR}/sub")
 
 set(ply_header "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n")
 if(CASE STREQUAL "ply-truncated")
@@ -45,6 +49,16 @@ elseif(CASE STREQUAL "ply-no-xyz")
 elseif(CASE STREQUAL "ply-bad-face")
   file(WRITE "${WORK_DIR}/case.ply" "${ply_header}property float z\nelement face 1\n"
     "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+elseif(CASE STREQUAL "taken-folder")
+  file(WRITE "${WORK_DIR}/out/notes.txt" "not written by a multiblock writer\n")
+elseif(CASE STREQUAL "vdown-vtk")
+  file(WRITE "${WORK_DIR}/case.vtk" "# vtk DataFile Version 3.0\nquad, UVs v-down\nASCII\n"
+    "DATASET POLYDATA\nFIELD FieldData 1\nTCoordsVDown 1 1 int\n1\n"
+    "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\nPOINT_DATA 4\n"
+    "NORMALS Normals float\n0 0 1 0 0 1 0 0 1 0 0 1\n"
+    "TEXTURE_COORDINATES TCoords 2 float\n0 1 1 1 1 0 0 0\n")
+elseif(CASE STREQUAL "missing-block")
+  file(WRITE "${WORK_DIR}/case.vtm" "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\">\n<vtkMultiBlockDataSet>\n<DataSet index=\"0\" file=\"case/case_0.vtp\"/>\n</vtkMultiBlockDataSet>\n</VTKFile>\n")
 elseif(CASE)
   file(READ "${SOURCE}" text)
   if(CASE STREQUAL "truncated")
@@ -114,14 +128,25 @@ if(EXPECT STREQUAL "ok")
   if(OUT AND NOT EXISTS "${OUT}")
     message(FATAL_ERROR "expected ${OUT} to be written\n${report}")
   endif()
-  # A .vtp keeps its arrays inline: ParaView 5.11's reader cannot read an appended data section
-  # with the libexpat1 of Debian bookworm's security updates (see NormalMapFiles.cxx, WriteVTP).
+  # A .vtp, and each block of a .vtm, keeps its arrays inline: ParaView 5.11's reader cannot
+  # read an appended data section with the libexpat1 of Debian bookworm's security updates (see
+  # NormalMapFiles.cxx, WriteXML).
+  set(pieces)
   if(OUT MATCHES "\\.vtp$")
-    file(STRINGS "${OUT}" appended REGEX "<AppendedData" LIMIT_COUNT 1)
-    if(appended)
-      message(FATAL_ERROR "${OUT} has an appended data section\n${report}")
+    set(pieces "${OUT}")
+  elseif(OUT MATCHES "\\.vtm$")
+    string(REGEX REPLACE "\\.vtm$" "" block_folder "${OUT}")
+    file(GLOB pieces "${block_folder}/*.vtp")
+    if(NOT pieces)
+      message(FATAL_ERROR "${OUT} has no block files in ${block_folder}\n${report}")
     endif()
   endif()
+  foreach(piece IN LISTS pieces)
+    file(STRINGS "${piece}" appended REGEX "<AppendedData" LIMIT_COUNT 1)
+    if(appended)
+      message(FATAL_ERROR "${piece} has an appended data section\n${report}")
+    endif()
+  endforeach()
   if(CHECK)
     string(REPLACE "@WORK@" "${WORK_DIR}" CHECK "${CHECK}")
     string(REPLACE "|" ";" CHECK "${CHECK}")

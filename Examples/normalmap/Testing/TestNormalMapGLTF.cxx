@@ -11,9 +11,13 @@
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkMath.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -658,6 +662,110 @@ TEST(NormalMapGLTF, HandlesSeveralMeshesAndPrimitives)
   EXPECT_EQ(untouched[0].attributes.count("TANGENT"), 0u);
   EXPECT_EQ(untouched[1].mode, TINYGLTF_MODE_LINE);
   EXPECT_TRUE(ToPolyData(back, { 1, 0 })); // still readable: its accessors were kept
+}
+
+// v-down texture coordinates turned up: every set, in its own type, on this mesh only.
+TEST(NormalMapTangents, FlipToVUpTurnsEverySetOfThisMeshOnly)
+{
+  vtkSmartPointer<vtkPolyData> quad = ToPolyData(ReadOrFail(DataDir + "/quad.gltf"));
+  ASSERT_TRUE(quad);
+  ASSERT_TRUE(NormalMapTangents::IsVDown(quad));
+  vtkNew<vtkDoubleArray> second;
+  second->SetName("TEXCOORD_1");
+  second->SetNumberOfComponents(2);
+  for (vtkIdType p = 0; p < quad->GetNumberOfPoints(); ++p)
+  {
+    second->InsertNextTuple2(0.5, 0.25 * static_cast<double>(p));
+  }
+  quad->GetPointData()->AddArray(second);
+  vtkNew<vtkPolyData> flipped;
+  flipped->ShallowCopy(quad);
+  NormalMapTangents::FlipToVUp(flipped);
+
+  EXPECT_FALSE(NormalMapTangents::IsVDown(flipped));
+  EXPECT_TRUE(NormalMapTangents::IsVDown(quad)); // the mesh it shared arrays with keeps its own
+  for (const char* name : { "TEXCOORD_0", "TEXCOORD_1" })
+  {
+    vtkDataArray* before = quad->GetPointData()->GetArray(name);
+    vtkDataArray* after = flipped->GetPointData()->GetArray(name);
+    ASSERT_TRUE(before && after) << name;
+    EXPECT_EQ(after->GetDataType(), before->GetDataType()) << name;
+    for (vtkIdType p = 0; p < quad->GetNumberOfPoints(); ++p)
+    {
+      EXPECT_EQ(after->GetComponent(p, 0), before->GetComponent(p, 0)) << name;
+      // 1 - v is exact for these v (multiples of 1/4).
+      EXPECT_EQ(after->GetComponent(p, 1), 1.0 - before->GetComponent(p, 1)) << name;
+    }
+  }
+  EXPECT_EQ(flipped->GetPointData()->GetTCoords(), flipped->GetPointData()->GetArray("TEXCOORD_0"));
+}
+
+//------------------------------------------------------------------------------
+// .vtm files: the polydata blocks with polygons, in order, named, their texture files resolved.
+TEST(NormalMapFiles, MultiblockFilesGiveTheirPolyDataBlocks)
+{
+  vtkSmartPointer<vtkPolyData> quad = ToPolyData(ReadOrFail(DataDir + "/quad.gltf"));
+  ASSERT_TRUE(quad);
+  // The quad's material refers to quad_normal.png beside the glTF; as `tangents` writes it, the
+  // block refers to it relative to the .vtm's folder.
+  vtkNew<vtkPolyData> named;
+  named->ShallowCopy(quad);
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(quad->GetFieldData());
+  vtkNew<vtkStringArray> file;
+  file->SetName("NormalTextureFile");
+  file->InsertNextValue("textures/map.png");
+  fields->AddArray(file);
+  named->SetFieldData(fields);
+  vtkNew<vtkPolyData> noPolygons;
+  noPolygons->SetPoints(quad->GetPoints());
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 2, 1);
+
+  vtkNew<vtkMultiBlockDataSet> inner;
+  inner->SetBlock(0, image);
+  inner->SetBlock(1, quad); // unnamed: its index among the leaves
+  vtkNew<vtkMultiBlockDataSet> root;
+  root->SetBlock(0, named);
+  root->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "first quad");
+  root->SetBlock(1, noPolygons);
+  root->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "points only");
+  root->SetBlock(2, inner);
+
+  TempDir tmp;
+  std::string error;
+  ASSERT_TRUE(NormalMapFiles::WriteVTM(root, tmp / "scene.vtm", error)) << error;
+  EXPECT_TRUE(fs::is_directory(NormalMapFiles::BlockFolder(tmp / "scene.vtm")));
+  std::vector<NormalMapFiles::Block> blocks;
+  std::vector<std::string> warnings;
+  ASSERT_TRUE(NormalMapFiles::ReadVTMBlocks(tmp / "scene.vtm", blocks, warnings, error)) << error;
+  ASSERT_EQ(blocks.size(), 2u);
+  EXPECT_EQ(blocks[0].Name, "first quad");
+  EXPECT_EQ(blocks[1].Name, "block 3");
+  for (const auto& block : blocks)
+  {
+    EXPECT_EQ(block.Mesh->GetNumberOfPolys(), 2);
+    EXPECT_EQ(block.TCoordsName, "TEXCOORD_0"); // the material's normalTexture.texCoord
+  }
+  auto* resolved = vtkStringArray::SafeDownCast(
+    blocks[0].Mesh->GetFieldData()->GetAbstractArray("NormalTextureFile"));
+  ASSERT_TRUE(resolved);
+  EXPECT_EQ(fs::path(std::string(resolved->GetValue(0))), fs::path(tmp / "textures/map.png"));
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("points only has no polygons; skipped"), std::string::npos)
+    << warnings[0];
+  EXPECT_NE(warnings[1].find("block 2 is not polydata; skipped"), std::string::npos) << warnings[1];
+
+  // Nothing to draw: an error of one line.
+  vtkNew<vtkMultiBlockDataSet> none;
+  none->SetBlock(0, image);
+  ASSERT_TRUE(NormalMapFiles::WriteVTM(none, tmp / "none.vtm", error)) << error;
+  blocks.clear();
+  EXPECT_FALSE(NormalMapFiles::ReadVTMBlocks(tmp / "none.vtm", blocks, warnings, error));
+  EXPECT_TRUE(OneLine(error)) << error;
+  EXPECT_NE(error.find("has no polydata block with polygons"), std::string::npos) << error;
+  EXPECT_FALSE(NormalMapFiles::ReadVTMBlocks(tmp / "missing.vtm", blocks, warnings, error));
+  EXPECT_NE(error.find("no such file"), std::string::npos) << error;
 }
 
 //------------------------------------------------------------------------------
