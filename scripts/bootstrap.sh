@@ -82,7 +82,7 @@ case "$job" in
     echo "== the library compiled for 64-bit ARM"
     bash "$root/scripts/portability.sh" "$build"
     echo "== the ParaView plugin, built against ParaView's VTK, and its pvbatch tests"
-    bash "$root/scripts/paraview.sh"
+    NORMALMAP_TOOL="$build/bin/normalmap" bash "$root/scripts/paraview.sh"
     echo "== the same tests and a short fuzz run under AddressSanitizer + UBSan"
     bash "$root/scripts/sanitize.sh"
     echo "== every test again against a VTK with OSMesa, with no X server"

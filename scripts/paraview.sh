@@ -5,7 +5,8 @@
 #   bash scripts/paraview.sh build      # install what is missing and build
 #   bash scripts/paraview.sh gui        # open ParaView with the plugin loaded
 #   bash scripts/paraview.sh screenshot # docs/paraview.png: the GUI under Xvfb, the plugin loaded
-# Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build-paraview.
+# Installs only Debian packages, and only those missing. BUILD_DIR overrides ./build-paraview;
+# NORMALMAP_TOOL names the normalmap tool whose .vtm output a test opens (default: ./build's).
 #
 # ParaView ships its own VTK (9.2, libvtk*-pv5.11.so) whose symbols clash with Debian's VTK 9.1,
 # so the plugin compiles VTK::NormalMapping again against ParaView's VTK. ParaView's CMake package
@@ -63,10 +64,14 @@ make_prefix() {
 }
 make_prefix
 
+# The normalmap tool of the project's build (NORMALMAP_TOOL, else ./build's), which a test runs.
+tool="${NORMALMAP_TOOL:-$root/build/bin/normalmap}"
 configure_and_build() {
-  if [ ! -f "$build/CMakeCache.txt" ]; then
+  if [ ! -f "$build/CMakeCache.txt" ] ||
+    ! grep -qxF "NORMALMAPPING_TOOL:FILEPATH=$tool" "$build/CMakeCache.txt"; then
     cmake -S "$root/ParaView" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-      -DParaView_DIR="$prefix/lib/$multiarch/cmake/paraview-5.11" >"$build/configure.log" 2>&1 ||
+      -DParaView_DIR="$prefix/lib/$multiarch/cmake/paraview-5.11" \
+      -DNORMALMAPPING_TOOL="$tool" >"$build/configure.log" 2>&1 ||
       { cat "$build/configure.log"; exit 1; }
   fi
   cmake --build "$build" -j 2 >"$build/build.log" 2>&1 ||
