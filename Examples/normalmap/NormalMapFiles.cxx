@@ -627,12 +627,22 @@ bool ReadVTMBlocks(const std::string& path,
       ResolveTextureFile(copy, fs::path(path).parent_path());
       std::string tcoords;
       vtkDataArray* set = mesh->GetFieldData()->GetArray("NormalTextureTexCoord");
-      if (set && set->GetNumberOfTuples() == 1)
+      const double number = set && set->GetNumberOfTuples() == 1 ? set->GetComponent(0, 0) : -1.0;
+      if (number >= 0.0 && number <= VTK_INT_MAX) // a value the cast takes (not NaN)
       {
-        tcoords = "TEXCOORD_" + std::to_string(static_cast<int>(set->GetComponent(0, 0)));
+        tcoords = "TEXCOORD_" + std::to_string(static_cast<int>(number));
         tcoords = mesh->GetPointData()->GetArray(tcoords.c_str()) ? tcoords : std::string();
       }
-      blocks.push_back({ name, copy, tcoords });
+      vtkDataArray* scaleArray = mesh->GetFieldData()->GetArray("NormalTextureScale");
+      double scale =
+        scaleArray && scaleArray->GetNumberOfTuples() == 1 ? scaleArray->GetComponent(0, 0) : 1.0;
+      if (!std::isfinite(scale))
+      {
+        warnings.push_back(
+          "'" + path + "': " + name + ": NormalTextureScale is not finite; using 1");
+        scale = 1.0;
+      }
+      blocks.push_back({ name, copy, tcoords, scale });
     }
   }
   if (blocks.empty())

@@ -68,6 +68,9 @@ struct Block
   /// The texture coordinates of its glTF material's normal texture ("TEXCOORD_<n>" from the
   /// field data NormalTextureTexCoord) when it has that array; else empty (the active ones).
   std::string TCoordsName;
+  /// Its normal texture's strength (field data NormalTextureScale; 1 without, or when not finite,
+  /// with a warning).
+  double NormalTextureScale = 1.0;
 };
 
 /**

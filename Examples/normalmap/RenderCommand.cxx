@@ -384,7 +384,7 @@ bool ReadBlocks(const std::string& path, Input& input, std::string& error)
     {
       primitive.HasNormalTexture = true;
       primitive.NormalTextureFile = file;
-      primitive.NormalTextureScale = FieldNumber(mesh, "NormalTextureScale", 1.0);
+      primitive.NormalTextureScale = block.NormalTextureScale;
     }
     else if (FieldNumber(mesh, "NormalTextureImage", -1) >= 0)
     {

@@ -716,15 +716,30 @@ TEST(NormalMapFiles, MultiblockFilesGiveTheirPolyDataBlocks)
   file->SetName("NormalTextureFile");
   file->InsertNextValue("textures/map.png");
   fields->AddArray(file);
+  vtkNew<vtkDoubleArray> scale; // not a strength: the reader says so and takes 1
+  scale->SetName("NormalTextureScale");
+  scale->InsertNextValue(std::nan(""));
+  fields->AddArray(scale);
   named->SetFieldData(fields);
   vtkNew<vtkPolyData> noPolygons;
   noPolygons->SetPoints(quad->GetPoints());
   vtkNew<vtkImageData> image;
   image->SetDimensions(2, 2, 1);
 
+  // A UV set number out of int's range, as a file may hold: no UV set named, and no overflow.
+  vtkNew<vtkPolyData> farSet;
+  farSet->ShallowCopy(quad);
+  vtkNew<vtkFieldData> farFields;
+  farFields->ShallowCopy(quad->GetFieldData());
+  vtkNew<vtkDoubleArray> farNumber;
+  farNumber->SetName("NormalTextureTexCoord");
+  farNumber->InsertNextValue(1e30);
+  farFields->AddArray(farNumber);
+  farSet->SetFieldData(farFields);
+
   vtkNew<vtkMultiBlockDataSet> inner;
   inner->SetBlock(0, image);
-  inner->SetBlock(1, quad); // unnamed: its index among the leaves
+  inner->SetBlock(1, farSet); // unnamed: its index among the leaves
   vtkNew<vtkMultiBlockDataSet> root;
   root->SetBlock(0, named);
   root->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "first quad");
@@ -745,16 +760,22 @@ TEST(NormalMapFiles, MultiblockFilesGiveTheirPolyDataBlocks)
   for (const auto& block : blocks)
   {
     EXPECT_EQ(block.Mesh->GetNumberOfPolys(), 2);
-    EXPECT_EQ(block.TCoordsName, "TEXCOORD_0"); // the material's normalTexture.texCoord
   }
+  EXPECT_EQ(blocks[0].TCoordsName, "TEXCOORD_0"); // the material's normalTexture.texCoord
+  EXPECT_EQ(blocks[1].TCoordsName, "");
   auto* resolved = vtkStringArray::SafeDownCast(
     blocks[0].Mesh->GetFieldData()->GetAbstractArray("NormalTextureFile"));
   ASSERT_TRUE(resolved);
   EXPECT_EQ(fs::path(std::string(resolved->GetValue(0))), fs::path(tmp / "textures/map.png"));
-  ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_NE(warnings[0].find("points only has no polygons; skipped"), std::string::npos)
+  EXPECT_EQ(blocks[0].NormalTextureScale, 1.0);
+  EXPECT_EQ(blocks[1].NormalTextureScale, 0.5); // the glTF material's scale
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_NE(
+    warnings[0].find("first quad: NormalTextureScale is not finite; using 1"), std::string::npos)
     << warnings[0];
-  EXPECT_NE(warnings[1].find("block 2 is not polydata; skipped"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[1].find("points only has no polygons; skipped"), std::string::npos)
+    << warnings[1];
+  EXPECT_NE(warnings[2].find("block 2 is not polydata; skipped"), std::string::npos) << warnings[2];
 
   // Nothing to draw: an error of one line.
   vtkNew<vtkMultiBlockDataSet> none;
