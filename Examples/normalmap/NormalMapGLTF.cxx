@@ -1518,6 +1518,27 @@ vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, const std::array<double, 
   return placed;
 }
 
+std::vector<PlacedMesh> PlaceMesh(const std::vector<std::vector<MeshPlacement>>& placements,
+  int meshIndex,
+  vtkPolyData* mesh,
+  const std::string& name)
+{
+  const bool known = meshIndex >= 0 && static_cast<size_t>(meshIndex) < placements.size();
+  if (!known || placements[static_cast<size_t>(meshIndex)].empty())
+  {
+    return { { mesh, name, false } };
+  }
+  const auto& nodes = placements[static_cast<size_t>(meshIndex)];
+  std::vector<PlacedMesh> placed;
+  for (const MeshPlacement& node : nodes)
+  {
+    placed.push_back({ Placed(mesh, node.Matrix),
+      name + (nodes.size() > 1 ? ", node " + std::to_string(node.Node) : ""),
+      true });
+  }
+  return placed;
+}
+
 std::vector<PrimitiveId> TrianglePrimitives(const Document& doc)
 {
   std::vector<PrimitiveId> ids;

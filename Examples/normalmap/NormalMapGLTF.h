@@ -106,6 +106,24 @@ std::vector<std::vector<MeshPlacement>> PlaceMeshes(const Document& doc);
  */
 vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, const std::array<double, 16>& m);
 
+/// A primitive as the scene shows it.
+struct PlacedMesh
+{
+  vtkSmartPointer<vtkPolyData> Mesh;
+  std::string Name;
+  bool ByNode = false; // placed by a node, not as stored
+};
+
+/**
+ * `mesh`, a primitive of glTF mesh `meshIndex` named `name`, where the scene places it
+ * (`placements`, PlaceMeshes'): a copy per node that draws that mesh (Placed; ", node N"
+ * appended to the name when several do), else `mesh` as stored (also for `meshIndex` -1).
+ */
+std::vector<PlacedMesh> PlaceMesh(const std::vector<std::vector<MeshPlacement>>& placements,
+  int meshIndex,
+  vtkPolyData* mesh,
+  const std::string& name);
+
 /// The texture coordinate set the primitive's normal texture uses ("TEXCOORD_<texCoord>"), or
 /// TEXCOORD_0 when its material has no normal texture.
 std::string NormalTextureTexCoordName(const Document& doc, PrimitiveId id);

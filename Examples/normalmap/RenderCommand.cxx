@@ -9,23 +9,18 @@
 #include "NormalMapTangents.h"
 #include "NormalMapTool.h"
 
+#include <vtkBoundingBox.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
-#include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkNormalMapPolyDataMapper.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataNormals.h>
-#include <vtkStringArray.h>
 #include <vtkTexture.h>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -664,12 +659,7 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
   const auto placements = input.GLTF ? NormalMapGLTF::PlaceMeshes(input.Document)
                                      : std::vector<std::vector<NormalMapGLTF::MeshPlacement>>();
   size_t placedBlocks = 0;
-  double bounds[6] = { VTK_DOUBLE_MAX,
-    -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX,
-    -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX,
-    -VTK_DOUBLE_MAX };
+  vtkBoundingBox bounds;
   for (size_t i = 0; i < input.Primitives.size(); ++i)
   {
     const MapChoice& choice = choices[i];
@@ -695,30 +685,13 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
     }
     NormalMapRender::Part& target = scene.Parts[part->second];
     const Primitive& primitive = input.Primitives[i];
-    const auto* nodes =
-      primitive.GLTFMesh >= 0 ? &placements[static_cast<size_t>(primitive.GLTFMesh)] : nullptr;
-    const auto addBlock = [&](vtkPolyData* mesh, const std::string& name)
+    for (const auto& placed :
+      NormalMapGLTF::PlaceMesh(placements, primitive.GLTFMesh, primitive.Mesh, primitive.Name))
     {
-      target.Blocks->SetBlock(target.Blocks->GetNumberOfBlocks(), mesh);
-      target.BlockNames.push_back(name);
-      double b[6];
-      mesh->GetBounds(b);
-      for (int k = 0; k < 3; ++k)
-      {
-        bounds[2 * k] = std::min(bounds[2 * k], b[2 * k]);
-        bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
-      }
-    };
-    if (!nodes || nodes->empty())
-    {
-      addBlock(primitive.Mesh, primitive.Name);
-      continue;
-    }
-    for (const NormalMapGLTF::MeshPlacement& node : *nodes)
-    {
-      addBlock(NormalMapGLTF::Placed(primitive.Mesh, node.Matrix),
-        primitive.Name + (nodes->size() > 1 ? ", node " + std::to_string(node.Node) : ""));
-      ++placedBlocks;
+      target.Blocks->SetBlock(target.Blocks->GetNumberOfBlocks(), placed.Mesh);
+      target.BlockNames.push_back(placed.Name);
+      bounds.AddBounds(placed.Mesh->GetBounds());
+      placedBlocks += placed.ByNode ? 1 : 0;
     }
   }
   if (!input.Blocks)
@@ -786,8 +759,9 @@ int NormalMapTool::RenderCommand(int argc, char* argv[])
     std::cout << "  scene         "
               << (input.GLTF ? std::to_string(placedBlocks) + " primitive(s) placed by their nodes"
                              : std::to_string(input.Primitives.size()) + " block(s)")
-              << "; bounds (" << bounds[0] << ", " << bounds[2] << ", " << bounds[4] << ") to ("
-              << bounds[1] << ", " << bounds[3] << ", " << bounds[5] << ")\n";
+              << "; bounds (" << bounds.GetMinPoint()[0] << ", " << bounds.GetMinPoint()[1] << ", "
+              << bounds.GetMinPoint()[2] << ") to (" << bounds.GetMaxPoint()[0] << ", "
+              << bounds.GetMaxPoint()[1] << ", " << bounds.GetMaxPoint()[2] << ")\n";
   }
   std::cout << "  frame         " << frameText << "; the mapper applied: " << rendered.AppliedFrame
             << "\n"

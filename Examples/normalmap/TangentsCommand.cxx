@@ -251,9 +251,8 @@ vtkSmartPointer<vtkPolyData> ForFile(vtkPolyData* mesh,
 }
 
 /**
- * The framed meshes as blocks named `names`: a glTF primitive (`primitives`, empty for other
- * input) once per node of the default scene that draws its mesh, placed by that node
- * (NormalMapGLTF::Placed) and named as `render` names it, or as stored when no node draws it.
+ * The framed meshes as blocks named `names`, each glTF primitive (`primitives`, empty for other
+ * input) where the default scene places it (NormalMapGLTF::PlaceMesh, as `render` does).
  */
 vtkSmartPointer<vtkMultiBlockDataSet> SceneBlocks(const NormalMapGLTF::Document& doc,
   const std::vector<NormalMapGLTF::PrimitiveId>& primitives,
@@ -261,26 +260,15 @@ vtkSmartPointer<vtkMultiBlockDataSet> SceneBlocks(const NormalMapGLTF::Document&
   const std::vector<std::string>& names)
 {
   auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
-  const auto add = [&](vtkPolyData* mesh, const std::string& name)
-  {
-    const unsigned int index = blocks->GetNumberOfBlocks();
-    blocks->SetBlock(index, mesh);
-    blocks->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), name.c_str());
-  };
   const auto placements = NormalMapGLTF::PlaceMeshes(doc);
   for (size_t i = 0; i < framed.size(); ++i)
   {
-    const auto* nodes =
-      primitives.empty() ? nullptr : &placements[static_cast<size_t>(primitives[i].Mesh)];
-    if (!nodes || nodes->empty())
+    const int mesh = primitives.empty() ? -1 : primitives[i].Mesh;
+    for (const auto& placed : NormalMapGLTF::PlaceMesh(placements, mesh, framed[i], names[i]))
     {
-      add(framed[i], names[i]);
-      continue;
-    }
-    for (const NormalMapGLTF::MeshPlacement& node : *nodes)
-    {
-      add(NormalMapGLTF::Placed(framed[i], node.Matrix),
-        names[i] + (nodes->size() > 1 ? ", node " + std::to_string(node.Node) : ""));
+      const unsigned int index = blocks->GetNumberOfBlocks();
+      blocks->SetBlock(index, placed.Mesh);
+      blocks->GetMetaData(index)->Set(vtkCompositeDataSet::NAME(), placed.Name.c_str());
     }
   }
   return blocks;

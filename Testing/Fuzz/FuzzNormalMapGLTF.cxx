@@ -247,11 +247,10 @@ void RunPlacements(const NormalMapGLTF::Document& doc)
     {
       return;
     }
-    for (const NormalMapGLTF::MeshPlacement& node : placements[static_cast<size_t>(id.Mesh)])
+    for (const auto& placed : NormalMapGLTF::PlaceMesh(placements, id.Mesh, mesh, "fuzz"))
     {
-      vtkSmartPointer<vtkPolyData> placed = NormalMapGLTF::Placed(mesh, node.Matrix);
-      Require(placed->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
-          placed->GetNumberOfCells() == mesh->GetNumberOfCells(),
+      Require(placed.Mesh->GetNumberOfPoints() == mesh->GetNumberOfPoints() &&
+          placed.Mesh->GetNumberOfCells() == mesh->GetNumberOfCells(),
         "placements: the placed copy has other points or cells");
     }
   }
