@@ -229,28 +229,20 @@ struct Links
   }
 };
 
-/// What the triangles of a chunk give their corners, one array per quantity.
+/// Every triangle's frame, kept for the cell tangents.
 struct TriangleFrames
 {
   Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
-  /**
-   * Per corner, its weight with the handedness the triangle gives it (CornerSign with the
-   * corner point's shading normal) as its sign; zero without a frame.
-   */
-  Buffer<double> SignedWeight;
-  /// Only for cell tangents (else null): the winding normal (3 per triangle) and the area.
-  Buffer<double> Normal;
+  Buffer<double> Normal;  // the winding normal, 3 per triangle
   Buffer<double> Area;
 
-  TriangleFrames(vtkIdType n, bool cellTangents)
+  explicit TriangleFrames(vtkIdType n)
     : Tangent(new double[3 * n])
-    , SignedWeight(new double[3 * n])
-    , Normal(cellTangents ? new double[3 * n] : nullptr)
-    , Area(cellTangents ? new double[n] : nullptr)
+    , Normal(new double[3 * n])
+    , Area(new double[n])
   {
   }
-  /// Stores the frames and signed corner weights of a block's `count` triangles as triangles
-  /// [first, first + count).
+  /// Stores the frames of a block's `count` triangles as triangles [first, first + count).
   void Set(vtkIdType first, const TriangleBlock& b, int count)
   {
     for (int i = 0; i < count; ++i)
@@ -259,16 +251,9 @@ struct TriangleFrames
       for (int k = 0; k < 3; ++k)
       {
         this->Tangent[3 * t + k] = b.Tangent[k][i];
-        this->SignedWeight[3 * t + k] = b.SignedWeight[k][i];
+        this->Normal[3 * t + k] = b.Normal[k][i];
       }
-      if (this->Area)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          this->Normal[3 * t + k] = b.Normal[k][i];
-        }
-        this->Area[t] = b.Area[i];
-      }
+      this->Area[t] = b.Area[i];
     }
   }
   dvec3 TangentOf(vtkIdType t) const
@@ -373,8 +358,8 @@ vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
  * whose triangle has a frame adds a weight with the sign of its handedness (its angle, its area
  * clamped to DBL_MAX, or 1), non-zero unless an area underflows; other corners add zero (Add).
  * So a side with a corner of non-zero weight has a non-zero Weight. Each side adds its corners in
- * the order they come (SumFrames: triangle order). The points are dealt in blocks of BlockSize to a
- * power of two of owners; Add may run concurrently for points of different owners.
+ * the order they come (SumFrames: triangle order). The points are split into contiguous ranges,
+ * one per owner; Add may run concurrently for points of different owners.
  */
 struct ScatteredSums
 {
@@ -391,29 +376,28 @@ struct ScatteredSums
     }
   };
   static_assert(sizeof(Side) == 32, "a Side fills half a cache line");
-  /// Points per block of one owner: 8 KB of First, so that two owners can share only the cache
-  /// line at the edge of a block.
-  static constexpr vtkIdType BlockSize = 256;
   std::vector<Side> First;
   std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
   std::vector<std::unordered_map<vtkIdType, Side>> Other; // per owner
-  int OwnerMask = 0;
+  vtkIdType PointsPerOwner = 1;
 
-  /// At most maxOwners owners (at least one).
-  ScatteredSums(vtkIdType numPoints, int maxOwners)
+  /// `owners` owners (at least one) of about equal ranges of points.
+  ScatteredSums(vtkIdType numPoints, int owners)
     : First(static_cast<size_t>(numPoints))
     , HasOther(static_cast<size_t>(numPoints), 0)
+    , Other(static_cast<size_t>(std::max(owners, 1)))
   {
-    int owners = 1;
-    while (2 * owners <= maxOwners)
-    {
-      owners *= 2;
-    }
-    this->Other.resize(static_cast<size_t>(owners));
-    this->OwnerMask = owners - 1;
+    const vtkIdType count = static_cast<vtkIdType>(this->Other.size());
+    this->PointsPerOwner = std::max<vtkIdType>((numPoints + count - 1) / count, 1);
   }
 
-  int Owners() const { return this->OwnerMask + 1; }
+  int Owners() const { return static_cast<int>(this->Other.size()); }
+  int OwnerOf(vtkIdType p) const { return static_cast<int>(p / this->PointsPerOwner); }
+  /// The first point of an owner, or the number of points for Owners().
+  vtkIdType FirstPointOf(int owner) const
+  {
+    return std::min(owner * this->PointsPerOwner, static_cast<vtkIdType>(this->First.size()));
+  }
 
   /// The number of points with both handednesses (mirror seams).
   vtkIdType SeamPoints() const
@@ -425,7 +409,6 @@ struct ScatteredSums
     }
     return static_cast<vtkIdType>(count);
   }
-  int OwnerOf(vtkIdType p) const { return static_cast<int>((p / BlockSize) & this->OwnerMask); }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
   /// of zero weight (its triangle has no frame) goes to the first side and changes none of its
@@ -446,37 +429,24 @@ struct ScatteredSums
     this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
   }
 
-  /// Adds the corners of a block's `count` triangles, whose point ids start at `ids`, in order.
-  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count)
+  /// Adds the corners of a block's `count` triangles, whose point ids start at `ids`, in order:
+  /// those of `owner`'s points, or every corner when there is one owner.
+  template<bool OneOwner>
+  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count, int owner)
   {
+    using Unsigned = std::make_unsigned<vtkIdType>::type;
+    const vtkIdType firstPoint = this->FirstPointOf(owner);
+    const Unsigned points = static_cast<Unsigned>(this->FirstPointOf(owner + 1) - firstPoint);
     for (int i = 0; i < count; ++i)
     {
       const dvec3 tangent(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
       for (int k = 0; k < 3; ++k)
       {
-        this->Add(ids[3 * i + k], b.SignedWeight[k][i], tangent);
-      }
-    }
-  }
-
-  /**
-   * Adds the corners of triangles [begin, end) whose points `owner` owns, in triangle order;
-   * `frames` holds those triangles' frames (triangle t at t - begin).
-   */
-  void AddCorners(const vtkIdType* ids,
-    const TriangleFrames& frames,
-    vtkIdType begin,
-    vtkIdType end,
-    int owner)
-  {
-    const bool all = this->Owners() == 1;
-    for (vtkIdType c = 3 * begin; c < 3 * end; ++c)
-    {
-      const vtkIdType p = ids[c];
-      if (all || this->OwnerOf(p) == owner)
-      {
-        const vtkIdType i = c - 3 * begin;
-        this->Add(p, frames.SignedWeight[i], frames.TangentOf(i / 3));
+        const vtkIdType p = ids[3 * i + k];
+        if (OneOwner || static_cast<Unsigned>(p - firstPoint) < points) // p is owner's
+        {
+          this->Add(p, b.SignedWeight[k][i], tangent);
+        }
       }
     }
   }
@@ -489,6 +459,36 @@ struct ScatteredSums
     return (first.Weight > 0.0) == (side == 0) ? first : this->Other[this->OwnerOf(p)].at(p);
   }
 };
+
+/// The smallest and the largest of some point ids.
+struct IdRange
+{
+  vtkIdType First;
+  vtkIdType Last;
+};
+
+/// Consecutive triangles that SumFrames computes and adds together.
+constexpr vtkIdType TileSize = 256;
+
+/// Per tile of TileSize consecutive triangles, the range of its point ids.
+std::vector<IdRange> TileBounds(const Triangles& tris)
+{
+  const vtkIdType tiles = (tris.Count + TileSize - 1) / TileSize;
+  std::vector<IdRange> bounds(static_cast<size_t>(tiles));
+  vtkSMPTools::For(0,
+    tiles,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType tile = begin; tile < end; ++tile)
+      {
+        const vtkIdType* first = tris.Ids + 3 * tile * TileSize;
+        const vtkIdType* last = tris.Ids + 3 * std::min(tris.Count, (tile + 1) * TileSize);
+        const auto range = std::minmax_element(first, last);
+        bounds[tile] = IdRange{ *range.first, *range.second };
+      }
+    });
+  return bounds;
+}
 
 /// What the sums of a point show.
 enum class PointKind : unsigned char
@@ -882,17 +882,15 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   /**
-   * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
-   * parallel, or in triangle order when `serial`: `block` holds the frames of triangles
-   * [first, first + count) (ComputeFrameBlock), with `normals` also their corners' weights for
-   * `method` signed with their handedness. Float and double points and texture coordinates are
-   * read through their concrete types, any other type through vtkDataArray.
+   * Calls body(visitRange), where visitRange(begin, end, visit) calls visit(first, block, count)
+   * for consecutive blocks of the triangles [begin, end), in order: `block` holds the frames of
+   * triangles [first, first + count) (ComputeFrameBlock), with `normals` also their corners'
+   * weights for `method` signed with their handedness. `body` decides which ranges to visit on
+   * which threads. Float and double points and texture coordinates are read through their
+   * concrete types, any other type through vtkDataArray.
    */
-  template<typename Visit, typename NormalT = double>
-  void VisitFrames(bool serial,
-    const Visit& visit,
-    vtkIdType begin,
-    vtkIdType end,
+  template<typename Body, typename NormalT = double>
+  void WithFrames(const Body& body,
     const ShadingNormals<NormalT>* normals = nullptr,
     TangentMethod method = TangentMethod::Unweighted)
   {
@@ -904,7 +902,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     {
       const auto points = vtk::DataArrayTupleRange<3>(typedPoints);
       const auto uvs = vtk::DataArrayTupleRange(typedUVs);
-      const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd)
+      const auto visitRange = [&](vtkIdType rangeBegin, vtkIdType rangeEnd, const auto& visit)
       {
         TriangleBlock b; // not initialized: each triangle's entries are written before use
         for (vtkIdType first = rangeBegin; first < rangeEnd; first += TriangleBlock::Size)
@@ -933,14 +931,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
           visit(first, static_cast<const TriangleBlock&>(b), count);
         }
       };
-      if (serial)
-      {
-        visitRange(begin, end);
-      }
-      else
-      {
-        vtkSMPTools::For(begin, end, visitRange);
-      }
+      body(visitRange);
     };
     using Dispatcher =
       vtkArrayDispatch::Dispatch2ByValueType<vtkArrayDispatch::Reals, vtkArrayDispatch::Reals>;
@@ -958,25 +949,28 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   {
     std::vector<dvec3> weighted(static_cast<size_t>(this->Tris.Count));
     std::vector<double> area(cellNormals ? weighted.size() : 0);
-    this->VisitFrames(
-      false,
-      [&](vtkIdType first, const TriangleBlock& b, int count)
+    const auto visit = [&](vtkIdType first, const TriangleBlock& b, int count)
+    {
+      for (int i = 0; i < count; ++i)
       {
-        for (int i = 0; i < count; ++i)
+        const TriangleFrame f = b.Frame(i);
+        if (cellNormals)
         {
-          const TriangleFrame f = b.Frame(i);
-          if (cellNormals)
-          {
-            area[first + i] = f.Area; // the cell's normal follows below
-          }
-          else
-          {
-            weighted[first + i] = f.Area * SafeNormalize(f.Normal);
-          }
+          area[first + i] = f.Area; // the cell's normal follows below
         }
-      },
-      0,
-      this->Tris.Count);
+        else
+        {
+          weighted[first + i] = f.Area * SafeNormalize(f.Normal);
+        }
+      }
+    };
+    this->WithFrames(
+      [&](const auto& visitRange)
+      {
+        vtkSMPTools::For(0,
+          this->Tris.Count,
+          [&](vtkIdType begin, vtkIdType end) { visitRange(begin, end, visit); });
+      });
     if (cellNormals)
     {
       vtkSMPTools::For(0,
@@ -1016,52 +1010,13 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   /**
-   * Calls visit(first, block, count) for consecutive blocks of the triangles [begin, end), in
-   * parallel, or in triangle order when `serial`, as VisitFrames does, with the block's
-   * SignedWeight: its corners' weights for `method` signed with the handedness the triangle gives
-   * their points' shading normals (CornerSign), which also go to Sides. Returns the number
-   * of triangles without a frame.
-   */
-  template<typename Visit, typename NormalT>
-  vtkIdType VisitSignedFrames(TangentMethod method,
-    const ShadingNormals<NormalT>& normals,
-    vtkIdType begin,
-    vtkIdType end,
-    bool serial,
-    const Visit& visit)
-  {
-    std::atomic<vtkIdType> degenerate{ 0 };
-    this->VisitFrames(
-      serial,
-      [&](vtkIdType first, const TriangleBlock& b, int count)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          std::memcpy(this->Sides->Corner(k, first), b.Handedness[k], count);
-        }
-        vtkIdType none = 0;
-        for (int i = 0; i < count; ++i)
-        {
-          none += b.Orientation[i] == 0.0 ? 1 : 0;
-        }
-        degenerate += none;
-        visit(first, b, count);
-      },
-      begin,
-      end,
-      &normals,
-      method);
-    return degenerate;
-  }
-
-  /**
    * Every point's sums, added in triangle order (ScatteredSums), so that each point adds the same
-   * terms in the same order, hence the same bits, for any number of threads. With one thread (or
-   * one chunk of triangles or less), each block of frames goes to its points as soon as it is
-   * computed. With more, the frames of a chunk are computed in parallel and stored, then each
-   * owner of points goes through the chunk's corners and adds those of its points; a chunk's
-   * frames stay in the cache until they are added. With cell tangents every frame is stored (one
-   * chunk), for CellTangentArray. Counts the triangles without a frame in `degenerate`.
+   * terms in the same order, hence the same bits, for any number of threads. Each owner of a
+   * range of points goes through the triangles in order, computes the frames of the tiles that
+   * reach its points (TileBounds) and adds the corners of its points: no thread reads what
+   * another wrote, and only the tiles at the edges of the ranges are computed twice. A tile's
+   * first owner stores the handedness of its corners in Sides and, with cell tangents, its frames.
+   * Counts the triangles without a frame in `degenerate`.
    */
   template<typename NormalT>
   ScatteredSums SumFrames(TangentMethod method,
@@ -1069,52 +1024,83 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     bool cellTangents,
     vtkIdType& degenerate)
   {
-    constexpr vtkIdType ChunkSize = 16384;
     const vtkIdType count = this->Tris.Count;
     const vtkIdType* ids = this->Tris.Ids;
-    // One chunk or less is not worth the threads' two synchronizations: one thread adds it.
-    const int threads = count > ChunkSize ? vtkNormalMapping::detail::UsableThreads() : 1;
+    const vtkIdType tiles = (count + TileSize - 1) / TileSize;
+    // A few tiles per thread do not pay for starting the threads.
+    const int threads = tiles > 64 ? vtkNormalMapping::detail::UsableThreads() : 1;
     ScatteredSums sums(this->NumberOfPoints, threads);
     const int owners = sums.Owners();
-    if (owners == 1 && !cellTangents)
+    const std::vector<IdRange> bounds =
+      owners > 1 ? TileBounds(this->Tris) : std::vector<IdRange>();
+    if (cellTangents)
     {
-      degenerate += this->VisitSignedFrames(method,
-        normals,
-        0,
-        count,
-        true,
-        [&](vtkIdType first, const TriangleBlock& b, int n)
-        { sums.AddBlock(ids + 3 * first, b, n); });
-      return sums;
+      this->Frames.reset(new TriangleFrames(count));
     }
-
-    const vtkIdType chunk = cellTangents ? count : std::min(count, ChunkSize);
-    this->Frames.reset(new TriangleFrames(chunk, cellTangents));
-    // Chunks alternate between two frame buffers: the threads computing a chunk's frames then
-    // do not write over the cache lines that other threads have just read to add the previous
-    // chunk. With cell tangents there is one chunk.
-    TriangleFrames alternate(chunk < count ? chunk : 0, false);
-    for (vtkIdType begin = 0; begin < count; begin += chunk)
+    std::atomic<vtkIdType> withoutFrame{ 0 };
+    const auto sumOwner = [&](int owner, const auto& visitRange)
     {
-      TriangleFrames& frames = (begin / chunk) % 2 == 0 ? *this->Frames : alternate;
-      const vtkIdType end = std::min(begin + chunk, count);
-      degenerate += this->VisitSignedFrames(method,
-        normals,
-        begin,
-        end,
-        false,
-        [&](vtkIdType first, const TriangleBlock& b, int n) { frames.Set(first - begin, b, n); });
-      vtkSMPTools::For(0,
-        owners,
-        1,
-        [&](vtkIdType firstOwner, vtkIdType lastOwner)
+      const vtkIdType firstPoint = sums.FirstPointOf(owner);
+      const vtkIdType endPoint = sums.FirstPointOf(owner + 1);
+      vtkIdType none = 0;
+      for (vtkIdType tile = 0; tile < tiles; ++tile)
+      {
+        // The owners whose points a tile reaches compute it; the first of them also stores what
+        // is per triangle.
+        const IdRange reach = owners > 1 ? bounds[tile] : IdRange{ firstPoint, endPoint - 1 };
+        if (reach.Last < firstPoint || reach.First >= endPoint)
         {
-          for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+          continue;
+        }
+        const bool first = reach.First >= firstPoint;
+        visitRange(tile * TileSize,
+          std::min(count, (tile + 1) * TileSize),
+          [&](vtkIdType firstTriangle, const TriangleBlock& b, int n)
           {
-            sums.AddCorners(ids, frames, begin, end, static_cast<int>(owner));
-          }
-        });
-    }
+            if (first)
+            {
+              for (int k = 0; k < 3; ++k)
+              {
+                std::memcpy(this->Sides->Corner(k, firstTriangle), b.Handedness[k], n);
+              }
+              for (int i = 0; i < n; ++i)
+              {
+                none += b.Orientation[i] == 0.0 ? 1 : 0;
+              }
+              if (this->Frames)
+              {
+                this->Frames->Set(firstTriangle, b, n);
+              }
+            }
+            if (owners == 1)
+            {
+              sums.AddBlock<true>(ids + 3 * firstTriangle, b, n, owner);
+            }
+            else
+            {
+              sums.AddBlock<false>(ids + 3 * firstTriangle, b, n, owner);
+            }
+          });
+      }
+      withoutFrame += none;
+    };
+    this->WithFrames(
+      [&](const auto& visitRange)
+      {
+        vtkSMPTools::For(0,
+          owners,
+          1,
+          [&](vtkIdType firstOwner, vtkIdType lastOwner)
+          {
+            for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+            {
+              sumOwner(static_cast<int>(owner), visitRange);
+            }
+          });
+      },
+      &normals,
+      method);
+    degenerate += withoutFrame;
     return sums;
   }
 

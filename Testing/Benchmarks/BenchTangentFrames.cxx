@@ -30,6 +30,7 @@
 #include "BenchCommon.h"
 #include "BenchMemory.h"
 #include "BenchPaired.h"
+#include "NormalMappingShuffle.h"
 #include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
 
@@ -410,7 +411,8 @@ int PrintPairedRuns(int pairs)
                                               vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
     vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
   std::string note;
-  for (const PairingMesh& m : PairingMeshes(false, note))
+  const std::vector<PairingMesh> meshes = PairingMeshes(false, note);
+  for (const PairingMesh& m : meshes)
   {
     for (int threads : { 1, 2 })
     {
@@ -427,6 +429,10 @@ int PrintPairedRuns(int pairs)
               << Bench::Format(scaling.MedianMilliseconds(0), 3) << " ms with one, "
               << Bench::Format(scaling.MedianMilliseconds(1), 3) << " ms with two)" << std::endl;
   }
+  const Paired shuffled = MeasureScaling(
+    angleWeighted, NormalMappingTesting::ShuffledPoints(meshes.front().Mesh, 7), pairs);
+  std::cout << "the sphere with shuffled point ids, two threads against one: " << shuffled.Cells()
+            << std::endl;
   if (!note.empty())
   {
     std::cout << note << std::endl;
@@ -612,6 +618,24 @@ int main(int argc, char** argv)
     }
     scalingBySize.push_back(row);
   }
+  // The same on the sphere of the paired runs with its point ids in order and shuffled.
+  std::vector<std::vector<Paired>> scalingByOrder; // in order, shuffled: VTK's, then AngleWeighted
+  for (bool shuffled : { false, true })
+  {
+    vtkSmartPointer<vtkPolyData> sphere = pairingMeshes.front().Mesh;
+    if (shuffled)
+    {
+      sphere = NormalMappingTesting::ShuffledPoints(sphere, 7);
+    }
+    scalingByOrder.emplace_back();
+    for (const Bench::TangentFilter& f : Bench::TangentFilters())
+    {
+      if (f.IsVTK() || f.Method == vtkPolyDataTangentFrames::ANGLE_WEIGHTED)
+      {
+        scalingByOrder.back().push_back(MeasureScaling(f, sphere, pairs));
+      }
+    }
+  }
   std::cout
     << "two threads against one in "
     << std::chrono::duration<double>(std::chrono::steady_clock::now() - scalingStart).count()
@@ -786,6 +810,35 @@ int main(int argc, char** argv)
     md << "| " << Bench::Count(find({ {}, false, 1, row.Size }, "floor").Triangles) << " | "
        << row.Pairs;
     for (const Paired& p : row.Filters)
+    {
+      md << " | " << p.Cells();
+    }
+    md << " |\n";
+  }
+
+  md << "\n### Two threads against one: point ids in order and in random order\n\n"
+     << "As above for VTK's filter and AngleWeighted (the default), " << pairs << " pairs, on the "
+     << pairingMeshes.front().Name
+     << " of the paired runs: as VTK makes it, and with its point ids shuffled (the same points, "
+        "point data and triangles in the same order, the points numbered at random). Each "
+        "thread of AngleWeighted owns a range of point ids and computes the triangles that reach "
+        "them: with point ids in random order, that is nearly every triangle for every "
+        "thread.\n\n"
+     << "| point ids";
+  for (const Paired& p : scalingByOrder.front())
+  {
+    md << " | " << p.Name << ": median [quartiles] | fastest runs";
+  }
+  md << " |\n|---";
+  for (size_t i = 0; i < scalingByOrder.front().size(); ++i)
+  {
+    md << "|---:|---:";
+  }
+  md << "|\n";
+  for (size_t row = 0; row < scalingByOrder.size(); ++row)
+  {
+    md << (row == 0 ? "| in order" : "| shuffled");
+    for (const Paired& p : scalingByOrder[row])
     {
       md << " | " << p.Cells();
     }

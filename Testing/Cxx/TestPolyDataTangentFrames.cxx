@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkPolyDataTangentFrames through the pipeline.
 #include "NormalMappingGrid.h"
+#include "NormalMappingShuffle.h"
 #include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
 #include "vtkNormalMappingMeshes.h"
@@ -1895,11 +1896,12 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // One thread adds every block of triangles to its points as soon as their frames are
-  // computed; several threads store a chunk of frames, then split the adding among owners of
-  // blocks of points: both must give the same bits. Two mirrored
-  // tori of different sizes, and the first again with its quads written as quads, strips and
-  // triangle pairs in turn, so that cells that are not all triangles take both paths too.
+  // One thread adds every triangle to its points; several threads each own a range of points
+  // and add the triangles of the tiles that reach them: both must give the same bits, and the
+  // same counts. Two mirrored tori of different sizes; the first again with its quads written as
+  // quads, strips and triangle pairs in turn, so that cells that are not all triangles take both
+  // paths too; and again with its points in a random order, so that every tile reaches every
+  // owner, and with triangles that have no frame.
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   for (int u : { 300, 521 })
   {
@@ -1943,14 +1945,26 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     mixed->SetStrips(strips);
     meshes.push_back(mixed);
   }
+  {
+    // The first torus with shuffled points, whose first tenth of ids take one texture
+    // coordinate: the triangles with all three points among them have no frame.
+    auto shuffled = NormalMappingTesting::ShuffledPoints(meshes[0], 7);
+    for (vtkIdType p = 0; p < shuffled->GetNumberOfPoints() / 10; ++p)
+    {
+      shuffled->GetPointData()->GetTCoords()->SetTuple2(p, 0.5, 0.5);
+    }
+    meshes.push_back(shuffled);
+  }
   ASSERT_EQ(meshes[0]->GetNumberOfPoints(), 36300);
   ASSERT_EQ(meshes[1]->GetNumberOfPoints(), 134418);
+  vtkIdType torusDegenerate = 0;
   for (const auto& mesh : meshes)
     for (int method : AllMethods)
     {
       SCOPED_TRACE(std::to_string(mesh->GetNumberOfPoints()) + " points, " +
         std::to_string(mesh->GetNumberOfStrips()) + " strips");
       std::vector<std::vector<float>> results;
+      std::vector<std::array<vtkIdType, 4>> counts;
       for (int threads : { 1, 2, 8 })
       {
         NormalMappingTesting::WithThreads(threads,
@@ -1962,24 +1976,43 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
             const int granted = vtkSMPTools::GetEstimatedNumberOfThreads();
             EXPECT_LE(granted, threads);
             EXPECT_EQ(granted > 1, threads > 1);
-            auto out = RunFrames(mesh,
-              [&](vtkPolyDataTangentFrames* f)
-              {
-                f->SetMethod(method);
-                f->ComputeBitangentsOn();
-              });
+            vtkNew<vtkPolyDataTangentFrames> f;
+            f->SetInputData(mesh);
+            f->SetMethod(method);
+            f->ComputeBitangentsOn();
+            f->ComputeCellTangentsOn();
+            f->Update();
+            vtkPolyData* out = f->GetOutput();
             std::vector<float> bits;
-            for (const char* name : { "Tangents", "TangentSigns", "Bitangents" })
+            for (vtkDataArray* array : { out->GetPointData()->GetArray("Tangents"),
+                   out->GetPointData()->GetArray("TangentSigns"),
+                   out->GetPointData()->GetArray("Bitangents"),
+                   out->GetCellData()->GetTangents() })
             {
-              auto* a = vtkFloatArray::SafeDownCast(out->GetPointData()->GetArray(name));
+              auto* a = vtkFloatArray::SafeDownCast(array);
               bits.insert(bits.end(), a->GetPointer(0), a->GetPointer(0) + a->GetDataSize());
             }
             results.push_back(bits);
+            counts.push_back({ f->GetNumberOfDegenerateTriangles(),
+              f->GetNumberOfFallbackPoints(),
+              f->GetNumberOfHandednessConflicts(),
+              f->GetNumberOfSplitPoints() });
           });
       }
       ASSERT_EQ(results.size(), 3u);
       EXPECT_EQ(0, std::memcmp(results[0].data(), results[1].data(), results[0].size() * 4));
       EXPECT_EQ(0, std::memcmp(results[0].data(), results[2].data(), results[0].size() * 4));
+      EXPECT_EQ(counts[0], counts[1]);
+      EXPECT_EQ(counts[0], counts[2]);
+      // The shuffled mesh has more triangles without a frame than the torus it comes from.
+      if (mesh == meshes.front())
+      {
+        torusDegenerate = counts[0][0];
+      }
+      if (mesh == meshes.back())
+      {
+        EXPECT_GT(counts[0][0], torusDegenerate);
+      }
     }
 }
 
