@@ -1028,7 +1028,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const vtkIdType* ids = this->Tris.Ids;
     const vtkIdType tiles = (count + TileSize - 1) / TileSize;
     // A few tiles per thread do not pay for starting the threads.
-    const int threads = tiles > 64 ? vtkNormalMapping::detail::UsableThreads() : 1;
+    const int threads = tiles > 16 ? vtkNormalMapping::detail::UsableThreads() : 1;
     ScatteredSums sums(this->NumberOfPoints, threads);
     const int owners = sums.Owners();
     const std::vector<IdRange> bounds =
