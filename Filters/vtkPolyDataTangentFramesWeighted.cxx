@@ -1027,7 +1027,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const vtkIdType count = this->Tris.Count;
     const vtkIdType* ids = this->Tris.Ids;
     const vtkIdType tiles = (count + TileSize - 1) / TileSize;
-    // A few tiles per thread do not pay for starting the threads.
+    // A mesh of a few tiles does not pay for starting the threads.
     const int threads = tiles > 16 ? vtkNormalMapping::detail::UsableThreads() : 1;
     ScatteredSums sums(this->NumberOfPoints, threads);
     const int owners = sums.Owners();
