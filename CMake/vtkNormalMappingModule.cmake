@@ -64,6 +64,13 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     APPEND PROPERTY COMPILE_OPTIONS -ffp-contract=off -fno-math-errno -fno-trapping-math)
 endif()
 
+# The weighted methods' block loops are compiled also for AVX2 and AVX-512 where the compiler can
+# (VTK_NORMALMAPPING_TARGET_CLONES in Filters/vtkNormalMappingPrivate.h). OFF compiles them once,
+# for the default target, as other compilers and CPUs do; the benchmark measures such a build.
+option(NORMALMAPPING_MULTIVERSIONING
+  "Compile the filter's block loops also for AVX2 and AVX-512 (GCC, Clang 14+; x86-64 Linux)" ON)
+mark_as_advanced(NORMALMAPPING_MULTIVERSIONING)
+
 vtk_module_add_module(VTK::NormalMapping
   CLASSES ${_nm_classes}
   NOWRAP_HEADERS ${_nm_nowrap_headers}
@@ -76,3 +83,6 @@ vtk_module_include(VTK::NormalMapping
 # GLM is a private detail of the filters; tests that include the kernels header link it themselves.
 vtk_module_link(VTK::NormalMapping PRIVATE glm::glm)
 vtk_module_compile_features(VTK::NormalMapping PUBLIC cxx_std_17)
+if(NOT NORMALMAPPING_MULTIVERSIONING)
+  vtk_module_definitions(VTK::NormalMapping PRIVATE VTK_NORMALMAPPING_NO_MULTIVERSIONING)
+endif()

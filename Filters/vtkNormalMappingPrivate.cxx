@@ -6,6 +6,11 @@
 #include <algorithm>
 #include <atomic>
 
+bool vtkNormalMapping::detail::MultiversionedLoops()
+{
+  return VTK_NORMALMAPPING_MULTIVERSIONED != 0;
+}
+
 int vtkNormalMapping::detail::UsableThreads()
 {
   if (vtkSMPTools::IsParallelScope() && !vtkSMPTools::GetNestedParallelism())

@@ -32,18 +32,27 @@
 
 /**
  * Marks a function to be compiled also for AVX2 and AVX-512 and picked by the CPU at load time
- * (GCC function multiversioning, through ifunc: x86-64 Linux), with every call in it inlined
- * (flatten), so that each clone holds its own copy of the loops it calls. Empty for other
- * compilers and targets, where the function is compiled once for the default target; also for
- * Clang, which refuses flatten on a multiversioned function, and whose clones would then only
- * call the loops compiled for the default target. For the block loops whose speed depends on the
- * width of the vector unit; the source stays one portable function.
+ * (function multiversioning through ifunc: GCC, and Clang from version 14, on x86-64 Linux), so
+ * that each clone holds its own copy of the loops it calls: they are VTK_ALWAYS_INLINE (see
+ * vtkTangentFrameKernels.h), and GCC also inlines every other call (flatten, which Clang refuses
+ * on a multiversioned function). Empty for other compilers and targets, and when CMake's
+ * NORMALMAPPING_MULTIVERSIONING is OFF: the function is then compiled once for the default
+ * target. For the block loops whose speed depends on the width of the vector unit; the source
+ * stays one portable function.
  */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#if defined(VTK_NORMALMAPPING_NO_MULTIVERSIONING)
+#define VTK_NORMALMAPPING_TARGET_CLONES
+#define VTK_NORMALMAPPING_MULTIVERSIONED 0
+#elif defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__)
 #define VTK_NORMALMAPPING_TARGET_CLONES                                                            \
   __attribute__((target_clones("avx512f", "avx2", "default"), flatten))
+#define VTK_NORMALMAPPING_MULTIVERSIONED 1
+#elif defined(__x86_64__) && defined(__linux__) && defined(__clang__) && __clang_major__ >= 14
+#define VTK_NORMALMAPPING_TARGET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#define VTK_NORMALMAPPING_MULTIVERSIONED 1
 #else
 #define VTK_NORMALMAPPING_TARGET_CLONES
+#define VTK_NORMALMAPPING_MULTIVERSIONED 0
 #endif
 
 namespace vtkNormalMapping
@@ -56,6 +65,10 @@ namespace detail
  * thread), else vtkSMPTools' estimate.
  */
 int UsableThreads();
+
+/// Whether this build of the module compiled its block loops for several instruction sets
+/// (VTK_NORMALMAPPING_TARGET_CLONES): for the benchmark's description of a build.
+bool MultiversionedLoops();
 
 /**
  * Whether every id of ids[begin, end) is in [0, numPoints), in one pass without an early exit.

@@ -425,6 +425,14 @@ struct ScatteredSums
       side.Add(signedWeight, tangent);
       return;
     }
+    this->AddOther(p, signedWeight, tangent);
+  }
+
+  /// Add's path for a corner of the other handedness, kept out of the loops that call Add, so
+  /// that Add is small enough for any compiler to inline (compilers other than GCC and Clang
+  /// ignore these attributes).
+  [[gnu::noinline, gnu::cold]] void AddOther(vtkIdType p, double signedWeight, const dvec3& tangent)
+  {
     this->HasOther[p] = 1;
     this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
   }

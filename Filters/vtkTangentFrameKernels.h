@@ -16,9 +16,16 @@
  * of a direction, ratio or test below and is skipped: every float input is inside it (float
  * differences lie in [2^-149, 2^129]). Non-finite input makes a triangle degenerate instead of
  * spreading NaN.
+ *
+ * The block loops (ComputeTriangleBlock, SignCornerWeights, ComputePointBlock) and the functions
+ * their bodies call are VTK_ALWAYS_INLINE: every compiler then sees each loop whole and can
+ * vectorize it, also inside the clones of a multiversioned caller
+ * (VTK_NORMALMAPPING_TARGET_CLONES), which only inline what they are made to.
  */
 #ifndef vtkTangentFrameKernels_h
 #define vtkTangentFrameKernels_h
+
+#include "vtkSetGet.h" // VTK_ALWAYS_INLINE
 
 #include <glm/glm.hpp>
 
@@ -84,7 +91,7 @@ struct DegeneracyTolerance
  * twiceArea2 = |n|^2, longest2 = L^2, m scaled likewise (inf where that overflows, which makes the
  * triangle noise, as it is). Squared, without a square root; NaN is noise.
  */
-inline bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
+VTK_ALWAYS_INLINE bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
 {
   const double bound = noise * m;
   return !(twiceArea2 > bound * bound * longest2);
@@ -108,7 +115,7 @@ struct TriangleFrame
 
 namespace detail
 {
-inline double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
+VTK_ALWAYS_INLINE double MaxAbs(const glm::dvec3& a, const glm::dvec3& b)
 {
   return std::max(
     { std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y), std::abs(b.z) });
@@ -118,7 +125,7 @@ inline double MaxAbs(const glm::dvec3& a)
 {
   return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z)));
 }
-inline double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
+VTK_ALWAYS_INLINE double MaxAbs(const glm::dvec2& a, const glm::dvec2& b)
 {
   return std::max({ std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y) });
 }
@@ -145,7 +152,7 @@ constexpr double SafeMinimum = 0x1p-160;
 constexpr double SafeMaximum = 0x1p160;
 
 /// Whether vectors whose largest component is m need no rescaling (false for 0 and non-finite m).
-inline bool InSafeRange(double m)
+VTK_ALWAYS_INLINE bool InSafeRange(double m)
 {
   return (m >= SafeMinimum) & (m <= SafeMaximum);
 }
@@ -198,7 +205,7 @@ constexpr double AtanMinimax[10] = { -0.3333333333333015,
 
 /// atan(z) for |z| <= tan(pi/8): z + (z x) Q(x) (AtanMinimax), with x = z^2 and Q in Estrin's
 /// order, whose chain of dependent operations is half as long as Horner's.
-inline double AtanOfReduced(double z)
+VTK_ALWAYS_INLINE double AtanOfReduced(double z)
 {
   const double* c = AtanMinimax;
   const double x = z * z;
@@ -223,7 +230,7 @@ constexpr double Pi = 3.14159265358979323846;
  * about one ulp of std::atan2 (TestTangentFrameKernels bounds it). Selects instead of branches,
  * so that loops over many angles vectorize.
  */
-inline double AngleFromSineCosine(double s, double c)
+VTK_ALWAYS_INLINE double AngleFromSineCosine(double s, double c)
 {
   const double ac = std::abs(c);
   const bool steep = s > ac;
@@ -240,7 +247,7 @@ inline double AngleFromSineCosine(double s, double c)
 }
 
 /// c ? a : b, per component: selects of scalars, which a vectorizing compiler turns into blends.
-inline glm::dvec3 Select(bool c, const glm::dvec3& a, const glm::dvec3& b)
+VTK_ALWAYS_INLINE glm::dvec3 Select(bool c, const glm::dvec3& a, const glm::dvec3& b)
 {
   return glm::dvec3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z);
 }
@@ -256,7 +263,7 @@ inline bool IsFinite(const glm::dvec3& v)
  * of branches, so that a loop over many triangles vectorizes (ComputeTriangleBlock); the Area is
  * that of the edges as given.
  */
-inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
+VTK_ALWAYS_INLINE TriangleFrame FrameFromEdges(const glm::dvec3& e1,
   const glm::dvec3& e2,
   const glm::dvec2& d1,
   const glm::dvec2& d2,
@@ -293,22 +300,43 @@ inline TriangleFrame FrameFromEdges(const glm::dvec3& e1,
 }
 
 /**
- * The interior angles of a triangle whose edges FrameFromEdges took and whose frame it gave; zero
- * when it is degenerate in position (its Area is zero). The two edges at any corner span the same
- * parallelogram, so its area serves as the sine of all three corners; each has its own cosine.
+ * The cosines of a triangle's interior angles, scaled by the lengths of the two edges at each
+ * corner: e1.e2 at corner 0, -e1.e3 at corner 1, e2.e3 at corner 2, with e3 = e2 - e1.
  */
+VTK_ALWAYS_INLINE void ScaledCornerCosines(const glm::dvec3& e1,
+  const glm::dvec3& e2,
+  double cosines[3])
+{
+  const glm::dvec3 e3 = e2 - e1;
+  cosines[0] = glm::dot(e1, e2);
+  cosines[1] = -glm::dot(e1, e3);
+  cosines[2] = glm::dot(e2, e3);
+}
+
+/**
+ * The interior angle at a corner of a triangle whose FrameFromEdges area is `area`, from the
+ * scaled cosine there (ScaledCornerCosines); zero when the triangle is degenerate in position
+ * (its area is zero). The two edges at any corner span the same parallelogram, so its area
+ * serves as the sine of all three corners.
+ */
+VTK_ALWAYS_INLINE double CornerAngle(double area, double scaledCosine)
+{
+  const double sine = 2.0 * area; // |e1 x e2| (FrameFromEdges halves it exactly), or 0
+  const double angle = AngleFromSineCosine(sine, scaledCosine);
+  return sine > 0.0 ? angle : 0.0;
+}
+
+/// The three interior angles of a triangle (CornerAngle) whose edges FrameFromEdges took and
+/// whose frame f it gave.
 inline void FrameCornerAngles(const glm::dvec3& e1,
   const glm::dvec3& e2,
   const TriangleFrame& f,
   double angles[3])
 {
-  const double sine = 2.0 * f.Area; // |e1 x e2| (FrameFromEdges halves it exactly), or 0
-  const glm::dvec3 e3 = e2 - e1;
-  const double cosines[3] = { glm::dot(e1, e2), -glm::dot(e1, e3), glm::dot(e2, e3) };
+  ScaledCornerCosines(e1, e2, angles);
   for (int k = 0; k < 3; ++k)
   {
-    const double angle = AngleFromSineCosine(sine, cosines[k]);
-    angles[k] = sine > 0.0 ? angle : 0.0;
+    angles[k] = CornerAngle(f.Area, angles[k]);
   }
 }
 
@@ -470,10 +498,15 @@ struct TriangleBlock
 
 namespace detail
 {
-/// The common-case pass of ComputeTriangleBlock; WithAngles a template argument so that the
-/// loop has no branch.
+/**
+ * The common-case pass of ComputeTriangleBlock; WithAngles a template argument so that the
+ * loops have no branch. The angles have a loop of their own, whose small body every compiler
+ * inlines and vectorizes.
+ */
 template<bool WithAngles>
-void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyTolerance& tol)
+VTK_ALWAYS_INLINE void ComputeSafeTriangleBlock(TriangleBlock& b,
+  int count,
+  const DegeneracyTolerance& tol)
 {
   for (int i = 0; i < count; ++i)
   {
@@ -483,13 +516,20 @@ void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyToler
     const glm::dvec2 d2 = b.Delta(1, i);
     const bool safe = InSafeRange(MaxAbs(e1, e2)) && InSafeRange(MaxAbs(d1, d2));
     b.Rare[i] = safe ? 0.0 : 1.0;
-    const TriangleFrame f = FrameFromEdges(e1, e2, d1, d2, b.MaxCoordinate[i], tol);
-    double angles[3] = { 0.0, 0.0, 0.0 };
+    double cosines[3] = { 0.0, 0.0, 0.0 };
     if (WithAngles)
     {
-      FrameCornerAngles(e1, e2, f, angles);
+      ScaledCornerCosines(e1, e2, cosines);
     }
-    b.Set(i, f, angles);
+    b.Set(i, FrameFromEdges(e1, e2, d1, d2, b.MaxCoordinate[i], tol), cosines);
+  }
+  // Angle holds the scaled cosines (zeros without angles) until here.
+  for (int k = 0; WithAngles && k < 3; ++k)
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      b.Angle[k][i] = CornerAngle(b.Area[i], b.Angle[k][i]);
+    }
   }
 }
 } // namespace detail
@@ -500,7 +540,7 @@ void ComputeSafeTriangleBlock(TriangleBlock& b, int count, const DegeneracyToler
  * (edges and UV deltas that need no rescaling) that the compiler vectorizes, then
  * ComputeFrameFromEdges again for the triangles that need rescaling or are not finite.
  */
-inline void ComputeTriangleBlock(TriangleBlock& b,
+VTK_ALWAYS_INLINE void ComputeTriangleBlock(TriangleBlock& b,
   int count,
   const DegeneracyTolerance& tol,
   bool withAngles)
@@ -528,7 +568,7 @@ inline void ComputeTriangleBlock(TriangleBlock& b,
 }
 
 /// Weight of a triangle's contribution at a corner: its area or its angle there, or 1.
-inline double CornerWeight(TangentMethod method, double area, double angle)
+VTK_ALWAYS_INLINE double CornerWeight(TangentMethod method, double area, double angle)
 {
   return method == TangentMethod::AreaWeighted
     ? area
@@ -540,7 +580,7 @@ inline double CornerWeight(TangentMethod method, double area, double angle)
 /// (flipped winding, inward normals) flips its orientation here. For orientations stored as any
 /// number type (+1, -1, 0).
 template<typename T>
-inline T CornerSign(T orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
+VTK_ALWAYS_INLINE T CornerSign(T orientation, const glm::dvec3& triangleNormal, const glm::dvec3& n)
 {
   return glm::dot(n, triangleNormal) < 0.0 ? -orientation : orientation;
 }
@@ -555,7 +595,7 @@ inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
  * signed with the handedness its triangle gives its shading normal (CornerSign), and that sign,
  * in a plain loop the compiler vectorizes.
  */
-inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+VTK_ALWAYS_INLINE void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
 {
   for (int k = 0; k < 3; ++k)
   {
@@ -574,7 +614,7 @@ inline void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
 namespace detail
 {
 /// v / |v|, for a v whose largest component needs no rescaling (NormalizeExponent 0).
-inline glm::dvec3 Unit(const glm::dvec3& v)
+VTK_ALWAYS_INLINE glm::dvec3 Unit(const glm::dvec3& v)
 {
   return v / glm::length(v);
 }
@@ -586,7 +626,9 @@ inline glm::dvec3 Unit(const glm::dvec3& v)
  * overflows, and none that passes, above 2^-860, underflows). Not usable: the result is
  * meaningless.
  */
-inline glm::dvec3 UnitPerpendicular(const glm::dvec3& n, const glm::dvec3& t, bool& usable)
+VTK_ALWAYS_INLINE glm::dvec3 UnitPerpendicular(const glm::dvec3& n,
+  const glm::dvec3& t,
+  bool& usable)
 {
   const glm::dvec3 perp = t - glm::dot(n, t) * n;
   const double len2 = glm::dot(perp, perp);
@@ -720,7 +762,7 @@ struct PointBlock
 namespace detail
 {
 /// Whether v is finite and its largest component needs no rescaling (NormalizeExponent 0).
-inline bool InNormalizeRange(const glm::dvec3& v)
+VTK_ALWAYS_INLINE bool InNormalizeRange(const glm::dvec3& v)
 {
   const glm::dvec3 a = glm::abs(v);
   return (a.x <= NormalizeMaximum) & (a.y <= NormalizeMaximum) & (a.z <= NormalizeMaximum) &
@@ -730,7 +772,7 @@ inline bool InNormalizeRange(const glm::dvec3& v)
 /// The common-case pass of ComputePointBlock; Normalize a template argument so that the loop
 /// has no branch.
 template<bool Normalize>
-void ComputeCommonPointBlock(PointBlock& b, int count)
+VTK_ALWAYS_INLINE void ComputeCommonPointBlock(PointBlock& b, int count)
 {
   for (int i = 0; i < count; ++i)
   {
@@ -756,7 +798,7 @@ void ComputeCommonPointBlock(PointBlock& b, int count)
  * case (finite vectors whose largest components need no rescaling, tangents not parallel to the
  * normal) that the compiler vectorizes, then the functions themselves for the other points.
  */
-inline void ComputePointBlock(PointBlock& b, int count, bool normalize)
+VTK_ALWAYS_INLINE void ComputePointBlock(PointBlock& b, int count, bool normalize)
 {
   if (normalize)
   {
