@@ -5,7 +5,11 @@
 # `bash scripts/bootstrap.sh bench` builds the project and runs this. The programs are in
 # BUILD/bin (--build, else $BUILD_DIR, else ./build):
 #   BenchTangentAccuracy     filter accuracy (analytic tangents, MikkTSpace reference meshes)
-#   BenchTangentFrames       filter throughput and peak memory (Google Benchmark)
+#   BenchTangentFrames       filter throughput and peak memory (Google Benchmark); then, with
+#                            --build-variant, the default method against VTK's filter from this
+#                            build and (not with --smoke) from two more, each configured and built
+#                            here under BUILD/variants: with Clang 14, and without function
+#                            multiversioning (-DNORMALMAPPING_MULTIVERSIONING=OFF)
 #   BenchMikkTSpace          MikkTSpace against the original mikktspace.c, paired runs; only when
 #                            the build has the original's source (MIKKTSPACE_REFERENCE_DIR of
 #                            bootstrap.sh, or CMake's NORMALMAPPING_MIKKTSPACE_REFERENCE_DIR), else
@@ -49,7 +53,8 @@ done
 work="$build/bench"
 [ "${#smoke[@]}" -eq 0 ] || work="$out"
 mkdir -p "$work" "$out"
-rm -f "$work"/{filter,mikktspace,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png"
+rm -f "$work"/{filter,mikktspace,accuracy,rendering}.{md,tsv,env,log} "$work/benchmarks.png" \
+  "$work"/variant*.{md,log}
 
 # Debian's VTK renders through X only: a private Xvfb; a VTK without X (OSMesa, EGL) needs none.
 if [ -z "$mode" ]; then
@@ -83,6 +88,18 @@ run() {
 headless="$root/Testing/Rendering/RunHeadless.sh"
 run accuracy "$bin/BenchTangentAccuracy" --out "$work" "${smoke[@]}"
 run filter "$bin/BenchTangentFrames" --out "$work" "${smoke[@]}"
+run variant "$bin/BenchTangentFrames" --build-variant --out "$work" "${smoke[@]}"
+if [ "${#smoke[@]}" -eq 0 ]; then
+  for variant in "clang:-DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14" \
+    "portable:-DNORMALMAPPING_MULTIVERSIONING=OFF"; do
+    name="${variant%%:*}"
+    read -r -a flags <<<"${variant#*:}"
+    dir="$build/variants/$name"
+    run "variant-build-$name" bash -c 'cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release "${@:3}" &&
+      cmake --build "$2" -j "$(nproc)" --target BenchTangentFrames' _ "$root" "$dir" "${flags[@]}"
+    run "variant-$name" "$dir/bin/BenchTangentFrames" --build-variant --out "$work"
+  done
+fi
 run mikktspace "$bin/BenchMikkTSpace" --out "$work" "${smoke[@]}"
 run rendering "$headless" "$mode" "$bin/BenchNormalMapRendering" --out "$work" "${smoke[@]}"
 chart=no
@@ -130,7 +147,8 @@ parts="$(printf '%s, ' "${timings[@]}")"
     echo "No chart: this build's VTK has no 2D charts (ChartsCore), so BenchChart was not built."
   fi
   echo
-  cat "$work/filter.md" "$work/mikktspace.md" "$work/accuracy.md" "$work/rendering.md"
+  cat "$work/filter.md" "$work/variants.md" "$work/mikktspace.md" "$work/accuracy.md" \
+    "$work/rendering.md"
 } >"$work/benchmarks.md.new"
 mv "$work/benchmarks.md.new" "$out/benchmarks.md"
 written="$out/benchmarks.md"

@@ -7,13 +7,16 @@
 // VTK's filter and to the floor, run with the same input, precision and thread count.
 //
 //   BenchTangentFrames [--out DIR] [--smoke] [--sizes N,N,...] [--repetitions N]
-//                      [--paired-only PAIRS] [google benchmark flags]
+//                      [--paired-only PAIRS] [--build-variant] [google benchmark flags]
 //
 // Writes DIR/filter.md (the markdown section of docs/benchmarks.md) and DIR/filter.tsv (one
 // tab-separated line per configuration, read by BenchChart). --smoke: one 10,000-triangle size, one
 // short repetition (for the ctest smoke test). --paired-only PAIRS: only the paired runs, with
 // PAIRS pairs each, printed to the console (a quick check while changing the filter).
-// scripts/bench.sh runs it.
+// --build-variant: only the default method paired with VTK's filter, one thread, as one row of
+// DIR/variants.md (written with its section header when it does not exist yet), which describes
+// this program's build: its compiler and whether the module's loops are multiversioned.
+// scripts/bench.sh runs it, also from builds of other kinds.
 //
 // Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
 // configurations (so a burst of load from other processes does not hit one configuration's
@@ -33,6 +36,7 @@
 #include "NormalMappingShuffle.h"
 #include "NormalMappingThreads.h"
 #include "vtkNormalMappingMeshes.h"
+#include "vtkNormalMappingPrivate.h" // MultiversionedLoops
 
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkAppendPolyData.h"
@@ -59,6 +63,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -440,6 +445,73 @@ int PrintPairedRuns(int pairs)
   return 0;
 }
 
+/// The compiler of this program, which scripts/bench.sh builds with the module it links.
+std::string CompilerName()
+{
+#if defined(__clang__)
+  return "Clang " + std::to_string(__clang_major__) + "." + std::to_string(__clang_minor__);
+#elif defined(__GNUC__)
+  return "GCC " + std::to_string(__GNUC__) + "." + std::to_string(__GNUC_MINOR__);
+#elif defined(_MSC_VER)
+  return "MSVC " + std::to_string(_MSC_VER);
+#else
+  return "an unknown compiler";
+#endif
+}
+
+/**
+ * --build-variant: the default method paired with VTK's filter, one thread, on the paired runs'
+ * meshes, as a row of `out`/variants.md; the section's header first when the file is new.
+ */
+int WriteBuildVariant(const std::string& out, bool smoke)
+{
+  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
+                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
+    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+  std::string note;
+  const std::vector<PairingMesh> meshes = PairingMeshes(smoke, note);
+  const int pairs = smoke ? 3 : 40;
+  const std::string path = out + "/variants.md";
+  const bool header = !std::filesystem::exists(path);
+  std::ofstream md(path, std::ios::app);
+  if (header)
+  {
+    md << "\n### Builds: AngleWeighted (the default) against VTK's filter, one thread\n\n"
+       << "The one-thread paired runs above (" << pairs
+       << " pairs, the same meshes), each row from another build of the module and of this "
+          "program, run as its own process: the project's build, one with Clang, and one "
+          "configured with `-DNORMALMAPPING_MULTIVERSIONING=OFF`, whose block loops are compiled "
+          "once, for the compiler's default target (on x86-64: SSE2), as compilers without "
+          "function multiversioning (MSVC, Apple Clang) and other CPUs compile them. VTK's "
+          "filter is the same library in every row. Each cell: the median over the pairs of "
+          "`vtkPolyDataTangents`' time / AngleWeighted's [first and third quartiles].\n\n"
+       << "| build | loops |";
+    for (const PairingMesh& m : meshes)
+    {
+      md << " " << m.Name << " |";
+    }
+    md << "\n|---|---|";
+    for (size_t i = 0; i < meshes.size(); ++i)
+    {
+      md << "---:|";
+    }
+    md << "\n";
+  }
+  md << "| " << CompilerName() << ", Release | "
+     << (vtkNormalMapping::detail::MultiversionedLoops() ? "multiversioned: AVX-512, AVX2, default"
+                                                         : "default target only")
+     << " |";
+  for (const PairingMesh& m : meshes)
+  {
+    const Paired p = MeasurePaired(angleWeighted, m.Mesh, 1, pairs);
+    md << " " << Bench::Format(p.Quantile(0.5), 3) << " [" << Bench::Format(p.Quantile(0.25), 3)
+       << ", " << Bench::Format(p.Quantile(0.75), 3) << "] |";
+    std::cout << m.Name << ": x VTK " << p.Cells() << std::endl;
+  }
+  md << "\n";
+  return md ? 0 : 1;
+}
+
 std::string MemoryCell(const Measured& m)
 {
   if (m.PeakBytes < 0)
@@ -458,6 +530,7 @@ int main(int argc, char** argv)
   std::vector<long long> sizes{ 10000, 100000, 1000000, 4000000 };
   int repetitions = 5;
   int pairedOnly = 0;
+  bool buildVariant = false;
   std::vector<char*> args{ argv[0] };
   std::string interleave = "--benchmark_enable_random_interleaving=true";
   args.push_back(&interleave[0]);
@@ -486,6 +559,10 @@ int main(int argc, char** argv)
     {
       pairedOnly = std::max(1, std::atoi(argv[++i]));
     }
+    else if (arg == "--build-variant")
+    {
+      buildVariant = true;
+    }
     else
     {
       args.push_back(argv[i]);
@@ -494,6 +571,10 @@ int main(int argc, char** argv)
   if (pairedOnly > 0)
   {
     return PrintPairedRuns(pairedOnly);
+  }
+  if (buildVariant)
+  {
+    return WriteBuildVariant(out, smoke);
   }
   std::vector<Config> configs;
   for (long long size : sizes)
