@@ -42,13 +42,13 @@
  * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
- * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order:
- *    one thread adds each block of frames as it is computed; several compute the frames of a
- *    chunk of triangles in parallel, then add them to their points, chunk after chunk, each
- *    thread adding to the points it owns. Each point adds the same terms in the same order, so
- *    the output is bit-identical for any number of threads. A point then takes the frame of its
- *    one handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1
- *    frame goes to the point's copy) or the heavier side.
+ * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order,
+ *    each block of frames added as it is computed: each thread owns a range of point ids, goes
+ *    through the triangles in tiles, computes the tiles that reach its points and adds only their
+ *    corners (SumFrames). Each point adds the same terms in the same order, so the output is
+ *    bit-identical for any number of threads. A point then takes the frame of its one handedness
+ *    (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame goes to the
+ *    point's copy) or the heavier side.
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
