@@ -61,9 +61,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
@@ -460,8 +462,38 @@ std::string CompilerName()
 }
 
 /**
+ * FNV-1a, 64 bits, of the bytes of the default method's output frames (point tangents, then
+ * signs) on each mesh in turn: equal across builds when every build gives the same bits.
+ */
+std::string OutputBitsHash(const std::vector<PairingMesh>& meshes)
+{
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const PairingMesh& m : meshes)
+  {
+    vtkNew<vtkPolyDataTangentFrames> frames;
+    frames->SetInputData(m.Mesh);
+    frames->Update();
+    for (const char* name :
+      { vtkPolyDataTangentFrames::TangentsArrayName(), vtkPolyDataTangentFrames::SignsArrayName() })
+    {
+      vtkDataArray* array = frames->GetOutput()->GetPointData()->GetArray(name);
+      const auto* bytes = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+      const size_t count = static_cast<size_t>(array->GetDataSize()) * array->GetDataTypeSize();
+      for (size_t i = 0; i < count; ++i)
+      {
+        hash = (hash ^ bytes[i]) * 1099511628211ull;
+      }
+    }
+  }
+  std::ostringstream text;
+  text << std::hex << std::setw(16) << std::setfill('0') << hash;
+  return text.str();
+}
+
+/**
  * --build-variant: the default method paired with VTK's filter, one thread, on the paired runs'
- * meshes, as a row of `out`/variants.md; the section's header first when the file is new.
+ * meshes, as a row of `out`/variants.md, with OutputBitsHash; the section's header first when
+ * the file is new.
  */
 int WriteBuildVariant(const std::string& out, bool smoke)
 {
@@ -484,18 +516,21 @@ int WriteBuildVariant(const std::string& out, bool smoke)
           "once, for the compiler's default target (on x86-64: SSE2), as compilers without "
           "function multiversioning (MSVC, Apple Clang) and other CPUs compile them. VTK's "
           "filter is the same library in every row. Each cell: the median over the pairs of "
-          "`vtkPolyDataTangents`' time / AngleWeighted's [first and third quartiles].\n\n"
+          "`vtkPolyDataTangents`' time / AngleWeighted's [first and third quartiles]. Output "
+          "bits: FNV-1a (64 bits) of the bytes of AngleWeighted's point tangents and signs on "
+          "the meshes in turn, the same in every row when every build gives the same output, bit "
+          "for bit.\n\n"
        << "| build | loops |";
     for (const PairingMesh& m : meshes)
     {
       md << " " << m.Name << " |";
     }
-    md << "\n|---|---|";
+    md << " output bits |\n|---|---|";
     for (size_t i = 0; i < meshes.size(); ++i)
     {
       md << "---:|";
     }
-    md << "\n";
+    md << "---|\n";
   }
   md << "| " << CompilerName() << ", Release | "
      << (vtkNormalMapping::detail::MultiversionedLoops() ? "multiversioned: AVX-512, AVX2, default"
@@ -508,7 +543,7 @@ int WriteBuildVariant(const std::string& out, bool smoke)
        << ", " << Bench::Format(p.Quantile(0.75), 3) << "] |";
     std::cout << m.Name << ": x VTK " << p.Cells() << std::endl;
   }
-  md << "\n";
+  md << " `" << OutputBitsHash(meshes) << "` |\n";
   return md ? 0 : 1;
 }
 
