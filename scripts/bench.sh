@@ -89,11 +89,16 @@ headless="$root/Testing/Rendering/RunHeadless.sh"
 run accuracy "$bin/BenchTangentAccuracy" --out "$work" "${smoke[@]}"
 run filter "$bin/BenchTangentFrames" --out "$work" "${smoke[@]}"
 run variant "$bin/BenchTangentFrames" --build-variant --out "$work" "${smoke[@]}"
+missing=()
 if [ "${#smoke[@]}" -eq 0 ]; then
   for variant in "clang:-DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14" \
     "portable:-DNORMALMAPPING_MULTIVERSIONING=OFF"; do
     name="${variant%%:*}"
     read -r -a flags <<<"${variant#*:}"
+    if [ "$name" = clang ] && ! command -v clang++-14 >/dev/null; then
+      missing+=("No Clang row: clang++-14 is not installed (\`bash scripts/bootstrap.sh bench\` installs it).")
+      continue
+    fi
     dir="$build/variants/$name"
     run "variant-build-$name" bash -c 'cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release "${@:3}" &&
       cmake --build "$2" -j "$(nproc)" --target BenchTangentFrames' _ "$root" "$dir" "${flags[@]}"
@@ -149,6 +154,10 @@ parts="$(printf '%s, ' "${timings[@]}")"
   echo
   cat "$work/filter.md" "$work/variants.md"
   echo # the rows of variants.md come from several programs: none ends the section
+  for line in "${missing[@]}"; do
+    echo "$line"
+    echo
+  done
   cat "$work/mikktspace.md" "$work/accuracy.md" "$work/rendering.md"
 } >"$work/benchmarks.md.new"
 mv "$work/benchmarks.md.new" "$out/benchmarks.md"
