@@ -49,11 +49,16 @@ struct Paired
   {
     return 1000.0 * Bench::Quantile(this->Seconds[which], 0.5);
   }
-  /// The two cells of a table row: "median [first quartile, third quartile] | fastest runs".
-  std::string Cells() const
+  /// A table cell: "median [first quartile, third quartile]".
+  std::string MedianCell() const
   {
     return Bench::Format(this->Quantile(0.5), 3) + " [" + Bench::Format(this->Quantile(0.25), 3) +
-      ", " + Bench::Format(this->Quantile(0.75), 3) + "] | " + Bench::Format(this->FastestRatio, 3);
+      ", " + Bench::Format(this->Quantile(0.75), 3) + "]";
+  }
+  /// The two cells of a table row: MedianCell, then "| fastest runs".
+  std::string Cells() const
+  {
+    return this->MedianCell() + " | " + Bench::Format(this->FastestRatio, 3);
   }
 };
 

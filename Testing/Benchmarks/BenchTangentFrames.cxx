@@ -411,12 +411,17 @@ Paired MeasureScaling(const Bench::TangentFilter& filter, vtkPolyData* mesh, int
   return result;
 }
 
+/// The default method (AngleWeighted), which the paired runs compare with VTK's filter.
+Bench::TangentFilter DefaultMethod()
+{
+  return { vtkPolyDataTangentFrames::GetMethodName(vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
+    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+}
+
 /// The paired runs alone, `pairs` pairs per mesh and thread count, printed to the console.
 int PrintPairedRuns(int pairs)
 {
-  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
-                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
-    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+  const Bench::TangentFilter angleWeighted = DefaultMethod();
   std::string note;
   const std::vector<PairingMesh> meshes = PairingMeshes(false, note);
   for (const PairingMesh& m : meshes)
@@ -447,18 +452,22 @@ int PrintPairedRuns(int pairs)
   return 0;
 }
 
-/// The compiler of this program, which scripts/bench.sh builds with the module it links.
-std::string CompilerName()
+/// The compiler of this program and CMake's build type: scripts/bench.sh builds the module it
+/// links the same way.
+std::string BuildName()
 {
 #if defined(__clang__)
-  return "Clang " + std::to_string(__clang_major__) + "." + std::to_string(__clang_minor__);
+  std::string compiler =
+    "Clang " + std::to_string(__clang_major__) + "." + std::to_string(__clang_minor__);
 #elif defined(__GNUC__)
-  return "GCC " + std::to_string(__GNUC__) + "." + std::to_string(__GNUC_MINOR__);
+  std::string compiler = "GCC " + std::to_string(__GNUC__) + "." + std::to_string(__GNUC_MINOR__);
 #elif defined(_MSC_VER)
-  return "MSVC " + std::to_string(_MSC_VER);
+  std::string compiler = "MSVC " + std::to_string(_MSC_VER);
 #else
-  return "an unknown compiler";
+  std::string compiler = "an unknown compiler";
 #endif
+  const std::string type = NORMALMAPPING_BUILD_TYPE;
+  return compiler + ", " + (type.empty() ? "no CMake build type" : type);
 }
 
 /**
@@ -497,9 +506,7 @@ std::string OutputBitsHash(const std::vector<PairingMesh>& meshes)
  */
 int WriteBuildVariant(const std::string& out, bool smoke)
 {
-  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
-                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
-    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+  const Bench::TangentFilter angleWeighted = DefaultMethod();
   std::string note;
   const std::vector<PairingMesh> meshes = PairingMeshes(smoke, note);
   const int pairs = smoke ? 3 : 40;
@@ -532,15 +539,14 @@ int WriteBuildVariant(const std::string& out, bool smoke)
     }
     md << "---|\n";
   }
-  md << "| " << CompilerName() << ", Release | "
+  md << "| " << BuildName() << " | "
      << (vtkNormalMapping::detail::MultiversionedLoops() ? "multiversioned: AVX-512, AVX2, default"
                                                          : "default target only")
      << " |";
   for (const PairingMesh& m : meshes)
   {
     const Paired p = MeasurePaired(angleWeighted, m.Mesh, 1, pairs);
-    md << " " << Bench::Format(p.Quantile(0.5), 3) << " [" << Bench::Format(p.Quantile(0.25), 3)
-       << ", " << Bench::Format(p.Quantile(0.75), 3) << "] |";
+    md << " " << p.MedianCell() << " |";
     std::cout << m.Name << ": x VTK " << p.Cells() << std::endl;
   }
   md << " `" << OutputBitsHash(meshes) << "` |\n";
@@ -678,9 +684,7 @@ int main(int argc, char** argv)
   }
   const int pairs = smoke ? 3 : 40;
   // Paired runs: the default method against VTK's filter on meshes that are not ours.
-  const Bench::TangentFilter angleWeighted{ vtkPolyDataTangentFrames::GetMethodName(
-                                              vtkPolyDataTangentFrames::ANGLE_WEIGHTED),
-    vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
+  const Bench::TangentFilter angleWeighted = DefaultMethod();
   std::string pairingNote;
   const std::vector<PairingMesh> pairingMeshes = PairingMeshes(smoke, pairingNote);
   std::vector<std::vector<Paired>> paired; // per mesh: 1 thread, 2 threads
