@@ -94,7 +94,8 @@ bool NotZero(float f)
 }
 bool NotZero(const V3& v)
 {
-  return NotZero(v.x) | NotZero(v.y) | NotZero(v.z); // no branches, see NormalizeNonZero
+  const bool x = NotZero(v.x), y = NotZero(v.y), z = NotZero(v.z);
+  return x | y | z; // no branches, see NormalizeNonZero
 }
 bool Equal(const V3& a, const V3& b)
 {

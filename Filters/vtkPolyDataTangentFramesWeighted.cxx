@@ -856,6 +856,12 @@ using OutFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
 /// One execution on one polydata, with what it needs from the filter.
 struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInput
 {
+  Internals(const BlockInput& block, vtkPolyDataTangentFrames* self)
+    : BlockInput(block)
+    , Self(self)
+  {
+  }
+
   vtkPolyDataTangentFrames* Self;
 
   vtkIdType NumberOfPoints = 0;
@@ -1325,7 +1331,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
 
 int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
 {
-  Internals run{ block, this };
+  Internals run(block, this);
   const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
   const int result = this->DoubleOutput(block.Input) ? run.Run<double>() : run.Run<float>();
   const vtkIdType triangles = run.NumberOfTriangles;

@@ -781,8 +781,9 @@ VTK_ALWAYS_INLINE void ComputeCommonPointBlock(PointBlock& b, int count)
     const glm::dvec3 n = Normalize ? Unit(stored) : stored;
     bool usable = false;
     const glm::dvec3 unit = UnitPerpendicular(n, t, usable);
-    b.Rare[i] =
-      ((Normalize & !InNormalizeRange(stored)) | !usable | !InNormalizeRange(t)) ? 1.0 : 0.0;
+    const bool rareNormal = Normalize && !InNormalizeRange(stored);
+    const bool rareTangent = !InNormalizeRange(t);
+    b.Rare[i] = (rareNormal | !usable | rareTangent) ? 1.0 : 0.0;
     for (int c = 0; c < 3; ++c)
     {
       b.UnitN[c][i] = n[c];

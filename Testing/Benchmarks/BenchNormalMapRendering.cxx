@@ -157,7 +157,7 @@ std::string ErrorCell(const nmtest::Difference& d, int bound)
 int main(int argc, char* argv[])
 {
   std::string out = ".";
-  int window = 512, quadResolution = 512, frames = 30; // quads per side: 2 r^2 triangles
+  int windowSize = 512, quadResolution = 512, frames = 30; // quads per side: 2 r^2 triangles
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -168,11 +168,11 @@ int main(int argc, char* argv[])
     }
     else if (arg == "--smoke")
     {
-      window = 128, quadResolution = 16, frames = 2;
+      windowSize = 128, quadResolution = 16, frames = 2;
     }
     else if (arg == "--window" && value)
     {
-      window = std::max(64, std::atoi(argv[++i]));
+      windowSize = std::max(64, std::atoi(argv[++i]));
     }
     else if (arg == "--quads" && value)
     {
@@ -191,7 +191,7 @@ int main(int argc, char* argv[])
     }
   }
   nmtest::FlatSetup setup;
-  setup.Width = setup.Height = window;
+  setup.Width = setup.Height = windowSize;
   const int truthResolution = 3 * setup.Width / 2; // ~1.5 quads per pixel, as in the test
   // The mapper tests' bounds: 3 levels against the CPU reference (8-bit map, bilinear
   // filtering, rounding; see TestNormalMapCPUReference), 4 against the displaced geometry
@@ -242,7 +242,9 @@ int main(int argc, char* argv[])
   std::vector<Scene> scenes;
   for (const Configuration& c : Configurations())
   {
-    Scene scene{ c, nmtest::MakeNormalTexture(normalMap) };
+    Scene scene;
+    scene.What = c;
+    scene.Texture = nmtest::MakeNormalTexture(normalMap);
     scene.Texture->SetMipmap(c.Mipmapped);
     nmtest::FlatActor a;
     a.Mesh = c.WithTangents ? withTangents : bare;

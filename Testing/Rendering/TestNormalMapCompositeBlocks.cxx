@@ -529,7 +529,6 @@ void Changes(nmtest::Checks& check)
 {
   const Halves scene;
   const nmtest::FlatSetup& setup = scene.Setup;
-  vtkPolyData* left = scene.Left;
   vtkPolyData* right = scene.Right;
   nmtest::FlatActor actor = scene.Actor;
   auto window = nmtest::MakeFlatScene(setup, { actor });

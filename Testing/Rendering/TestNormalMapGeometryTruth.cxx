@@ -16,8 +16,10 @@ int TestNormalMapGeometryTruth(int, char*[])
   setup.Parallel = true;
   // 384 x 384 quads: several per pixel, so the geometry's normals are sampled as finely as
   // the map's texels are.
-  const auto geometry =
-    nmtest::RenderFlat(setup, { nmtest::FlatActor{ nmtest::MakeDisplacedQuad(384) } });
+  const vtkSmartPointer<vtkPolyData> displacedQuad = nmtest::MakeDisplacedQuad(384);
+  nmtest::FlatActor displaced;
+  displaced.Mesh = displacedQuad;
+  const auto geometry = nmtest::RenderFlat(setup, { displaced });
 
   nmtest::FlatActor mapped;
   auto quad = nmtest::WithTangents(nmtest::MakeQuad(1));
