@@ -513,6 +513,11 @@ int WriteBuildVariant(const std::string& out, bool smoke)
   const std::string path = out + "/variants.md";
   const bool header = !std::filesystem::exists(path);
   std::ofstream md(path, std::ios::app);
+  if (!md)
+  {
+    std::cerr << "cannot write " << path << "\n";
+    return 1;
+  }
   if (header)
   {
     md << "\n### Builds: AngleWeighted (the default) against VTK's filter, one thread\n\n"
