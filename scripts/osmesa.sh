@@ -208,7 +208,7 @@ main() {
     build_vtk
   fi
   echo "== the module against the OSMesa VTK, in $build"
-  build_module "$prefix/lib/cmake/vtk-9.1" "$build" "$jobs"
+  build_module "$prefix/lib/cmake/vtk-9.1" "$build" "$jobs" -DNORMALMAPPING_WARNINGS_AS_ERRORS=ON
   run_tests
 }
 

@@ -46,7 +46,8 @@ CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWi
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DNORMALMAPPING_BUILD_BENCHMARKS=OFF -DNORMALMAPPING_BUILD_FUZZERS=ON \
-  -DNORMALMAPPING_WRAP_PYTHON=OFF -DNORMALMAPPING_TINYGLTF_FROM_SOURCE=ON >/dev/null
+  -DNORMALMAPPING_WRAP_PYTHON=OFF -DNORMALMAPPING_TINYGLTF_FROM_SOURCE=ON \
+  -DNORMALMAPPING_WARNINGS_AS_ERRORS=ON >/dev/null
 cmake --build "$build" -j "$jobs" 2>&1 | grep -E "error|warning: |Error" || true
 cmake --build "$build" -j "$jobs" >/dev/null
 
