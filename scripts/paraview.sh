@@ -68,10 +68,12 @@ make_prefix
 tool="${NORMALMAP_TOOL:-$root/build/bin/normalmap}"
 configure_and_build() {
   if [ ! -f "$build/CMakeCache.txt" ] ||
-    ! grep -qxF "NORMALMAPPING_TOOL:FILEPATH=$tool" "$build/CMakeCache.txt"; then
+    ! grep -qxF "NORMALMAPPING_TOOL:FILEPATH=$tool" "$build/CMakeCache.txt" ||
+    ! grep -qxF "NORMALMAPPING_WARNINGS_AS_ERRORS:BOOL=ON" "$build/CMakeCache.txt"; then
     cmake -S "$root/ParaView" -B "$build" -DCMAKE_BUILD_TYPE=Release \
       -DParaView_DIR="$prefix/lib/$multiarch/cmake/paraview-5.11" \
-      -DNORMALMAPPING_TOOL="$tool" >"$build/configure.log" 2>&1 ||
+      -DNORMALMAPPING_TOOL="$tool" -DNORMALMAPPING_WARNINGS_AS_ERRORS=ON \
+      >"$build/configure.log" 2>&1 ||
       { cat "$build/configure.log"; exit 1; }
   fi
   cmake --build "$build" -j 2 >"$build/build.log" 2>&1 ||
