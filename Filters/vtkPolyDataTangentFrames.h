@@ -287,14 +287,14 @@ private:
   /// One polydata's inputs as ExecuteBlock checked them, and its share of the progress.
   struct BlockInput
   {
-    vtkPolyData* Input;
-    vtkPolyData* Output;
-    vtkDataArray* UVs;
-    vtkDataArray* Normals;     ///< usable point normals, or null
-    vtkDataArray* CellNormals; ///< averaged to points when Normals is null, or null
-    bool PolysAreTriangles;
-    double ProgressBegin;
-    double ProgressEnd;
+    vtkPolyData* Input = nullptr;
+    vtkPolyData* Output = nullptr;
+    vtkDataArray* UVs = nullptr;
+    vtkDataArray* Normals = nullptr;     ///< usable point normals, or null
+    vtkDataArray* CellNormals = nullptr; ///< averaged to points when Normals is null, or null
+    bool PolysAreTriangles = false;
+    double ProgressBegin = 0.0;
+    double ProgressEnd = 1.0;
   };
 
   /// The frames of one polydata whose inputs ExecuteBlock has checked.

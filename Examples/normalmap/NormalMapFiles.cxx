@@ -349,7 +349,8 @@ std::string OneLine(const std::string& text)
   constexpr size_t maxLength = 400;
   if (line.size() > maxLength)
   {
-    line = line.substr(0, maxLength) + "...";
+    line.resize(maxLength);
+    line += "...";
   }
   return line;
 }
