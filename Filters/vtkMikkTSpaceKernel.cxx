@@ -757,7 +757,7 @@ void Kernel::SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size
     {
       const Idx slots[3] = { base, base + k + 1, base + k + 2 };
       SetupTriangle(t + k, slots, rows, row + size_t(k));
-      Tris[size_t(t + k)].Flags |=
+      Tris[size_t(t) + size_t(k)].Flags |=
         uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
     }
   }
