@@ -27,7 +27,6 @@ set(_nm_sources
 # build tree, so that the tests call its functions directly.
 set(_nm_private_headers
   Filters/vtkNormalMappingPrivate.h
-  Filters/vtkPolyDataTangentFramesMikkTSpace.h
   Filters/vtkTangentFrameKernels.h
   Rendering/vtkNormalMapShading.h)
 

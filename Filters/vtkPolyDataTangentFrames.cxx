@@ -438,6 +438,17 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
                                              : this->ComputeBlock(block);
 }
 
+bool vtkPolyDataTangentFrames::ContinueBlock(const BlockInput& block, double fraction)
+{
+  this->UpdateProgress(block.ProgressBegin + fraction * (block.ProgressEnd - block.ProgressBegin));
+  if (this->GetAbortExecute())
+  {
+    block.Output->Initialize();
+    return false;
+  }
+  return true;
+}
+
 bool vtkPolyDataTangentFrames::DoubleOutput(vtkPolyData* input) const
 {
   return this->OutputPrecision == DOUBLE_PRECISION ||

@@ -300,9 +300,18 @@ private:
   /// The frames of one polydata whose inputs ExecuteBlock has checked.
   int ComputeBlock(const BlockInput& block);
 
+  /// Reports `fraction` of a block's execution as the filter's progress; false, with the
+  /// block's output emptied, when the execution is to stop (AbortExecute).
+  bool ContinueBlock(const BlockInput& block, double fraction);
+
   /// KEEP and KEEP_VALID (vtkPolyDataTangentFramesSupplied.cxx): the supplied frames, and
   /// ComputeBlock's for the points that need it.
   int ExecuteSupplied(const BlockInput& block);
+
+  /// MIKKTSPACE (vtkPolyDataTangentFramesMikkTSpace.cxx) with these point normals: the input's,
+  /// or ones ComputeBlock computed (`computedNormals`: the output carries them). Adds to the
+  /// counts; returns the number of triangles the kernel made of the polygons and strips.
+  vtkIdType ComputeMikkTSpace(const BlockInput& block, vtkDataArray* normals, bool computedNormals);
 
   /// Whether the output arrays are double (OutputPrecision and the input points decide).
   bool DoubleOutput(vtkPolyData* input) const;

@@ -2,7 +2,7 @@
 // The MikkTSpace method of vtkPolyDataTangentFrames: input polydata -> kernel faces ->
 // per-corner frames -> per-point output (points split where their corners disagree).
 //
-// Rules (see also vtkPolyDataTangentFramesMikkTSpace.h):
+// Rules:
 // * Kernel faces: every polygon as it is (the kernel splits quads like the reference and fans
 //   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
 //   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
@@ -34,7 +34,7 @@
 //   default's bits or cancelled excluded), made perpendicular to the cell's geometric normal (sum
 //   of the cross products of its kernel triangles) and normalised; if that fails the fixed
 //   perpendicular of vtkNormalMapping::FallbackTangent; (0, 0, 0) for vertex and line cells.
-#include "vtkPolyDataTangentFramesMikkTSpace.h"
+#include "vtkPolyDataTangentFrames.h"
 
 #include "vtkNormalMappingPrivate.h"
 
@@ -50,7 +50,6 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataTangentFrames.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
@@ -58,7 +57,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <type_traits>
 #include <unordered_map>
 #include <utility>
@@ -297,7 +295,6 @@ struct Surface
   vtkIdType NumPolys = 0;
   vtkIdType NumStrips = 0;
   long long PolyCorners = 0;
-  long long StripCorners = 0;
   long long NumFaces = 0;
   const long long* FaceOffsets = nullptr;
   const long long* FaceConnectivity = nullptr;
@@ -314,23 +311,6 @@ int PositionInStripTriangle(long long i, long long j)
     return static_cast<int>(i - j);
   }
   return i == j + 1 ? 0 : (i == j ? 1 : 2);
-}
-
-/// Whether the cells with fewer than 3 points, among the first numCells of `cells`, use only
-/// ids in [0, numPoints) (the kernel checks the others, and skips these without looking at them).
-bool ShortCellIdsInRange(vtkCellArray* cells, vtkIdType numCells, vtkIdType numPoints)
-{
-  return numCells == 0 ||
-    WithCellStorage(cells,
-      [&](const auto* off, const auto* conn)
-      {
-        bool inRange = true;
-        for (vtkIdType k = 0; k < numCells; ++k)
-        {
-          inRange &= off[k + 1] - off[k] >= 3 || IdsInRange(conn, off[k], off[k + 1], numPoints);
-        }
-        return inRange;
-      });
 }
 
 /// The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle).
@@ -403,29 +383,16 @@ void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, lo
 }
 
 /**
- * Fills `s`; returns false with `problem` set when a polygon or strip with fewer than 3 points has
- * an id outside [0, numPoints). Precondition: the cell arrays' offsets are consistent (the first
- * 0, none smaller than the one before, the last the connectivity size). vtkPolyDataTangentFrames
- * rejects other input (CellArrayProblem) before it calls RunMikkTSpace, and every read of the
- * offsets, and of the ids between them, relies on it.
+ * Fills `s`. Precondition: the cell arrays' offsets are consistent (the first 0, none smaller than
+ * the one before, the last the connectivity size) and every id is a point's:
+ * vtkPolyDataTangentFrames checks both (CellArrayProblem, PointIdsInRange) before any method
+ * runs, and every read of the offsets, and of the ids between them, relies on it.
  */
-bool BuildSurface(vtkCellArray* polys,
-  vtkCellArray* strips,
-  vtkIdType numPoints,
-  Surface& s,
-  std::string& problem)
+void BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s)
 {
-  s.NumPolys = polys ? polys->GetNumberOfCells() : 0;
-  s.NumStrips = strips ? strips->GetNumberOfCells() : 0;
+  s.NumPolys = polys->GetNumberOfCells();
+  s.NumStrips = strips->GetNumberOfCells();
   s.PolyCorners = s.NumPolys > 0 ? polys->GetNumberOfConnectivityIds() : 0;
-  s.StripCorners = s.NumStrips > 0 ? strips->GetNumberOfConnectivityIds() : 0;
-  if (!ShortCellIdsInRange(polys, s.NumPolys, numPoints) ||
-    !ShortCellIdsInRange(strips, s.NumStrips, numPoints))
-  {
-    problem =
-      "a polygon or strip refers to a point id outside [0, " + std::to_string(numPoints) + ")";
-    return false;
-  }
   LayOutStrips(strips, s);
   const long long numStripTriangles = s.StripFirstTriangle.back();
   s.NumFaces = s.NumPolys + numStripTriangles;
@@ -441,7 +408,7 @@ bool BuildSurface(vtkCellArray* polys,
           s.FaceConnectivity = conn;
         }
       });
-    return true;
+    return;
   }
   s.OffsetStore.resize(static_cast<size_t>(s.NumFaces) + 1);
   s.ConnectivityStore.resize(static_cast<size_t>(s.PolyCorners + 3 * numStripTriangles));
@@ -456,7 +423,6 @@ bool BuildSurface(vtkCellArray* polys,
   }
   s.FaceOffsets = s.OffsetStore.data();
   s.FaceConnectivity = s.ConnectivityStore.data();
-  return true;
 }
 
 /// Which point each output corner uses and which frame each output point gets.
@@ -658,16 +624,16 @@ void CellTangents(const Surface& s,
 /**
  * Every output point's frame: the kernel frame Assignment gives it (the default for points no
  * corner with a frame reaches), made to meet the contract with the normal of the input point it
- * comes from (ContractFrame), its sign in the requested convention, and its bitangent.
+ * comes from (ContractFrame), its sign times `signFactor` (-1 for glTF's convention), and its
+ * bitangent.
  */
 template<typename OutArray>
-void WritePointFrames(const MikkTSpaceRequest& request,
+void WritePointFrames(float signFactor,
   const ContractNormals& contractNormals,
   const Assignment& a,
   vtkIdType numIn,
   const OutputFrames<OutArray>& arrays)
 {
-  const float signFactor = request.GLTFSign ? -1.0f : 1.0f;
   const auto pointFrame = [&](vtkIdType p) -> const CornerFrame&
   {
     if (p >= numIn)
@@ -700,26 +666,27 @@ void WritePointFrames(const MikkTSpaceRequest& request,
 }
 
 /**
- * The output: the input with the split points appended (their point data copied, the computed
- * normals too) and the corners of their frames re-pointed, the point frames, and the cell
- * tangents when asked for. The corner frames are freed once the cell tangents are made, before
- * the point data is copied, so that their memory can hold the copies.
+ * The output, with the filter's settings: the input with the split points appended (their point
+ * data copied, the computed normals too) and the corners of their frames re-pointed, the point
+ * frames, and the cell tangents when asked for. The corner frames are freed once the cell
+ * tangents are made, before the point data is copied, so that their memory can hold the copies.
  */
 template<typename OutArray>
-void WriteOutput(const MikkTSpaceRequest& request,
+void WriteOutput(vtkPolyDataTangentFrames* filter,
+  vtkPolyData* input,
+  vtkPolyData* output,
+  vtkDataArray* computedNormals,
   const Surface& s,
   std::vector<CornerFrame>& frames,
   const float* positions,
   const ContractNormals& contractNormals,
-  const Assignment& a,
-  vtkPolyData* output)
+  const Assignment& a)
 {
   using OutT = typename OutArray::ValueType;
-  vtkPolyData* input = request.Input;
   const vtkIdType numIn = input->GetNumberOfPoints();
   const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
   vtkSmartPointer<OutArray> cellTangents;
-  if (request.CellTangents)
+  if (filter->GetComputeCellTangents())
   {
     const vtkIdType numCells = input->GetNumberOfCells();
     cellTangents = NewArray<OutArray>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
@@ -729,64 +696,38 @@ void WriteOutput(const MikkTSpaceRequest& request,
     CellTangents(s, frames, positions, cOut + 3 * firstSurface);
   }
   std::vector<CornerFrame>().swap(frames);
-  const OutputFrames<OutArray> arrays(numIn + numSplits, request.Bitangents);
-  WritePointFrames(request, contractNormals, a, numIn, arrays);
-  WriteSplitOutput(input,
-    output,
-    a.SplitSource,
-    a.Repoint,
-    arrays,
-    request.ComputedNormals ? request.Normals : nullptr);
+  const OutputFrames<OutArray> arrays(numIn + numSplits, filter->GetComputeBitangents());
+  WritePointFrames(
+    filter->GetGLTFSignConvention() ? -1.0f : 1.0f, contractNormals, a, numIn, arrays);
+  WriteSplitOutput(input, output, a.SplitSource, a.Repoint, arrays, computedNormals);
   if (cellTangents)
   {
     output->GetCellData()->SetTangents(cellTangents);
   }
 }
-
-/// Why the kernel could not compute frames (empty when it could).
-std::string KernelProblem(const mikk::Result& result, vtkIdType numPoints)
-{
-  if (result.NumberOfInvalidFaces > 0)
-  {
-    return std::to_string(result.NumberOfInvalidFaces) +
-      " polygons or strip triangles use point ids outside [0, " + std::to_string(numPoints) + ")";
-  }
-  return result.TooLarge ? "the input exceeds the kernel's 32-bit index limits" : "";
-}
 } // namespace
+} // namespace detail
+} // namespace vtkNormalMapping
 
 //------------------------------------------------------------------------------
-void RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTSpaceCounts& counts)
+vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
+  vtkDataArray* normalArray,
+  bool computedNormals)
 {
-  counts = MikkTSpaceCounts();
-  vtkPolyDataTangentFrames* filter = request.Filter;
-  vtkPolyData* input = request.Input;
-  const auto fail = [&](const std::string& problem)
-  {
-    vtkErrorWithObjectMacro(
-      filter, "Cannot compute MikkTSpace frames: " << problem << "; passing the input through.");
-    output->ShallowCopy(input);
-  };
-  const auto abort = [&]() { output->Initialize(); };
+  using namespace vtkNormalMapping::detail;
+  namespace mikk = vtkNormalMapping::mikk;
+  vtkPolyData* input = block.Input;
   const vtkIdType numPoints = input->GetNumberOfPoints();
-  if (!request.TCoords || request.TCoords->GetNumberOfTuples() < numPoints || !request.Normals ||
-    request.Normals->GetNumberOfComponents() != 3 ||
-    request.Normals->GetNumberOfTuples() < numPoints)
-  {
-    return fail("it needs texture coordinates and 3-component normals for every point");
-  }
   Surface surface;
-  std::string problem;
-  if (!BuildSurface(input->GetPolys(), input->GetStrips(), numPoints, surface, problem))
-  {
-    return fail(problem);
-  }
-
+  BuildSurface(input->GetPolys(), input->GetStrips(), surface);
   std::vector<float> positionStore, normalStore, tcoordStore;
   const float* positions = KernelPositions(input->GetPoints(), numPoints, positionStore);
-  const float* normals = FloatData(request.Normals, numPoints, 3, normalStore);
-  const float* tcoords = FloatData(request.TCoords, numPoints, 2, tcoordStore);
-  filter->UpdateProgress(0.05);
+  const float* normals = FloatData(normalArray, numPoints, 3, normalStore);
+  const float* tcoords = FloatData(block.UVs, numPoints, 2, tcoordStore);
+  if (!this->ContinueBlock(block, 0.05))
+  {
+    return 0;
+  }
 
   // The kernel's corner frames, with progress from 0.05 to 0.85.
   const mikk::MeshInput kernelInput{ surface.NumFaces,
@@ -798,47 +739,51 @@ void RunMikkTSpace(const MikkTSpaceRequest& request, vtkPolyData* output, MikkTS
     tcoords };
   mikk::Result result = mikk::ComputeMikkTSpace(kernelInput,
     0,
-    [filter](double progress)
-    {
-      filter->UpdateProgress(0.05 + 0.8 * progress);
-      return filter->GetAbortExecute() != 0;
-    });
-  if (result.Aborted || filter->GetAbortExecute())
+    [&](double progress) { return !this->ContinueBlock(block, 0.05 + 0.8 * progress); });
+  if (result.Aborted)
   {
-    return abort();
+    return 0;
   }
-  problem = KernelProblem(result, numPoints);
-  if (!problem.empty())
+  if (result.TooLarge)
   {
-    return fail(problem);
+    vtkErrorMacro("Cannot compute MikkTSpace frames: the input exceeds the kernel's 32-bit index "
+                  "limits; passing the input through.");
+    block.Output->ShallowCopy(input);
+    return 0;
   }
-  counts.Triangles = result.NumberOfTriangles;
-  counts.DegenerateTriangles = result.NumberOfDegenerateTriangles;
-  counts.DefaultCorners = result.NumberOfDefaultCorners;
-  const ContractNormals contractNormals(request.Normals, numPoints, normals);
-  counts.FallbackCorners = counts.DefaultCorners + result.NumberOfCancelledCorners;
-
+  this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
+  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
+  const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
-  Assign(surface, result.Corners, numPoints, request.Splitting, assignment);
-  counts.Conflicts = assignment.Conflicts;
-  counts.SplitPoints = static_cast<vtkIdType>(assignment.SplitSource.size());
-  filter->UpdateProgress(0.9);
-  if (filter->GetAbortExecute())
+  Assign(surface, result.Corners, numPoints, this->Splitting, assignment);
+  this->NumberOfHandednessConflicts += assignment.Conflicts;
+  this->NumberOfSplitPoints += static_cast<vtkIdType>(assignment.SplitSource.size());
+  if (!this->ContinueBlock(block, 0.9))
   {
-    return abort();
+    return 0;
   }
 
-  if (request.DoublePrecision)
+  // WriteOutput for the output's array class, named by a null pointer of it.
+  const auto write = [&](auto* arrayClass)
   {
-    WriteOutput<vtkDoubleArray>(
-      request, surface, result.Corners, positions, contractNormals, assignment, output);
+    WriteOutput<std::remove_pointer_t<decltype(arrayClass)>>(this,
+      input,
+      block.Output,
+      computedNormals ? normalArray : nullptr,
+      surface,
+      result.Corners,
+      positions,
+      contractNormals,
+      assignment);
+  };
+  if (this->DoubleOutput(input))
+  {
+    write(static_cast<vtkDoubleArray*>(nullptr));
   }
   else
   {
-    WriteOutput<vtkFloatArray>(
-      request, surface, result.Corners, positions, contractNormals, assignment, output);
+    write(static_cast<vtkFloatArray*>(nullptr));
   }
-  filter->UpdateProgress(1.0);
+  this->ContinueBlock(block, 1.0);
+  return result.NumberOfTriangles;
 }
-} // namespace detail
-} // namespace vtkNormalMapping

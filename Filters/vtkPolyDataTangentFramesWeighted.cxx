@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkPolyDataTangentFrames::ComputeBlock: the shading normals, then the MikkTSpace method
-// (vtkPolyDataTangentFramesMikkTSpace.cxx) or the weighted methods, which this file holds.
+// (ComputeMikkTSpace, vtkPolyDataTangentFramesMikkTSpace.cxx) or the weighted methods, which
+// this file holds.
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkNormalMappingPrivate.h"
-#include "vtkPolyDataTangentFramesMikkTSpace.h"
 #include "vtkTangentFrameKernels.h"
 
 #include "vtkArrayDispatch.h"
@@ -876,17 +876,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   std::unique_ptr<CornerSides> Sides;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
-  bool Continue(double fraction)
-  {
-    this->Self->UpdateProgress(
-      this->ProgressBegin + fraction * (this->ProgressEnd - this->ProgressBegin));
-    if (this->Self->GetAbortExecute())
-    {
-      this->Output->Initialize();
-      return false;
-    }
-    return true;
-  }
+  bool Continue(double fraction) { return this->Self->ContinueBlock(*this, fraction); }
 
   /// The triangles (their point ids are in range: see ExecuteBlock).
   void ListTriangles()
@@ -1163,31 +1153,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     return normals;
   }
 
-  /// The MikkTSpace method (RunMikkTSpace) with these normals, and its counts.
-  int RunMikkTSpaceMethod(vtkDataArray* normals, bool computed, bool doublePrecision)
-  {
-    vtkPolyDataTangentFrames* self = this->Self;
-    vtkNormalMapping::detail::MikkTSpaceRequest request;
-    request.Filter = self;
-    request.Input = this->Input;
-    request.TCoords = this->UVs;
-    request.Normals = normals;
-    request.ComputedNormals = computed;
-    request.DoublePrecision = doublePrecision;
-    request.GLTFSign = self->GLTFSignConvention;
-    request.Splitting = self->Splitting;
-    request.Bitangents = self->ComputeBitangents;
-    request.CellTangents = self->ComputeCellTangents;
-    vtkNormalMapping::detail::MikkTSpaceCounts counts;
-    vtkNormalMapping::detail::RunMikkTSpace(request, this->Output, counts);
-    this->NumberOfTriangles = counts.Triangles;
-    self->NumberOfDegenerateTriangles += counts.DegenerateTriangles;
-    self->NumberOfFallbackPoints += counts.FallbackCorners;
-    self->NumberOfHandednessConflicts += counts.Conflicts;
-    self->NumberOfSplitPoints += counts.SplitPoints;
-    return 1;
-  }
-
   template<typename OutT>
   int Run();
   template<typename OutT, typename NormalT>
@@ -1262,9 +1227,9 @@ int vtkPolyDataTangentFrames::Internals::Run()
   }
   if (mikkTSpace)
   {
-    return this->RunMikkTSpaceMethod(computedNormals ? computedNormals.Get() : this->Normals,
-      computedNormals != nullptr,
-      std::is_same<OutT, double>::value);
+    this->NumberOfTriangles = self->ComputeMikkTSpace(
+      *this, computedNormals ? computedNormals.Get() : this->Normals, computedNormals != nullptr);
+    return 1;
   }
   // The frames follow the normals as stored: a float array whose every normal is usable as it
   // is, any other as unit vectors.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkPolyDataTangentFrames through the pipeline.
 #include "NormalMappingGrid.h"
+#include "NormalMappingProgress.h"
 #include "NormalMappingShuffle.h"
 #include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
@@ -2156,16 +2157,9 @@ TEST(PolyDataTangentFrames, ProgressAndAbort)
   auto mesh = vtkNormalMapping::MakeTorus(options);
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(mesh);
-  std::vector<double> progress;
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* list, void* amount)
-    { static_cast<std::vector<double>*>(list)->push_back(*static_cast<double*>(amount)); });
-  filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  NormalMappingTesting::ProgressRecorder recorder(filter);
   filter->Update();
-  ASSERT_GE(progress.size(), 5u);
-  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
-  EXPECT_EQ(progress.back(), 1.0);
+  recorder.ExpectRisesToOne(5);
 
   // Abort at the first progress report: a valid, empty output.
   vtkNew<vtkCallbackCommand> abortNow;

@@ -6,6 +6,7 @@
 //
 // Shared data location: see NormalMappingTestData.h (tests that need it skip without it).
 
+#include "NormalMappingProgress.h"
 #include "NormalMappingTestData.h"
 #include "NormalMappingThreads.h"
 #include "vtkMikkTSpaceKernel.h"
@@ -1330,16 +1331,9 @@ TEST(PolyDataTangentFramesMikkTSpace, ProgressAndAbort)
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetMethodToMikkTSpace();
   filter->SetInputData(input);
-  std::vector<double> progress;
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* cd, void* call)
-    { static_cast<std::vector<double>*>(cd)->push_back(*static_cast<double*>(call)); });
-  filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  NormalMappingTesting::ProgressRecorder recorder(filter);
   filter->Update();
-  ASSERT_FALSE(progress.empty());
-  EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
-  EXPECT_EQ(progress.back(), 1.0);
+  recorder.ExpectRisesToOne();
   EXPECT_GT(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   vtkNew<vtkPolyDataTangentFrames> aborting;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkPolyDataTangentFrames on composite input: every polydata block as if filtered alone, the
 // counts summed over the blocks.
+#include "NormalMappingProgress.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
 
@@ -16,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -215,4 +217,30 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
   filter->Update();
   ASSERT_NE(filter->GetOutput(), nullptr);
   EXPECT_GT(filter->GetOutput()->GetNumberOfPoints(), polyBlocks[0]->GetNumberOfPoints());
+}
+
+TEST(TangentFramesComposite, ProgressRisesOnceOverAllBlocks)
+{
+  // Three polydata blocks: each block's execution reports progress within its own share, so the
+  // events over the whole input never go back and end at 1.
+  vtkNew<vtkMultiBlockDataSet> input;
+  input->SetNumberOfBlocks(3);
+  for (unsigned int b = 0; b < 3; ++b)
+  {
+    input->SetBlock(b, Torus(b == 1, 16));
+  }
+  for (int method = vtkPolyDataTangentFrames::UNWEIGHTED;
+       method <= vtkPolyDataTangentFrames::MIKKTSPACE;
+       ++method)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    vtkNew<vtkPolyDataTangentFrames> filter;
+    filter->SetMethod(method);
+    filter->SetInputData(input);
+    NormalMappingTesting::ProgressRecorder recorder(filter);
+    filter->Update();
+    recorder.ExpectRisesToOne(2);
+    // Each block reports several steps, so the first block's all lie in its third.
+    EXPECT_LE(recorder.Values[1], 1.0 / 3.0);
+  }
 }
