@@ -355,7 +355,12 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   {
     vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
-    return input && output ? this->ExecuteBlock(input, output, 0.0, 1.0) : 0;
+    if (!input || !output)
+    {
+      return 0;
+    }
+    this->ExecuteBlock(input, output, 0.0, 1.0);
+    return 1;
   }
 
   // Composite input: every polydata leaf on its own, the counts summed over the leaves.
@@ -394,7 +399,7 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
   return 1;
 }
 
-int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
+void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   vtkPolyData* output,
   double progressBegin,
   double progressEnd)
@@ -402,11 +407,7 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   const vtkSmartPointer<vtkPolyData> plain =
     vtkNormalMapping::detail::WithPlainCellStorage(inputAsGiven);
   vtkPolyData* input = plain;
-  const auto passThrough = [&]()
-  {
-    output->ShallowCopy(input);
-    return 1;
-  };
+  const auto passThrough = [&]() { output->ShallowCopy(input); };
   // Malformed cell arrays first: nothing below (not even the cell counts) can be trusted.
   bool polysAreTriangles = true;
   if (!ReadableCells(this, input, polysAreTriangles))
@@ -429,13 +430,17 @@ int vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   // Checked once here for every method, and for kept supplied frames, which list no triangles.
   if (!vtkNormalMapping::detail::PointIdsInRange(this, input, output))
   {
-    return 1;
+    return;
   }
   const BlockInput block{
     input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
   };
-  return this->SuppliedTangents != RECOMPUTE ? this->ExecuteSupplied(block)
-                                             : this->ComputeBlock(block);
+  if (this->SuppliedTangents != RECOMPUTE)
+  {
+    this->ExecuteSupplied(block);
+    return;
+  }
+  this->ComputeBlock(block);
 }
 
 bool vtkPolyDataTangentFrames::ContinueBlock(const BlockInput& block, double fraction)

@@ -279,7 +279,7 @@ private:
 
   /// Frames for one polydata; adds to the counts. Progress goes from progressBegin to
   /// progressEnd.
-  int ExecuteBlock(vtkPolyData* input,
+  void ExecuteBlock(vtkPolyData* input,
     vtkPolyData* output,
     double progressBegin,
     double progressEnd);
@@ -298,7 +298,7 @@ private:
   };
 
   /// The frames of one polydata whose inputs ExecuteBlock has checked.
-  int ComputeBlock(const BlockInput& block);
+  void ComputeBlock(const BlockInput& block);
 
   /// Reports `fraction` of a block's execution as the filter's progress; false, with the
   /// block's output emptied, when the execution is to stop (AbortExecute).
@@ -306,7 +306,7 @@ private:
 
   /// KEEP and KEEP_VALID (vtkPolyDataTangentFramesSupplied.cxx): the supplied frames, and
   /// ComputeBlock's for the points that need it.
-  int ExecuteSupplied(const BlockInput& block);
+  void ExecuteSupplied(const BlockInput& block);
 
   /// MIKKTSPACE (vtkPolyDataTangentFramesMikkTSpace.cxx) with these point normals: the input's,
   /// or ones ComputeBlock computed (`computedNormals`: the output carries them). Adds to the

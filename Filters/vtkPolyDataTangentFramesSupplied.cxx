@@ -173,7 +173,7 @@ void vtkPolyDataTangentFrames::SetSuppliedTangentsArrayName(const std::string& n
   }
 }
 
-int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
+void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
 {
   vtkPolyData* input = block.Input;
   vtkPolyData* output = block.Output;
@@ -182,7 +182,7 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   {
     BlockInput withMesh = block;
     withMesh.Input = mesh;
-    return this->ComputeBlock(withMesh);
+    this->ComputeBlock(withMesh);
   };
   std::string problem;
   const vtkNormalMapping::SuppliedFrameArrays supplied =
@@ -194,7 +194,8 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
                   : "the input has no usable point normals (the tangents are only meaningful "
                     "with the normals they were made for)")
       << "; computing every frame with the " << GetMethodName(this->Method) << " method.");
-    return compute(input);
+    compute(input);
+    return;
   }
 
   // Which points keep their frames: only tangents the output's precision holds, with room for
@@ -234,7 +235,7 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
     compute(WithSourceIds(input));
     if (!ComputedFrameOutput(input, output, out, sourceIds))
     {
-      return 1;
+      return;
     }
   }
   else
@@ -249,5 +250,4 @@ int vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   out.SignFactor = this->GLTFSignConvention && this->Method != MIKKTSPACE ? -1.0 : 1.0;
   KeepFrames(out, supplied, normals, check, replaced, sourceIds, output->GetNumberOfPoints());
   this->UpdateProgress(block.ProgressEnd);
-  return 1;
 }

@@ -1154,9 +1154,9 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   template<typename OutT>
-  int Run();
+  void Run();
   template<typename OutT, typename NormalT>
-  int RunWeighted(TangentMethod method,
+  void RunWeighted(TangentMethod method,
     vtkSmartPointer<OutArray<OutT>> computedNormals,
     const ShadingNormals<NormalT>& normals);
 
@@ -1195,7 +1195,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 };
 
 template<typename OutT>
-int vtkPolyDataTangentFrames::Internals::Run()
+void vtkPolyDataTangentFrames::Internals::Run()
 {
   vtkPolyDataTangentFrames* self = this->Self;
   vtkPolyData* input = this->Input;
@@ -1218,7 +1218,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
     this->ListTriangles();
     if (!this->Continue(0.2))
     {
-      return 1;
+      return;
     }
   }
   if (!this->Normals)
@@ -1229,7 +1229,7 @@ int vtkPolyDataTangentFrames::Internals::Run()
   {
     this->NumberOfTriangles = self->ComputeMikkTSpace(
       *this, computedNormals ? computedNormals.Get() : this->Normals, computedNormals != nullptr);
-    return 1;
+    return;
   }
   // The frames follow the normals as stored: a float array whose every normal is usable as it
   // is, any other as unit vectors.
@@ -1238,16 +1238,17 @@ int vtkPolyDataTangentFrames::Internals::Run()
   auto* floats = vtkFloatArray::FastDownCast(normals);
   if (floats && unusable == 0)
   {
-    return this->RunWeighted<OutT>(
+    this->RunWeighted<OutT>(
       method, computedNormals, ShadingNormals<float>{ floats->GetPointer(0), false });
+    return;
   }
   Buffer<dvec3> unitNormals;
-  return this->RunWeighted<OutT>(
+  this->RunWeighted<OutT>(
     method, computedNormals, this->UnitNormals(normals, unusable, unitNormals));
 }
 
 template<typename OutT, typename NormalT>
-int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
+void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkSmartPointer<OutArray<OutT>> computedNormals,
   const ShadingNormals<NormalT>& normals)
 {
@@ -1272,7 +1273,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   self->NumberOfFallbackPoints += static_cast<vtkIdType>(fallbacks.size());
   if (!this->Continue(0.7))
   {
-    return 1;
+    return;
   }
   if (!fallbacks.empty())
   {
@@ -1282,7 +1283,7 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
   if (!this->Continue(0.85))
   {
-    return 1;
+    return;
   }
   self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
   // Freed before the output copies the point data and the connectivity, the sums' and kinds'
@@ -1291,14 +1292,20 @@ int vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   kinds.reset();
   this->WriteOutput<OutT>(splits, frames, computedNormals);
   this->Continue(1.0);
-  return 1;
 }
 
-int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
+void vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
 {
   Internals run(block, this);
   const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
-  const int result = this->DoubleOutput(block.Input) ? run.Run<double>() : run.Run<float>();
+  if (this->DoubleOutput(block.Input))
+  {
+    run.Run<double>();
+  }
+  else
+  {
+    run.Run<float>();
+  }
   const vtkIdType triangles = run.NumberOfTriangles;
   if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
   {
@@ -1311,5 +1318,4 @@ int vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
                                       "coordinates, or store the positions in double or nearer "
                                       "the origin.");
   }
-  return result;
 }
