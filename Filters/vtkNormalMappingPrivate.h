@@ -17,6 +17,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataTangentFrames.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTangentFrameKernels.h"
 #include "vtkType.h"
@@ -258,6 +259,39 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tup
   array->SetName(name);
   array->SetNumberOfComponents(components);
   array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+/**
+ * The output's cell tangents, of array class ArrayT: per polygon, then per strip (cell c of
+ * them), sums(c, t, n) adds the cell's tangents to t and its normals, weighted by area, to n, and
+ * the cell's tangent is the part of t perpendicular to the unit n (PerpendicularTangent);
+ * (0, 0, 0) for vertex and line cells.
+ */
+template<typename ArrayT, typename Sums>
+vtkSmartPointer<ArrayT> NewCellTangents(vtkPolyData* input, const Sums& sums)
+{
+  using T = typename ArrayT::ValueType;
+  const vtkIdType numCells = input->GetNumberOfCells();
+  auto array = NewArray<ArrayT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
+  T* out = array->GetPointer(0);
+  std::fill(out, out + 3 * numCells, T(0));
+  out += 3 * (input->GetNumberOfVerts() + input->GetNumberOfLines());
+  vtkSMPTools::For(0,
+    input->GetNumberOfPolys() + input->GetNumberOfStrips(),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType c = begin; c < end; ++c)
+      {
+        glm::dvec3 t(0.0), n(0.0);
+        sums(c, t, n);
+        const glm::dvec3 unit = PerpendicularTangent(SafeNormalize(n), t);
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * c + k] = static_cast<T>(unit[k]);
+        }
+      }
+    });
   return array;
 }
 

@@ -561,64 +561,51 @@ void Assign(const Surface& s,
 }
 
 /**
- * Cell tangents from the kernel's corner frames: per polygon or strip, the sum of its faces'
- * corner tangents (default and cancelled ones left out) made perpendicular to the unit sum of
- * its faces' area vectors; `out` gets 3 values per polygon, then per strip.
+ * Cell c's sums for NewCellTangents (polygons, then strips) from the kernel's corner frames: the
+ * tangents of its faces' corners (default and cancelled ones left out), and its faces' area
+ * vectors (the cross products of their fan triangles).
  */
-template<typename OutT>
-void CellTangents(const Surface& s,
+void CellSums(const Surface& s,
   const std::vector<CornerFrame>& frames,
   const float* positions,
-  OutT* out)
+  vtkIdType cell,
+  glm::dvec3& t,
+  glm::dvec3& n)
 {
-  vtkSMPTools::For(0,
-    s.NumPolys + s.NumStrips,
-    [&](vtkIdType b, vtkIdType e)
+  // Kernel faces of this cell: polygon c is face c; strip k its strip triangles.
+  long long fb = cell, fe = cell + 1;
+  if (cell >= s.NumPolys)
+  {
+    const vtkIdType k = cell - s.NumPolys;
+    fb = s.NumPolys + s.StripFirstTriangle[k];
+    fe = s.NumPolys + s.StripFirstTriangle[k + 1];
+  }
+  const auto position = [&](long long c)
+  {
+    const float* p = positions + 3 * s.FaceConnectivity[c];
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  for (long long f = fb; f < fe; ++f)
+  {
+    const long long cb = s.FaceOffsets[f], ce = s.FaceOffsets[f + 1];
+    if (ce - cb < 3)
     {
-      for (vtkIdType cell = b; cell < e; ++cell)
+      continue; // no frame (and an empty polygon has no first corner to read)
+    }
+    for (long long c = cb; c < ce; ++c)
+    {
+      const CornerFrame& cf = frames[static_cast<size_t>(c)];
+      if (!IsDefault(cf) && !IsCancelled(cf))
       {
-        // Kernel faces of this cell: polygon c is face c; strip k its strip triangles.
-        long long fb = cell, fe = cell + 1;
-        if (cell >= s.NumPolys)
-        {
-          const vtkIdType k = cell - s.NumPolys;
-          fb = s.NumPolys + s.StripFirstTriangle[k];
-          fe = s.NumPolys + s.StripFirstTriangle[k + 1];
-        }
-        glm::dvec3 t(0.0), n(0.0);
-        for (long long f = fb; f < fe; ++f)
-        {
-          const long long cb = s.FaceOffsets[f], ce = s.FaceOffsets[f + 1];
-          if (ce - cb < 3)
-          {
-            continue; // no frame (and an empty polygon has no first corner to read)
-          }
-          for (long long c = cb; c < ce; ++c)
-          {
-            const CornerFrame& cf = frames[static_cast<size_t>(c)];
-            if (!IsDefault(cf) && !IsCancelled(cf))
-            {
-              t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
-            }
-          }
-          const float* p0 = positions + 3 * s.FaceConnectivity[cb];
-          const glm::dvec3 o(p0[0], p0[1], p0[2]);
-          for (long long c = cb + 1; c + 1 < ce; ++c)
-          {
-            const float* p1 = positions + 3 * s.FaceConnectivity[c];
-            const float* p2 = positions + 3 * s.FaceConnectivity[c + 1];
-            n +=
-              glm::cross(glm::dvec3(p1[0], p1[1], p1[2]) - o, glm::dvec3(p2[0], p2[1], p2[2]) - o);
-          }
-        }
-        n = SafeNormalize(n);
-        const glm::dvec3 unit = PerpendicularTangent(n, t);
-        for (int k = 0; k < 3; ++k)
-        {
-          out[3 * cell + k] = static_cast<OutT>(unit[k]);
-        }
+        t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
-    });
+    }
+    const glm::dvec3 o = position(cb);
+    for (long long c = cb + 1; c + 1 < ce; ++c)
+    {
+      n += glm::cross(position(c) - o, position(c + 1) - o);
+    }
+  }
 }
 
 /**
@@ -682,18 +669,13 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   const ContractNormals& contractNormals,
   const Assignment& a)
 {
-  using OutT = typename OutArray::ValueType;
   const vtkIdType numIn = input->GetNumberOfPoints();
   const vtkIdType numSplits = static_cast<vtkIdType>(a.SplitSource.size());
   vtkSmartPointer<OutArray> cellTangents;
   if (filter->GetComputeCellTangents())
   {
-    const vtkIdType numCells = input->GetNumberOfCells();
-    cellTangents = NewArray<OutArray>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, numCells);
-    OutT* cOut = cellTangents->GetPointer(0);
-    std::fill(cOut, cOut + 3 * numCells, OutT(0));
-    const vtkIdType firstSurface = input->GetNumberOfVerts() + input->GetNumberOfLines();
-    CellTangents(s, frames, positions, cOut + 3 * firstSurface);
+    cellTangents = NewCellTangents<OutArray>(input,
+      [&](vtkIdType c, glm::dvec3& t, glm::dvec3& n) { CellSums(s, frames, positions, c, t, n); });
   }
   std::vector<CornerFrame>().swap(frames);
   const OutputFrames<OutArray> arrays(numIn + numSplits, filter->GetComputeBitangents());

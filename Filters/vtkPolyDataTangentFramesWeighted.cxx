@@ -646,37 +646,6 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
   return repoint;
 }
 
-/// Cell tangents: per polygon or strip, its triangles' area-weighted tangents on the plane of
-/// their area-weighted normals; (0, 0, 0) for vertex and line cells.
-template<typename OutT>
-void CellTangentArray(const Triangles& tris,
-  const TriangleFrames& frames,
-  vtkIdType firstSurfaceCell,
-  vtkIdType numCells,
-  OutT* out)
-{
-  std::fill(out, out + 3 * numCells, OutT(0));
-  vtkSMPTools::For(0,
-    tris.NumberOfCells,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType c = begin; c < end; ++c)
-      {
-        dvec3 t(0.0), n(0.0);
-        for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
-        {
-          t += frames.Area[i] * frames.TangentOf(i);
-          n += frames.Area[i] * SafeNormalize(frames.NormalOf(i));
-        }
-        const dvec3 unit = PerpendicularTangent(SafeNormalize(n), t);
-        for (int k = 0; k < 3; ++k)
-        {
-          out[3 * (firstSurfaceCell + c) + k] = static_cast<OutT>(unit[k]);
-        }
-      }
-    });
-}
-
 /**
  * What point p's sums make of it, the handedness (0: +1, 1: -1) whose frame it takes, and that
  * side's tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it takes
@@ -1185,11 +1154,19 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
     {
-      const vtkIdType numCells = this->Input->GetNumberOfCells();
-      auto cellTangents = NewOutArray<OutT>(TangentsArrayName(), 3, numCells);
-      CellTangentArray(
-        this->Tris, *this->Frames, this->FirstSurfaceCell, numCells, cellTangents->GetPointer(0));
-      this->Output->GetCellData()->SetTangents(cellTangents);
+      // Per cell, its triangles' area-weighted tangents and normals.
+      const Triangles& tris = this->Tris;
+      const TriangleFrames& f = *this->Frames;
+      this->Output->GetCellData()->SetTangents(
+        vtkNormalMapping::detail::NewCellTangents<OutArray<OutT>>(this->Input,
+          [&](vtkIdType c, dvec3& t, dvec3& n)
+          {
+            for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
+            {
+              t += f.Area[i] * f.TangentOf(i);
+              n += f.Area[i] * SafeNormalize(f.NormalOf(i));
+            }
+          }));
     }
   }
 };
