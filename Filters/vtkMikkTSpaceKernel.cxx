@@ -28,7 +28,6 @@
 
 #include <vtkSMPThreadLocal.h>
 #include <vtkSMPTools.h>
-#include <vtkVersionMacros.h>
 
 #include <algorithm>
 #include <array>
@@ -1479,7 +1478,10 @@ bool Kernel::Run(const Aborted& aborted)
   return true;
 }
 
-Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
+} // namespace
+
+//------------------------------------------------------------------------------
+Result ComputeMikkTSpace(const MeshInput& in, const std::function<bool(double)>& progress)
 {
   Result res;
   if (!CheckInput(in, res))
@@ -1507,32 +1509,6 @@ Result Compute(const MeshInput& in, const std::function<bool(double)>& progress)
   {
     progress(1.0);
   }
-  return res;
-}
-
-} // namespace
-
-//------------------------------------------------------------------------------
-Result ComputeMikkTSpace(const MeshInput& in,
-  int numThreads,
-  const std::function<bool(double progress)>& progressAndAbort)
-{
-  if (numThreads <= 0)
-  {
-    return Compute(in, progressAndAbort);
-  }
-  Result res;
-  const auto compute = [&]() { res = Compute(in, progressAndAbort); };
-#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
-  // From VTK 9.4 the TBB backend takes a scope's count when it is at most the enclosing one.
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads }, compute);
-#else
-  // VTK 9.1 to 9.3's TBB backend ignores a LocalScope whose thread count equals that of the
-  // previous LocalScope. Entering a scope with a different count first makes the requested one
-  // effective.
-  vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads == 1 ? 2 : 1 },
-    [&]() { vtkSMPTools::LocalScope(vtkSMPTools::Config{ numThreads }, compute); });
-#endif
   return res;
 }
 

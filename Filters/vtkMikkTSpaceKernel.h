@@ -116,16 +116,14 @@ inline bool IsCancelled(const CornerFrame& f)
 }
 
 /**
- * Compute MikkTSpace tangents for every face corner.
- * numThreads <= 0: vtkSMPTools default; > 0: at most that many threads (a vtkSMPTools
- * LocalScope).
+ * Compute MikkTSpace tangents for every face corner, with vtkSMPTools' threads (those of the
+ * enclosing LocalScope, if any).
  * Deterministic: identical output for any thread count.
  * progressAndAbort: optional, called from the calling thread between phases with a progress in
  * [0,1]; returning true stops the computation (Result::Aborted, corners set to the default).
  * Empty Normals/TCoords/Positions pointers with a non-empty mesh yield all-default corners.
  */
 Result ComputeMikkTSpace(const MeshInput& in,
-  int numThreads = 0,
   const std::function<bool(double progress)>& progressAndAbort = {});
 
 } // namespace mikk

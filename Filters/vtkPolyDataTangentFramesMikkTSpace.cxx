@@ -720,7 +720,6 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     normals,
     tcoords };
   mikk::Result result = mikk::ComputeMikkTSpace(kernelInput,
-    0,
     [&](double progress) { return !this->ContinueBlock(block, 0.05 + 0.8 * progress); });
   if (result.Aborted)
   {

@@ -171,9 +171,9 @@ Comparison Compare(const Bench::PairingMesh& mesh, int rounds)
   filter->SetInputData(mesh.Mesh);
   bool referenceOk = true;
   Bench::Rounds seconds;
-  // One thread for the whole measurement: the kernel then runs with the scope's thread count
-  // (numThreads 0), as the filter does, so that neither time includes entering a thread scope
-  // (VTK's TBB backend makes a task arena for each).
+  // One thread for the whole measurement: the kernel and the filter run with the scope's thread
+  // count, so that neither time includes entering a thread scope (VTK's TBB backend makes a task
+  // arena for each).
   NormalMappingTesting::WithThreads(1,
     [&]()
     {
@@ -279,8 +279,9 @@ private:
   std::mt19937 Engine{ 1 };
 };
 
-/// The original and the kernel (one thread) on `count` random meshes (RandomMeshes), corner by
-/// corner; the section's paragraph in `md`. False when the original failed on one.
+/// The original and the kernel (with the calling scope's threads) on `count` random meshes
+/// (RandomMeshes), corner by corner; the section's paragraph in `md`. False when the original
+/// failed on one.
 bool CompareRandomMeshes(long long count, std::ostringstream& md)
 {
   RandomMeshes meshes;
@@ -292,7 +293,7 @@ bool CompareRandomMeshes(long long count, std::ostringstream& md)
     const mikk::MeshInput in = mesh.Input();
     Reference reference(in);
     ok = reference.Run() && ok;
-    const mikk::Result kernel = mikk::ComputeMikkTSpace(in, 1);
+    const mikk::Result kernel = mikk::ComputeMikkTSpace(in);
     long long here = 0;
     for (size_t c = 0; c < reference.Corners.size(); ++c)
     {
@@ -399,7 +400,8 @@ int RunPaired(const std::string& out, bool smoke, int rounds)
 #ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
   ok = ComparePaired(smoke, rounds, md);
   md << "\n";
-  ok = CompareRandomMeshes(smoke ? 1000 : 100000, md) && ok;
+  NormalMappingTesting::WithThreads(
+    1, [&]() { ok = CompareRandomMeshes(smoke ? 1000 : 100000, md) && ok; });
 #else
   (void)smoke;
   (void)rounds;
@@ -441,12 +443,16 @@ int RunThroughput(int argc, char** argv)
       {
         const mikk::MeshInput in = kernelMeshes[i].Input();
         long long degenerate = 0;
-        for (auto _ : state)
-        {
-          mikk::Result r = mikk::ComputeMikkTSpace(in, static_cast<int>(state.range(0)));
-          degenerate = r.NumberOfDegenerateTriangles;
-          benchmark::DoNotOptimize(r.Corners.data());
-        }
+        NormalMappingTesting::WithThreads(static_cast<int>(state.range(0)),
+          [&]()
+          {
+            for (auto _ : state)
+            {
+              mikk::Result r = mikk::ComputeMikkTSpace(in);
+              degenerate = r.NumberOfDegenerateTriangles;
+              benchmark::DoNotOptimize(r.Corners.data());
+            }
+          });
         state.SetItemsProcessed(state.iterations() * triangles);
         state.counters["degenerate"] = static_cast<double>(degenerate);
       })
