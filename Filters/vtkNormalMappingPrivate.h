@@ -237,18 +237,33 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
   outPD->Initialize();
   for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
   {
+    const int attribute = inPD->IsArrayAnAttribute(k);
+    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+    {
+      continue; // copies would repeat their source's id (VTK's filters drop them too)
+    }
     vtkAbstractArray* array = inPD->GetAbstractArray(k);
     const char* name = array->GetName();
     const bool isReplaced =
       name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
     outPD->AddArray(isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
                                : ExtendPointArray(array, numIn, source));
-    const int attribute = inPD->IsArrayAnAttribute(k);
     if (attribute >= 0)
     {
       outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
     }
   }
+}
+
+/**
+ * Adds `tangents` to `attributes` (in place of an array of the same name) as the active
+ * tangents. An array of another name that held the attribute (a reader's tangents) stays, as
+ * other point or cell data does: SetTangents would remove it.
+ */
+inline void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents)
+{
+  attributes->AddArray(tangents);
+  attributes->SetActiveTangents(tangents->GetName());
 }
 
 /// A new array of class ArrayT with the given name, components and tuples (values not set).
@@ -368,7 +383,7 @@ struct OutputFrames
   /// Adds them to `pd`, the tangents as its active tangents.
   void AddTo(vtkPointData* pd) const
   {
-    pd->SetTangents(this->Tangents);
+    AddActiveTangents(pd, this->Tangents);
     pd->AddArray(this->Signs);
     if (this->Bitangents)
     {

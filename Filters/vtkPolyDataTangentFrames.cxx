@@ -10,6 +10,7 @@
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDemandDrivenPipeline.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -394,7 +395,13 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     vtkNew<vtkPolyData> output;
     this->ExecuteBlock(
       input, output, static_cast<double>(leaf) / leaves, static_cast<double>(leaf + 1) / leaves);
+    // The executive passes a lone polydata's field data (names, metadata), not a block's.
+    output->GetFieldData()->PassData(input->GetFieldData());
     outComposite->SetDataSet(it, output);
+  }
+  if (this->GetAbortExecute())
+  {
+    outComposite->Initialize(); // empty, as an aborted polydata execution leaves its output
   }
   return 1;
 }

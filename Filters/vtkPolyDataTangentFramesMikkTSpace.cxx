@@ -684,7 +684,7 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   WriteSplitOutput(input, output, a.SplitSource, a.Repoint, arrays, computedNormals);
   if (cellTangents)
   {
-    output->GetCellData()->SetTangents(cellTangents);
+    AddActiveTangents(output->GetCellData(), cellTangents);
   }
 }
 } // namespace

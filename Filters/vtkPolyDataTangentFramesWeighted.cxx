@@ -1157,7 +1157,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       // Per cell, its triangles' area-weighted tangents and normals.
       const Triangles& tris = this->Tris;
       const TriangleFrames& f = *this->Frames;
-      this->Output->GetCellData()->SetTangents(
+      vtkNormalMapping::detail::AddActiveTangents(this->Output->GetCellData(),
         vtkNormalMapping::detail::NewCellTangents<OutArray<OutT>>(this->Input,
           [&](vtkIdType c, dvec3& t, dvec3& n)
           {

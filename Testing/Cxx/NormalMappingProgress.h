@@ -3,6 +3,7 @@
 #ifndef NormalMappingProgress_h
 #define NormalMappingProgress_h
 
+#include "vtkAlgorithm.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkNew.h"
@@ -36,6 +37,28 @@ struct ProgressRecorder
     EXPECT_TRUE(std::is_sorted(this->Values.begin(), this->Values.end()));
     EXPECT_GE(this->Values.front(), 0.0);
     EXPECT_EQ(this->Values.back(), 1.0);
+  }
+};
+
+/// Sets AbortExecute on `algorithm` once the progress it reports passes `threshold`.
+struct AbortAfter
+{
+  double Threshold;
+  vtkNew<vtkCallbackCommand> Callback;
+
+  AbortAfter(vtkAlgorithm* algorithm, double threshold)
+    : Threshold(threshold)
+  {
+    this->Callback->SetClientData(&this->Threshold);
+    this->Callback->SetCallback(
+      [](vtkObject* caller, unsigned long, void* limit, void* amount)
+      {
+        if (*static_cast<double*>(amount) > *static_cast<double*>(limit))
+        {
+          static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+        }
+      });
+    algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
   }
 };
 }

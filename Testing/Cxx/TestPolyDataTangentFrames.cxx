@@ -16,6 +16,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkIntArray.h"
 #include "vtkLookupTable.h"
@@ -50,6 +51,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -688,6 +690,74 @@ TEST(PolyDataTangentFrames, SplitOutputPutsItsFrameArraysWhereTheUnsplitOutputDo
         EXPECT_EQ(b->GetComponent(out->GetNumberOfPoints() - 1, 0) == 7.0, !bitangents);
       }
       EXPECT_EQ(layout[1], layout[0]);
+    }
+  }
+}
+
+TEST(PolyDataTangentFrames, InputTangentsOfAnotherNamePassThrough)
+{
+  // A reader's tangents under a name of their own (glTF's TANGENT) hold the TANGENTS attribute.
+  // The output's Tangents take the attribute, and the input's array stays point data like any
+  // other, split with the points, for every method.
+  auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
+  vtkNew<vtkFloatArray> supplied;
+  supplied->SetName("TANGENT");
+  supplied->SetNumberOfComponents(3);
+  supplied->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  supplied->Fill(7.0);
+  mesh->GetPointData()->SetTangents(supplied);
+  for (int method = vtkPolyDataTangentFrames::UNWEIGHTED;
+       method <= vtkPolyDataTangentFrames::MIKKTSPACE;
+       ++method)
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    auto out = RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
+    ASSERT_GT(out->GetNumberOfPoints(), mesh->GetNumberOfPoints()); // the seams split
+    vtkDataArray* active = out->GetPointData()->GetTangents();
+    ASSERT_NE(active, nullptr);
+    EXPECT_STREQ(active->GetName(), vtkPolyDataTangentFrames::TangentsArrayName());
+    vtkDataArray* passed = out->GetPointData()->GetArray("TANGENT");
+    ASSERT_NE(passed, nullptr) << "the input's tangents are gone";
+    ASSERT_EQ(passed->GetNumberOfTuples(), out->GetNumberOfPoints());
+    EXPECT_EQ(passed->GetComponent(out->GetNumberOfPoints() - 1, 2), 7.0);
+  }
+}
+
+TEST(PolyDataTangentFrames, SplitPointsCopyNoGlobalIds)
+{
+  // Global ids name each point once (VTK's parallel filters match points by them). Split copies
+  // would repeat their source's, so an output with split points has none, as
+  // vtkPolyDataNormals' has none; without split points the ids pass through.
+  auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
+  vtkNew<vtkIdTypeArray> ids;
+  ids->SetName("GlobalIds");
+  ids->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  std::iota(ids->GetPointer(0), ids->GetPointer(0) + mesh->GetNumberOfPoints(), 100);
+  mesh->GetPointData()->SetGlobalIds(ids);
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    for (bool splitting : { true, false })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (splitting ? ", splitting" : ", no splitting"));
+      auto out = RunFrames(mesh,
+        [&](vtkPolyDataTangentFrames* f)
+        {
+          f->SetMethod(method);
+          f->SetSplitting(splitting);
+        });
+      ASSERT_EQ(out->GetNumberOfPoints() > mesh->GetNumberOfPoints(), splitting);
+      vtkPointData* pd = out->GetPointData();
+      if (splitting)
+      {
+        EXPECT_EQ(pd->GetGlobalIds(), nullptr);
+        EXPECT_EQ(pd->GetAbstractArray("GlobalIds"), nullptr);
+      }
+      else
+      {
+        EXPECT_EQ(pd->GetGlobalIds(), ids.Get());
+      }
     }
   }
 }

@@ -1339,16 +1339,7 @@ TEST(PolyDataTangentFramesMikkTSpace, ProgressAndAbort)
   vtkNew<vtkPolyDataTangentFrames> aborting;
   aborting->SetMethodToMikkTSpace();
   aborting->SetInputData(input);
-  vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback(
-    [](vtkObject* caller, unsigned long, void*, void* call)
-    {
-      if (*static_cast<double*>(call) > 0.2)
-      {
-        static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-      }
-    });
-  aborting->AddObserver(vtkCommand::ProgressEvent, abort);
+  NormalMappingTesting::AbortAfter abort(aborting, 0.2);
   aborting->Update();
   EXPECT_EQ(aborting->GetOutput()->GetNumberOfPoints(), 0);
   EXPECT_EQ(aborting->GetOutput()->GetNumberOfCells(), 0);

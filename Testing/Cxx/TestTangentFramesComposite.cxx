@@ -8,12 +8,14 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
 
 #include <gtest/gtest.h>
 
@@ -243,4 +245,55 @@ TEST(TangentFramesComposite, ProgressRisesOnceOverAllBlocks)
     // Each block reports several steps, so the first block's all lie in its third.
     EXPECT_LE(recorder.Values[1], 1.0 / 3.0);
   }
+}
+
+TEST(TangentFramesComposite, BlocksKeepTheirFieldData)
+{
+  // Readers keep a block's metadata (material and mesh names) in its field data, which the
+  // block's output keeps, as a polydata filtered alone does, split or not.
+  vtkNew<vtkMultiBlockDataSet> input;
+  input->SetNumberOfBlocks(2);
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto block = Torus(b == 1, 8);
+    vtkNew<vtkStringArray> name;
+    name->SetName("MaterialName");
+    name->InsertNextValue("material " + std::to_string(b));
+    block->GetFieldData()->AddArray(name);
+    input->SetBlock(b, block);
+  }
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(input);
+  filter->Update();
+  auto* output = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(output, nullptr);
+  for (unsigned int b = 0; b < 2; ++b)
+  {
+    auto* block = vtkPolyData::SafeDownCast(output->GetBlock(b));
+    ASSERT_NE(block, nullptr);
+    auto* name =
+      vtkStringArray::SafeDownCast(block->GetFieldData()->GetAbstractArray("MaterialName"));
+    ASSERT_NE(name, nullptr) << "block " << b;
+    EXPECT_EQ(name->GetValue(0), "material " + std::to_string(b));
+  }
+  EXPECT_GT(filter->GetNumberOfSplitPoints(), 0);
+}
+
+TEST(TangentFramesComposite, AbortLeavesAnEmptyOutput)
+{
+  // Aborted in the second of three blocks: no block's frames are left, not even the first's,
+  // as polydata input leaves an empty output.
+  vtkNew<vtkMultiBlockDataSet> input;
+  input->SetNumberOfBlocks(3);
+  for (unsigned int b = 0; b < 3; ++b)
+  {
+    input->SetBlock(b, Torus(false, 16));
+  }
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(input);
+  NormalMappingTesting::AbortAfter abort(filter, 0.5);
+  filter->Update();
+  auto* output = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(output, nullptr);
+  EXPECT_EQ(output->GetNumberOfBlocks(), 0u);
 }
