@@ -213,7 +213,8 @@ public:
   /// NumberOfHandednessConflicts when Splitting is on; MikkTSpace can give a point more than two
   /// frames (UV seams, hard normals, several mirror groups), so it may add more.
   vtkGetMacro(NumberOfSplitPoints, vtkIdType);
-  /// Points whose input normal was zero or non-finite (the geometric normal was used).
+  /// Points whose input normal was zero or non-finite: the weighted methods use the geometric
+  /// normal there; MIKKTSPACE, like the reference, has no normal there (its bitangent is zero).
   vtkGetMacro(NumberOfInvalidNormals, vtkIdType);
   /// With KEEP or KEEP_VALID: supplied frames replaced by computed ones (input points; their
   /// split copies are not counted again).
