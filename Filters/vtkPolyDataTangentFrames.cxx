@@ -440,7 +440,7 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
     return;
   }
   const BlockInput block{
-    input, output, uvs, normals, cellNormals, polysAreTriangles, progressBegin, progressEnd
+    input, output, uvs, normals, cellNormals, polysAreTriangles, nullptr, progressBegin, progressEnd
   };
   if (this->SuppliedTangents != RECOMPUTE)
   {

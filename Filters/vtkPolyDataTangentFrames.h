@@ -294,6 +294,9 @@ private:
     vtkDataArray* Normals = nullptr;     ///< usable point normals, or null
     vtkDataArray* CellNormals = nullptr; ///< averaged to points when Normals is null, or null
     bool PolysAreTriangles = false;
+    /// Per point, non-zero where the caller keeps the point's supplied frame (KEEP,
+    /// KEEP_VALID): such a point is never split nor counted as a conflict. Null: none.
+    const unsigned char* KeptPoints = nullptr;
     double ProgressBegin = 0.0;
     double ProgressEnd = 1.0;
   };

@@ -464,7 +464,8 @@ vtkIdType SplitPointOf(long long p,
  * every point's frame is that of its first corner (a.PointFrame). A point is a conflict when
  * another of its corners carries a different frame, or when one of its strip corners has strip
  * triangles that disagree. With `splitting` each other frame of a point becomes a new point, in
- * the order of the corners, and the corners carrying it are re-pointed to it. The point keeps a
+ * the order of the corners, and the corners carrying it are re-pointed to it. Points of `kept`
+ * (non-zero per point whose frame the caller keeps, or null) are neither. The point keeps a
  * copy of its frame (kernel frames have Sign +1 or -1, so Sign 0 marks a point not reached yet):
  * each corner then reads one entry per point instead of a point entry and a corner entry.
  */
@@ -472,12 +473,17 @@ void Assign(const Surface& s,
   const std::vector<CornerFrame>& frames,
   vtkIdType numPoints,
   bool splitting,
+  const unsigned char* kept,
   Assignment& a)
 {
   a.PointFrame.assign(static_cast<size_t>(numPoints), CornerFrame{ { 0.0f, 0.0f, 0.0f }, 0.0f });
   std::vector<unsigned char> conflict;
   const auto markConflict = [&](long long p)
   {
+    if (kept && kept[p])
+    {
+      return;
+    }
     if (conflict.empty())
     {
       conflict.assign(static_cast<size_t>(numPoints), 0);
@@ -553,7 +559,7 @@ void Assign(const Surface& s,
   {
     const long long p = conn[slot];
     markConflict(p);
-    if (splitting)
+    if (splitting && !(kept && kept[p]))
     {
       a.Repoint.emplace_back(c, SplitPointOf(p, kernelFrames[slot], extra[p], numPoints, a));
     }
@@ -736,7 +742,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
   this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
-  Assign(surface, result.Corners, numPoints, this->Splitting, assignment);
+  Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
   this->NumberOfHandednessConflicts += assignment.Conflicts;
   this->NumberOfSplitPoints += static_cast<vtkIdType>(assignment.SplitSource.size());
   if (!this->ContinueBlock(block, 0.9))

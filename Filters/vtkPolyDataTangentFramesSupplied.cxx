@@ -178,10 +178,13 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   vtkPolyData* input = block.Input;
   vtkPolyData* output = block.Output;
   vtkDataArray* normals = block.Normals;
-  const auto compute = [&](vtkPolyData* mesh)
+  // Frames computed for `mesh` (the input's points), except that the points of `kept` (null:
+  // none) keep theirs: they are neither split nor counted as conflicts.
+  const auto compute = [&](vtkPolyData* mesh, const unsigned char* kept)
   {
     BlockInput withMesh = block;
     withMesh.Input = mesh;
+    withMesh.KeptPoints = kept;
     this->ComputeBlock(withMesh);
   };
   std::string problem;
@@ -194,7 +197,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
                   : "the input has no usable point normals (the tangents are only meaningful "
                     "with the normals they were made for)")
       << "; computing every frame with the " << GetMethodName(this->Method) << " method.");
-    compute(input);
+    compute(input, nullptr);
     return;
   }
 
@@ -232,7 +235,12 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   vtkSmartPointer<vtkIdTypeArray> sourceIds;
   if (numReplaced > 0 || this->ComputeCellTangents)
   {
-    compute(WithSourceIds(input));
+    std::vector<unsigned char> kept(check.Defects.size());
+    std::transform(check.Defects.begin(),
+      check.Defects.end(),
+      kept.begin(),
+      [replaced](unsigned char defects) { return (defects & replaced) == 0; });
+    compute(WithSourceIds(input), kept.data());
     if (!ComputedFrameOutput(input, output, out, sourceIds))
     {
       return;

@@ -399,15 +399,19 @@ struct ScatteredSums
     return std::min(owner * this->PointsPerOwner, static_cast<vtkIdType>(this->First.size()));
   }
 
-  /// The number of points with both handednesses (mirror seams).
-  vtkIdType SeamPoints() const
+  /// The number of points with both handednesses (mirror seams), those of `kept` (non-zero
+  /// per kept point, or null) left out.
+  vtkIdType SeamPoints(const unsigned char* kept) const
   {
-    size_t count = 0;
+    vtkIdType count = 0;
     for (const auto& other : this->Other)
     {
-      count += other.size();
+      for (const auto& entry : other)
+      {
+        count += kept && kept[entry.first] ? 0 : 1;
+      }
     }
-    return static_cast<vtkIdType>(count);
+    return count;
   }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
@@ -1237,13 +1241,19 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
   // Room for the split points' frames too: with splitting, each mirror-seam point (a Conflict
-  // point) gets one copy.
-  OutFrames<OutT> frames(
-    numPoints + (self->Splitting ? sums->SeamPoints() : 0), self->ComputeBitangents);
+  // point) gets one copy, unless the caller keeps its frame.
+  OutFrames<OutT> frames(numPoints + (self->Splitting ? sums->SeamPoints(this->KeptPoints) : 0),
+    self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());
-  const std::vector<vtkIdType> conflicts =
-    PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
+  std::vector<vtkIdType> conflicts = PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
+  if (this->KeptPoints)
+  {
+    conflicts.erase(
+      std::remove_if(
+        conflicts.begin(), conflicts.end(), [&](vtkIdType p) { return this->KeptPoints[p] != 0; }),
+      conflicts.end());
+  }
   const std::vector<vtkIdType> fallbacks =
     PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
   self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());

@@ -412,6 +412,48 @@ TEST(TangentFramesSupplied, CellTangentsAreComputedWhenEveryFrameIsKept)
   }
 }
 
+TEST(TangentFramesSupplied, KeptFramesSplitNoPoint)
+{
+  // KEEP on a mirrored plane whose seam points are shared: every kept point has its one
+  // supplied frame, so frames computed for other reasons (the cell tangents, or one NaN tangent
+  // away from the seam) split no point and count no conflict: the output's points are the
+  // input's, whatever else is asked.
+  auto mesh = Plane(true);
+  auto supplied = SuppliedVec4(mesh, Turn, true);
+  const vtkIdType nan = 1; // on the first row, s = 1/7: not on the seam
+  ASSERT_GT(std::abs(S(mesh, nan) - 0.5), 0.1);
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    for (bool withNaN : { false, true })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (withNaN ? ", a NaN tangent" : ", cell tangents"));
+      auto input = vtkSmartPointer<vtkPolyData>::New();
+      input->DeepCopy(mesh);
+      if (withNaN)
+      {
+        input->GetPointData()->GetArray("TANGENT")->SetComponent(nan, 0, std::nan(""));
+      }
+      SuppliedRun run(input, vtkPolyDataTangentFrames::KEEP);
+      run.Filter->SetMethod(method);
+      run.Filter->SetComputeCellTangents(!withNaN);
+      run.Update();
+      EXPECT_EQ(withNaN ? 1 : 0, run.Filter->GetNumberOfReplacedTangents());
+      EXPECT_EQ(0, run.Filter->GetNumberOfSplitPoints());
+      EXPECT_EQ(0, run.Filter->GetNumberOfHandednessConflicts());
+      ASSERT_EQ(mesh->GetNumberOfPoints(), run.Output->GetNumberOfPoints());
+      for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+      {
+        if (!withNaN || p != nan)
+        {
+          EXPECT_TRUE(HasFrame(run, p, Supplied(supplied, p)));
+        }
+      }
+    }
+  }
+}
+
 TEST(TangentFramesSupplied, CheckCountsSignsAndLargestErrors)
 {
   // The counts `normalmap check` reports: the points with a positive sign, and the largest
