@@ -216,7 +216,10 @@ protected:
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* actor) override
   {
     const bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, actor);
-    const bool mapChanged = this->Shading->NeedsRebuild(&cellBO, actor, this->Frames.Key());
+    const bool mapChanged = this->Shading->NeedsRebuild(&cellBO,
+      actor,
+      this->Frames.Key(),
+      this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()));
     return rebuild || mapChanged;
   }
 

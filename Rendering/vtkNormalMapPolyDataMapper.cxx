@@ -160,8 +160,10 @@ bool vtkNormalMapPolyDataMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO
 {
   // The superclass also records the light complexity that the shader plan depends on.
   const bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, actor);
-  const bool mapChanged =
-    this->Internal->Shading.NeedsRebuild(&cellBO, actor, FramesOf(this->VBOs).Key());
+  const bool mapChanged = this->Internal->Shading.NeedsRebuild(&cellBO,
+    actor,
+    FramesOf(this->VBOs).Key(),
+    this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()));
   return rebuild || mapChanged;
 }
 

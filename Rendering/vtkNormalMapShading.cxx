@@ -322,18 +322,21 @@ void vtkNormalMapShading::FilterTextures(
 //------------------------------------------------------------------------------
 bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   vtkActor* actor,
-  unsigned framesKey)
+  unsigned framesKey,
+  int tcoordComponents)
 {
   // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
-  // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes).
-  unsigned key = 0;
+  // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes, the
+  // components of the texture coordinates it is sampled with).
+  std::uint64_t key = 0;
   vtkTexture* texture = NormalTexture(actor);
   if (texture)
   {
     key = 1u + (texture->GetUseSRGBColorSpace() ? 2u : 0u) +
-      (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5);
+      (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5) +
+      (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32);
   }
-  unsigned& stored = this->ShaderKeys[cellBO];
+  std::uint64_t& stored = this->ShaderKeys[cellBO];
   if (stored != key)
   {
     stored = key;

@@ -12,6 +12,7 @@
 #include "vtkShader.h"       // For vtkShader::Type
 #include "vtkSmartPointer.h" // For the dataset without tangents
 
+#include <cstdint> // For std::uint64_t
 #include <map>     // For per-shader and per-actor state
 #include <string>  // For array names and messages
 #include <utility> // For std::pair
@@ -161,8 +162,13 @@ public:
     const ShaderContext& context,
     const Settings& settings);
 
-  /// True when the shader must be rebuilt for the normal map (the texture or the frames changed).
-  bool NeedsRebuild(const vtkOpenGLHelper* cellBO, vtkActor* actor, unsigned framesKey);
+  /// True when the shader must be rebuilt for the normal map: the texture, the frames or the
+  /// components of the texture coordinates it is sampled with (`tcoordComponents`, as in
+  /// ShaderContext) changed.
+  bool NeedsRebuild(const vtkOpenGLHelper* cellBO,
+    vtkActor* actor,
+    unsigned framesKey,
+    int tcoordComponents);
 
   /// The normal matrix and its inverse (nmNormalMatrix, nmNormalMatrixInverse).
   static void SetCameraUniforms(vtkShaderProgram* program, vtkRenderer* renderer, vtkActor* actor);
@@ -182,7 +188,7 @@ private:
 
   bool HidingNormalTexture = false;
   /// Per shader program (one per primitive type), the normal-map state it was built for.
-  std::map<const vtkOpenGLHelper*, unsigned> ShaderKeys;
+  std::map<const vtkOpenGLHelper*, std::uint64_t> ShaderKeys;
   /// Reasons already warned about, per actor and datasets.
   std::map<std::pair<const vtkActor*, std::string>, unsigned> Warned;
 };

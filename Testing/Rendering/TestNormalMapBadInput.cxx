@@ -6,7 +6,9 @@
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
@@ -283,11 +285,44 @@ int TestNormalMapBadInput(int, char*[])
     check(scene.NormalMapper->GetLastAppliedFrame() == Mapper::APPLIED_POINT_TANGENTS &&
         Same(oneTexel, unmapped, 1),
       "1x1 flat normal map: applied, and drawn as the flat surface");
+    check(scene.Warnings.empty(), "none of these warned");
+    // The map's texture coordinates, given by name, changed in place between renders: to 3
+    // components, then gone. The shader follows (VTK's own rebuild test does not look at the
+    // vertex buffers' components).
+    scene.Actor->GetProperty()->RemoveTexture("normalTex");
+    scene.Actor->GetProperty()->SetNormalTexture(texture);
+    auto named = vtkSmartPointer<vtkPolyData>::New();
+    named->DeepCopy(quad);
+    vtkNew<vtkFloatArray> uv2;
+    uv2->DeepCopy(quad->GetPointData()->GetTCoords());
+    uv2->SetName("UV2");
+    named->GetPointData()->AddArray(uv2);
+    scene.NormalMapper->SetInputData(named);
+    scene.NormalMapper->MapDataArrayToMultiTextureAttribute(
+      "normalTex", "UV2", vtkDataObject::FIELD_ASSOCIATION_POINTS);
+    check(Same(scene.Render(), mapped, 0), "texture coordinates by name: the map");
+    vtkNew<vtkFloatArray> uv3;
+    uv3->SetName("UV2");
+    uv3->SetNumberOfComponents(3);
+    uv3->SetNumberOfTuples(named->GetNumberOfPoints());
+    uv3->Fill(0.5);
+    named->GetPointData()->AddArray(uv3);
+    named->Modified();
+    check(Same(scene.Render(), unmapped, 0) &&
+        scene.NormalMapper->GetLastAppliedFrame() == Mapper::NOT_APPLIED &&
+        scene.Warned("texture coordinates have 3 components (2 needed)"),
+      "texture coordinates changed to 3 components between renders: not applied, and said");
+    named->GetPointData()->RemoveArray("UV2");
+    named->Modified();
+    check(Same(scene.Render(), unmapped, 0) &&
+        scene.NormalMapper->GetLastAppliedFrame() == Mapper::NOT_APPLIED,
+      "texture coordinates removed between renders: not applied");
+    scene.Warnings.clear();
     scene.NormalMapper->SetInputData(vtkNew<vtkPolyData>());
     const auto empty = scene.Render();
     check(std::all_of(empty.begin(), empty.end(), [](unsigned char v) { return v == 0; }),
       "empty input: only the black background");
-    check(scene.Warnings.empty(), "none of these warned");
+    check(scene.Warnings.empty(), "empty input: no warning");
   }
   { // The object factory: opt-in, reversible.
     auto before = vtk::TakeSmartPointer(vtkPolyDataMapper::New());
