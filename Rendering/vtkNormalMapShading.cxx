@@ -7,6 +7,8 @@
 #include "vtkDataArrayRange.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -568,5 +570,26 @@ void vtkNormalMapShading::SetMapUniforms(vtkShaderProgram* program,
     const bool directX = settings.MapEncoding == Mapper::TANGENT_SPACE_DIRECTX ||
       settings.MapEncoding == Mapper::TWO_CHANNEL_DIRECTX;
     program->SetUniformf("nmGreenSign", directX ? -1.0f : 1.0f);
+  }
+  if (program->IsUniformUsed("nmTextureFrame"))
+  {
+    // VTK transforms the texture coordinates by the actor's matrix (u' = m0 u + m1 v + m3,
+    // v' = m4 u + m5 v + m7; ParaView's Flip Textures sets one), so the map's u' axis runs along
+    // M^-1's first column, (m5, -m4) / det M, in the frame of the point tangents.
+    float frame[3] = { 1.0f, 0.0f, 1.0f };
+    vtkInformation* keys = actor->GetPropertyKeys();
+    if (keys && keys->Has(vtkProp::GeneralTextureTransform()))
+    {
+      const double* m = keys->Get(vtkProp::GeneralTextureTransform());
+      const double det = m[0] * m[5] - m[1] * m[4];
+      if (det != 0.0)
+      {
+        const double sign = det > 0.0 ? 1.0 : -1.0;
+        frame[0] = static_cast<float>(sign * m[5]);
+        frame[1] = static_cast<float>(-sign * m[4]);
+        frame[2] = static_cast<float>(sign);
+      }
+    }
+    program->SetUniform3f("nmTextureFrame", frame);
   }
 }

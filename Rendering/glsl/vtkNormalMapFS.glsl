@@ -74,13 +74,20 @@ vec3 nmDecode(vec4 texel)
 
 //NM::Begin TangentDec
 in vec4 nmTangentMCVSOutput;
+// The texture coordinates' transform (vtkProp::GeneralTextureTransform), M on (u, v), as seen
+// from the point tangents: (x, y) of the direction of dP/du' in (dP/du, dP/dv) for the
+// transformed u' (the first column of M^-1, scaled by |det M|), and the sign of det M, which
+// turns the handedness. Without a transform (1, 0, 1).
+uniform vec3 nmTextureFrame;
 
-// Frame from the interpolated point tangent and its sign (nmOrthoFrame). A tangent parallel to
-// the normal leaves the unperturbed normal.
+// Frame from the interpolated point tangent and its sign (nmOrthoFrame), for the transformed
+// texture coordinates. A tangent parallel to the normal leaves the unperturbed normal.
 mat3 nmTangentFrameMC(vec3 normalMC)
 {
   vec3 t = nmTangentMCVSOutput.xyz;
-  return nmOrthoFrame(t, nmTangentMCVSOutput.w, normalMC, 1e-12 * dot(t, t));
+  float w = nmTangentMCVSOutput.w;
+  t = nmTextureFrame.x * t + nmTextureFrame.y * (w * cross(normalMC, t));
+  return nmOrthoFrame(t, w * nmTextureFrame.z, normalMC, 1e-12 * dot(t, t));
 }
 //NM::End
 

@@ -10,6 +10,8 @@
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
@@ -559,6 +561,12 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
     vtkNew<vtkActor> actor;
     actor->SetMapper(mapper);
     actor->SetScale(a.Scale[0], a.Scale[1], a.Scale[2]);
+    if (a.TextureTransform)
+    {
+      vtkNew<vtkInformation> keys;
+      keys->Set(vtkProp::GeneralTextureTransform(), a.TextureTransform, 16);
+      actor->SetPropertyKeys(keys);
+    }
     vtkProperty* property = actor->GetProperty();
     property->SetInterpolation(a.Interpolation);
     property->SetColor(setup.Color.x, setup.Color.y, setup.Color.z);

@@ -168,6 +168,9 @@ struct FlatActor
   /// (vtkNormalMapCompositePolyDataMapper), or VTK's (StockCompositeMapper, with StockMapper).
   vtkDataObject* Blocks = nullptr;
   std::string TangentsArrayName; // our mappers' setting (empty: the active tangents)
+  /// When set, the actor's vtkProp::GeneralTextureTransform: 16 values, a row-major 4x4
+  /// matrix that VTK applies to the texture coordinates (ParaView's Flip Textures sets one).
+  const double* TextureTransform = nullptr;
 };
 
 /// The fixed camera and light of the flat scenes, shared with the CPU reference.

@@ -118,6 +118,33 @@ int TestNormalMapEquivalences(int, char*[])
     check(derivativeShaders.find("nmTangentMC") == std::string::npos,
       "derivative frame: no tangent attribute or varying");
   }
+  // A transform of the texture coordinates (the actor's GeneralTextureTransform; ParaView's Flip
+  // Textures is v' = 1 - v): the derivative frame differentiates the transformed coordinates,
+  // and the point tangents must be turned to them. A flip of v and a quarter turn (u' = -v,
+  // v' = u), under which the rivets look the same: both frame sources agree, as above (point
+  // tangents that ignore the transform show the flipped rivets as dents).
+  {
+    const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const double turn[16] = { 0, -1, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    for (const double* transform : { flip, turn })
+    {
+      std::vector<unsigned char> images[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        nmtest::FlatActor a;
+        a.Mesh = quad;
+        a.NormalTexture = openGL;
+        a.FrameSource = k == 0 ? Mapper::POINT_TANGENTS : Mapper::SCREEN_DERIVATIVES;
+        a.TextureTransform = transform;
+        images[k] = nmtest::RenderFlat(setup, { a });
+      }
+      const std::string what = transform == flip ? "flipped v" : "quarter-turned";
+      const auto d = Between(images[0], images[1], 2);
+      Report(("texture coordinates " + what + ": point tangents vs derivatives").c_str(), d, 2);
+      check(d.WithinFraction >= 0.999,
+        "texture coordinates " + what + ": point tangents and derivative frame agree");
+    }
+  }
   // Without tangents the automatic source is the derivative frame.
   {
     int noTangentsApplied = -1;
