@@ -74,6 +74,40 @@ Render(view)
 nm.measure_symmetry(view, "Normal Mapped Surface, signs not found", check, False, "no-signs")
 display.TangentSignsArray = "TangentSigns"
 
+# 4-component tangents, the sign in w (glTF's TANGENT), chosen as the Tangent Array: ParaView
+# cannot make them the active tangents, so the mapper reads them by name. T4 = (T, sign) gives
+# the frame of Tangents and TangentSigns, the image above. On these flat quads the derivative
+# frame, which the mapper falls back to when it finds no tangents, gives that image too; so
+# T4 = (T, -sign), the bitangent reversed, which lights every rivet from below (the light is in
+# the mirror plane, above the quads), shows that T4 is what the mapper reads.
+def show_packed_tangents(sign):
+    packed = ProgrammableFilter(Input=frames)
+    packed.Script = (
+        "import numpy\n"
+        "pd = inputs[0].PointData\n"
+        "t4 = numpy.hstack([pd['Tangents'], %g * pd['TangentSigns'].reshape(-1, 1)])\n"
+        "output.ShallowCopy(inputs[0].VTKObject)\n"
+        "output.PointData.RemoveArray('Tangents')\n"
+        "output.PointData.RemoveArray('TangentSigns')\n"
+        "output.PointData.append(t4, 'T4')\n" % sign)
+    shown = nm.show_mirrored(packed, view, REPRESENTATION, texture, "NormalMapTexture")
+    shown.SelectTangentArray = "T4"
+    shown.NormalMapFrameSource = "Point tangents"
+    name = "4-component tangents, signs x %g" % sign
+    image, _, _ = nm.measure_symmetry(view, name, check, True, "four-component-%g" % sign)
+    Hide(packed, view)
+    fraction, largest = nm.difference(image, ours, BASELINE_BOUND)
+    print("%s against Tangents + TangentSigns: %.3f%% within %d levels, max %d"
+          % (name, 100 * fraction, BASELINE_BOUND, largest))
+    return fraction
+
+
+Hide(frames, view)
+check(show_packed_tangents(1) >= BASELINE_FRACTION,
+      "4-component tangents shade as Tangents + TangentSigns do")
+check(show_packed_tangents(-1) < 0.9, "4-component tangents are the ones the mapper reads")
+Show(frames, view)
+
 # No tangent array at all: the reader's output, with this representation's NormalMapTexture
 # (ParaView's NormalTexture widget is disabled without tangents). The frame comes from screen
 # derivatives, which handle mirroring by themselves.

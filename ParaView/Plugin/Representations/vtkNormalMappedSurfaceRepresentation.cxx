@@ -67,6 +67,17 @@ void vtkNormalMappedSurfaceRepresentation::SetTangentSignsArray(const char* name
   this->Modified();
 }
 
+void vtkNormalMappedSurfaceRepresentation::SetTangentArray(const char* name)
+{
+  // ParaView makes the array the active tangents, which VTK allows for 3 components only.
+  this->Superclass::SetTangentArray(name);
+  for (int which : { 0, 1 })
+  {
+    this->NormalMapper(which)->SetTangentsArrayName(name ? name : "");
+  }
+  this->Modified();
+}
+
 void vtkNormalMappedSurfaceRepresentation::SetNormalTexture(vtkTexture* texture)
 {
   this->ParaViewNormalTexture = texture;
@@ -116,6 +127,7 @@ void vtkNormalMappedSurfaceRepresentation::PrintSelf(ostream& os, vtkIndent inde
   os << indent
      << "FrameSource: " << vtkNormalMapPolyDataMapper::GetFrameSourceName(mapper->GetFrameSource())
      << "\n";
+  os << indent << "TangentsArrayName: " << mapper->GetTangentsArrayName() << "\n";
   os << indent << "TangentSignsArray: " << mapper->GetTangentSignsArrayName() << "\n";
   os << indent << "NormalMapTexture: " << this->NormalMapTexture.GetPointer() << "\n";
   os << indent << "NormalMapScale: " << this->NormalMapScale << "\n";

@@ -16,7 +16,8 @@
  * The normal texture is ParaView's own NormalTexture (SetNormalTexture), whose panel widget is
  * enabled only for data with tangents, or this representation's SetNormalMapTexture, offered for
  * any data with texture coordinates. When both are set, SetNormalMapTexture's wins. The tangent
- * array is ParaView's (SetTangentArray makes it the active tangents, which the mapper reads).
+ * array is ParaView's SetTangentArray, which the mappers read by name: 3 components, or 4 with
+ * the sign in w (glTF's TANGENT), which ParaView cannot make the active tangents.
  * Each texture has its strength: ParaView's NormalScale, and SetNormalMapScale.
  *
  * The LOD mapper (interactive rendering of large data) is ours too. The back-face mappers
@@ -45,6 +46,9 @@ public:
   void SetFrameSource(int source);
   /// Point array with the handedness signs (empty or null: "TangentSigns").
   void SetTangentSignsArray(const char* name);
+  /// ParaView's TangentArray: also the mappers' TangentsArrayName (null or empty: the active
+  /// tangents), so that 4-component tangents are read too.
+  void SetTangentArray(const char* name) override;
 
   /// ParaView's NormalTexture property.
   void SetNormalTexture(vtkTexture* texture) override;
