@@ -41,7 +41,8 @@ enum class vtkNormalMapShading::Reason : unsigned
   MissingTangents = 1u << 5,
   BadTangents = 1u << 6,
   SRGBTexture = 1u << 7,
-  BadSigns = 1u << 8
+  BadSigns = 1u << 8,
+  MappedScalars = 1u << 9
 };
 
 namespace
@@ -77,6 +78,19 @@ int TextureChannels(vtkTexture* texture)
   vtkImageData* image = texture->GetInput();
   vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
   return scalars ? scalars->GetNumberOfComponents() : 0;
+}
+
+/// Whether VTK maps the texture's values through its lookup table instead of taking them as
+/// colors: the texture's color mode says so, or, in its default mode, they are not unsigned
+/// char (a float map, say). A normal map read that way is colors of a color map, not normals.
+bool MapsThroughLookupTable(vtkTexture* texture)
+{
+  vtkImageData* image = texture->GetInput();
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  const int mode = texture->GetColorMode();
+  return scalars &&
+    (mode == VTK_COLOR_MODE_MAP_SCALARS ||
+      (mode == VTK_COLOR_MODE_DEFAULT && scalars->GetDataType() != VTK_UNSIGNED_CHAR));
 }
 
 bool IsTangentSpace(int encoding)
@@ -336,7 +350,8 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   {
     key = 1u + (texture->GetUseSRGBColorSpace() ? 2u : 0u) +
       (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5) +
-      (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32);
+      (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32) +
+      (MapsThroughLookupTable(texture) ? std::uint64_t(1) << 40 : 0);
   }
   std::uint64_t& stored = this->ShaderKeys[cellBO];
   if (stored != key)
@@ -480,6 +495,18 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
       Reason::OneChannel,
       "The normal texture is not applied: it has " + std::to_string(channels) +
         " channel(s); a normal map needs 2 (RG), 3 or 4.");
+    return Mapper::NOT_APPLIED;
+  }
+  if (MapsThroughLookupTable(texture))
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::MappedScalars,
+      std::string("The normal texture is not applied: its ") +
+        texture->GetInput()->GetPointData()->GetScalars()->GetDataTypeAsString() +
+        " values go through the texture's lookup table in its color mode; use "
+        "SetColorModeToDirectScalars (floating-point values in [0, 1]) or unsigned char values.");
     return Mapper::NOT_APPLIED;
   }
   plan.TwoChannel = IsTwoChannel(encoding);

@@ -10,6 +10,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkImageShiftScale.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkNormalMapObjectFactory.h"
@@ -188,6 +189,26 @@ int TestNormalMapBadInput(int, char*[])
     check(scene.Warned("texture coordinates have 3 components (2 needed)"),
       "3-component texture coordinates: one warning");
     check(Same(pixels, unmapped, 0), "3-component texture coordinates: drawn without the map");
+  }
+  { // A float map (values in [0, 1]): in the texture's default color mode VTK sends it through
+    // a lookup table, which would draw colors of a color map as normals: not applied, and said.
+    // As direct scalars it is the 8-bit map within the 8-bit rounding (1 level).
+    vtkNew<vtkImageShiftScale> toFloat;
+    toFloat->SetInputData(texture->GetInput());
+    toFloat->SetScale(1.0 / 255.0);
+    toFloat->SetOutputScalarTypeToFloat();
+    toFloat->Update();
+    auto floats = nmtest::MakeNormalTexture(toFloat->GetOutput());
+    Scene scene(quad, floats);
+    const auto pixels = scene.Render();
+    check(scene.Warned("float values go through the texture's lookup table") &&
+        scene.NormalMapper->GetLastAppliedFrame() == Mapper::NOT_APPLIED &&
+        Same(pixels, unmapped, 0),
+      "float map in the default color mode: one warning, drawn without the map");
+    floats->SetColorModeToDirectScalars();
+    check(Same(scene.Render(), mapped, 1) &&
+        scene.NormalMapper->GetLastAppliedFrame() == Mapper::APPLIED_POINT_TANGENTS,
+      "float map as direct scalars: the map");
   }
   { // A two-channel image with an RGB encoding: warned, decoded as two-channel. Two channels
     // rebuild z from 8-bit x and y: within 2 levels of the RGB map (TestNormalMapEquivalences).
