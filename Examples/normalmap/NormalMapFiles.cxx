@@ -392,6 +392,67 @@ const std::vector<std::string>& VTKMessageCapture::Warnings() const
 }
 
 //------------------------------------------------------------------------------
+// VTK 9.1's OBJ reader does not check face indices: one past the vertices, texture coordinates
+// or normals reads outside them (a crash, or garbage in the output). So every index of the
+// faces, lines and points of an OBJ file is checked here first: not 0, and within the elements
+// the file defines (a negative index counts back from the last defined before it).
+bool CheckOBJ(const std::string& path, std::string& error)
+{
+  std::ifstream file(path);
+  std::string line;
+  // Elements defined so far, then in the whole file, of v, vt and vn.
+  long long sofar[3] = { 0, 0, 0 };
+  struct Reference
+  {
+    long long Line, Index, Before;
+    int Kind;
+  };
+  std::vector<Reference> references;
+  static const char* const kinds[3] = { "vertex", "texture coordinate", "normal" };
+  for (long long number = 1; std::getline(file, line); ++number)
+  {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    const int defines = keyword == "v" ? 0 : keyword == "vt" ? 1 : keyword == "vn" ? 2 : -1;
+    if (defines >= 0)
+    {
+      ++sofar[defines];
+      continue;
+    }
+    if (keyword != "f" && keyword != "l" && keyword != "p")
+    {
+      continue;
+    }
+    for (std::string group; words >> group;)
+    {
+      // "v", "v/vt", "v//vn" or "v/vt/vn"
+      std::istringstream parts(group);
+      std::string part;
+      for (int kind = 0; kind < 3 && std::getline(parts, part, '/'); ++kind)
+      {
+        if (!part.empty())
+        {
+          references.push_back({ number, std::atoll(part.c_str()), sofar[kind], kind });
+        }
+      }
+    }
+  }
+  for (const Reference& r : references)
+  {
+    const long long defined = sofar[r.Kind];
+    const long long index = r.Index < 0 ? r.Before + r.Index + 1 : r.Index;
+    if (index < 1 || index > defined)
+    {
+      error = "'" + path + "' is not a valid OBJ file: line " + std::to_string(r.Line) +
+        " refers to " + kinds[r.Kind] + " " + std::to_string(r.Index) + " of " +
+        std::to_string(defined);
+      return false;
+    }
+  }
+  return true;
+}
+
 vtkSmartPointer<vtkPolyData> ReadVTKMesh(const std::string& path, std::string& error)
 {
   if (!FileIsReadable(path, error))
@@ -426,7 +487,7 @@ vtkSmartPointer<vtkPolyData> ReadVTKMesh(const std::string& path, std::string& e
   }
   else if (ext == ".ply" || ext == ".obj" || ext == ".stl")
   {
-    if (ext == ".ply" && !CheckPLY(path, error))
+    if ((ext == ".ply" && !CheckPLY(path, error)) || (ext == ".obj" && !CheckOBJ(path, error)))
     {
       return nullptr;
     }

@@ -26,7 +26,10 @@
 #              texture: texture-transform, or drawn by a node (scale 2 in x) under a node
 #              (translation 3 in x): nodes; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
-#              ply-truncated | ply-no-xyz | ply-bad-face; or @WORK@/out/notes.txt, a file in the
+#              ply-truncated | ply-no-xyz | ply-bad-face; or @WORK@/case.obj, a triangle whose
+#              indices VTK 9.1's reader does not check: obj-bad-vertex | obj-bad-tcoord |
+#              obj-zero-index, or a valid one with negative indices: obj-relative; or
+#              @WORK@/out/notes.txt, a file in the
 #              folder where out.vtm's blocks would go: taken-folder; or @WORK@/case.vtm, whose
 #              block file is missing: missing-block; or @WORK@/case.vtk, the quad with glTF's
 #              v-down texture coordinates and the field data TCoordsVDown: vdown-vtk;
@@ -49,6 +52,18 @@ elseif(CASE STREQUAL "ply-no-xyz")
 elseif(CASE STREQUAL "ply-bad-face")
   file(WRITE "${WORK_DIR}/case.ply" "${ply_header}property float z\nelement face 1\n"
     "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")
+elseif(CASE MATCHES "^obj-")
+  set(obj "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n")
+  if(CASE STREQUAL "obj-bad-vertex")
+    string(APPEND obj "f 1/1 2/2 100000000/3\n")
+  elseif(CASE STREQUAL "obj-bad-tcoord")
+    string(APPEND obj "f 1/1 2/2 3/100000000\n")
+  elseif(CASE STREQUAL "obj-zero-index")
+    string(APPEND obj "f 1/1 2/2 0/3\n")
+  else() # obj-relative: negative indices count back from the last defined
+    string(APPEND obj "f -3/-3 -2/-2 -1/-1\n")
+  endif()
+  file(WRITE "${WORK_DIR}/case.obj" "${obj}")
 elseif(CASE STREQUAL "taken-folder")
   file(WRITE "${WORK_DIR}/out/notes.txt" "not written by a multiblock writer\n")
 elseif(CASE STREQUAL "vdown-vtk")
