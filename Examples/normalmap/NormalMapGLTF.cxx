@@ -1047,6 +1047,23 @@ void RemoveReplacedAccessors(Document& doc)
   EraseAndRenumber(model.bufferViews, eraseViews, model, forViews);
 }
 
+// The MIME type of an image's bytes from their signature (PNG, JPEG, WebP; glTF's image types),
+// or an empty string.
+std::string ImageMimeType(const std::vector<unsigned char>& bytes)
+{
+  const auto startsWith = [&](size_t at, const char* signature, size_t n)
+  { return bytes.size() >= at + n && std::memcmp(bytes.data() + at, signature, n) == 0; };
+  if (startsWith(0, "\x89PNG", 4))
+  {
+    return "image/png";
+  }
+  if (startsWith(0, "\xFF\xD8\xFF", 3))
+  {
+    return "image/jpeg";
+  }
+  return startsWith(0, "RIFF", 4) && startsWith(8, "WEBP", 4) ? "image/webp" : "";
+}
+
 // Moves data-URI images into buffer views, then packs every buffer view into one buffer.
 bool PackBuffers(tinygltf::Model& model, std::string& error)
 {
@@ -1054,15 +1071,15 @@ bool PackBuffers(tinygltf::Model& model, std::string& error)
   {
     if (image.uri.empty() && image.bufferView < 0 && !image.image.empty())
     {
+      // The file's data URI may say application/octet-stream, and tinygltf keeps no mimeType
+      // of an image with a URI: the bytes tell.
+      const std::string type = ImageMimeType(image.image);
+      image.mimeType = !type.empty() ? type : image.mimeType.empty() ? "image/png" : image.mimeType;
       image.bufferView =
         AppendView(model, image.image.data(), 1, image.image.size(), image.image.size(), 0);
       model.bufferViews.back().byteLength = image.image.size();
       image.image.clear();
       image.as_is = false;
-      if (image.mimeType.empty())
-      {
-        image.mimeType = "image/png";
-      }
     }
   }
   tinygltf::Buffer packed;

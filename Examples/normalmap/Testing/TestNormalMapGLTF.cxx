@@ -1061,3 +1061,26 @@ TEST(NormalMapGLTFShared, TangentTestGetsTangents)
   EXPECT_EQ(CheckedTangents(back).size(), static_cast<size_t>(out->GetNumberOfPoints()) * 4);
 }
 }
+
+// An image in a data: URI that says application/octet-stream, its type in the image's mimeType
+// (tinygltf keeps no mimeType for an image with a URI): the written file gives the image the
+// type its bytes have, JPEG, not the PNG a missing type used to become.
+TEST(NormalMapGLTF, DataURIImagesKeepTheTypeOfTheirBytes)
+{
+  TempDir tmp;
+  std::string gltf = ReadText(DataDir + "/embedded/quad_jpeg.gltf");
+  const std::string jpegURI = "\"uri\": \"data:image/jpeg;";
+  const size_t at = gltf.find(jpegURI);
+  ASSERT_NE(at, std::string::npos);
+  gltf.replace(
+    at, jpegURI.size(), "\"mimeType\": \"image/jpeg\", \"uri\": \"data:application/octet-stream;");
+  {
+    std::ofstream(tmp / "octet.gltf") << gltf;
+  }
+  Document doc = ReadOrFail(tmp / "octet.gltf");
+  std::string error;
+  ASSERT_TRUE(NormalMapGLTF::WriteDocument(doc, tmp / "out.glb", error)) << error;
+  const Document written = ReadOrFail(tmp / "out.glb");
+  ASSERT_EQ(written.Model.images.size(), 1u);
+  EXPECT_EQ(written.Model.images[0].mimeType, "image/jpeg");
+}
