@@ -19,6 +19,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkReverseSense.h>
 #include <vtkStringArray.h>
 
 #include <algorithm>
@@ -1531,6 +1532,19 @@ vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, const std::array<double, 
     }
     pd->RemoveArray("TangentSigns");
     pd->AddArray(flipped);
+  }
+  if (mirrors)
+  {
+    // glTF draws the triangles of a mirroring node with their winding reversed (the sign of the
+    // determinant decides it). Placed in world coordinates, they keep their front faces, and
+    // MikkTSpace (whose sign follows the winding of the texture coordinates) keeps the negated
+    // signs, only with their point order reversed.
+    vtkNew<vtkReverseSense> reverse;
+    reverse->SetInputData(placed);
+    reverse->ReverseCellsOn();
+    reverse->ReverseNormalsOff();
+    reverse->Update();
+    placed = reverse->GetOutput();
   }
   return placed;
 }

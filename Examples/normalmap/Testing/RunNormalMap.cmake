@@ -24,7 +24,8 @@
 #              second primitive, a triangle strip of 2 indices (no triangle): short-strip, or
 #              without NORMAL: no-normal, or with a KHR_texture_transform scale on its normal
 #              texture: texture-transform, or drawn by a node (scale 2 in x) under a node
-#              (translation 3 in x): nodes; or
+#              (translation 3 in x): nodes, or by a node that mirrors it (scale -1 in x):
+#              mirror-node; or
 #              @WORK@/case.ply, a PLY file that crashes VTK 9.1's reader unless refused first:
 #              ply-truncated | ply-no-xyz | ply-bad-face; or @WORK@/case.obj, a triangle whose
 #              indices VTK 9.1's reader does not check: obj-bad-vertex | obj-bad-tcoord |
@@ -90,6 +91,10 @@ elseif(CASE)
   elseif(CASE STREQUAL "nodes")
     string(REPLACE "\"nodes\": [ { \"mesh\": 0, \"name\": \"quad\" } ]"
       "\"nodes\": [ { \"children\": [ 1 ], \"translation\": [ 3, 0, 0 ] }, { \"mesh\": 0, \"name\": \"quad\", \"scale\": [ 2, 1, 1 ] } ]"
+      broken "${text}")
+  elseif(CASE STREQUAL "mirror-node")
+    string(REPLACE "\"nodes\": [ { \"mesh\": 0, \"name\": \"quad\" } ]"
+      "\"nodes\": [ { \"mesh\": 0, \"name\": \"quad\", \"scale\": [ -1, 1, 1 ] } ]"
       broken "${text}")
   elseif(CASE STREQUAL "texture-transform")
     string(REPLACE "\"normalTexture\": { \"index\": 0, \"scale\": 0.5 }"
