@@ -573,6 +573,13 @@ bool ChooseMaps(const Arguments& args,
       {
         return false; // the map asked for on the command line must be readable
       }
+      if (!choice.Image && args.Encoding == vtkNormalMapPolyDataMapper::OBJECT_SPACE)
+      {
+        // The built-in map is tangent-space: drawn as object-space normals it would be wrong.
+        error = "cannot use the file's normal texture: " + error +
+          "; --encoding object needs --normal-map (the built-in map is tangent-space)";
+        return false;
+      }
       if (!choice.Image)
       {
         // A material's texture that cannot be used (a missing file, a corrupt image): the
