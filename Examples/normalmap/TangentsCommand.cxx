@@ -492,6 +492,10 @@ int NormalMapTool::TangentsCommand(int argc, char* argv[])
       {
         ok = NormalMapGLTF::UpdatePrimitive(doc, primitives[i], framed[i], error);
       }
+      if (!ok)
+      {
+        return Fail(Name, "'" + args.Input + "': " + error); // an input defect, as when read
+      }
     }
     else
     {
