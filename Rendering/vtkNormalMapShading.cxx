@@ -71,12 +71,18 @@ bool InsertBefore(std::string& source, const std::string& tag, const std::string
   return vtkShaderProgram::Substitute(source, tag, code + tag, false);
 }
 
+/// The scalars of a normal texture's image, or null.
+vtkDataArray* TextureScalars(vtkTexture* texture)
+{
+  vtkImageData* image = texture->GetInput();
+  return image ? image->GetPointData()->GetScalars() : nullptr;
+}
+
 /// Number of components of a normal texture's image (0 when it has none). VTK uploads images
 /// of 1 or 2 components as RGBA (luminance, luminance-alpha), so the texture object cannot tell.
 int TextureChannels(vtkTexture* texture)
 {
-  vtkImageData* image = texture->GetInput();
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  vtkDataArray* scalars = TextureScalars(texture);
   return scalars ? scalars->GetNumberOfComponents() : 0;
 }
 
@@ -85,8 +91,7 @@ int TextureChannels(vtkTexture* texture)
 /// char (a float map, say). A normal map read that way is colors of a color map, not normals.
 bool MapsThroughLookupTable(vtkTexture* texture)
 {
-  vtkImageData* image = texture->GetInput();
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  vtkDataArray* scalars = TextureScalars(texture);
   const int mode = texture->GetColorMode();
   return scalars &&
     (mode == VTK_COLOR_MODE_MAP_SCALARS ||
@@ -504,7 +509,7 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
       where,
       Reason::MappedScalars,
       std::string("The normal texture is not applied: its ") +
-        texture->GetInput()->GetPointData()->GetScalars()->GetDataTypeAsString() +
+        TextureScalars(texture)->GetDataTypeAsString() +
         " values go through the texture's lookup table in its color mode; use "
         "SetColorModeToDirectScalars (floating-point values in [0, 1]) or unsigned char values.");
     return Mapper::NOT_APPLIED;
