@@ -159,17 +159,26 @@ bool ReadableCells(vtkPolyDataTangentFrames* self, vtkPolyData* input, bool& pol
 
 /**
  * The texture coordinates the frames follow: the point array `name`, or the active TCoords when
- * `name` is empty. Null, with an error, when it is missing, not numeric or too short; warns when
+ * `name` is empty. Null, with an error, when it is missing, not numeric or too short (a missing
+ * array of a composite input's block, whose flat index is `flatIndex`, is a warning); warns when
  * it has one component (v = 0) or more than two (the first two are used).
  */
 vtkDataArray* TextureCoordinatesOf(vtkPolyDataTangentFrames* self,
   vtkPolyData* input,
-  const std::string& name)
+  const std::string& name,
+  vtkIdType flatIndex)
 {
   vtkPointData* pd = input->GetPointData();
   vtkAbstractArray* abstract = name.empty() ? pd->GetTCoords() : pd->GetAbstractArray(name.c_str());
   const std::string label = name.empty() ? std::string("texture coordinates (no active TCoords)")
                                          : "texture coordinates '" + name + "'";
+  if (!abstract && flatIndex >= 0)
+  {
+    vtkWarningWithObjectMacro(self,
+      "Block " << flatIndex << " has no point array " << label
+               << "; passing it through without frames.");
+    return nullptr;
+  }
   std::string problem;
   vtkDataArray* uvs = NumericPointArray(input, label.c_str(), abstract, problem);
   if (!uvs)
@@ -360,7 +369,7 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
     {
       return 0;
     }
-    this->ExecuteBlock(input, output, 0.0, 1.0);
+    this->ExecuteBlock(input, output, 0.0, 1.0, -1);
     return 1;
   }
 
@@ -393,8 +402,11 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
       continue;
     }
     vtkNew<vtkPolyData> output;
-    this->ExecuteBlock(
-      input, output, static_cast<double>(leaf) / leaves, static_cast<double>(leaf + 1) / leaves);
+    this->ExecuteBlock(input,
+      output,
+      static_cast<double>(leaf) / leaves,
+      static_cast<double>(leaf + 1) / leaves,
+      it->GetCurrentFlatIndex());
     // The executive passes a lone polydata's field data (names, metadata), not a block's.
     output->GetFieldData()->PassData(input->GetFieldData());
     outComposite->SetDataSet(it, output);
@@ -409,7 +421,8 @@ int vtkPolyDataTangentFrames::RequestData(vtkInformation*,
 void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   vtkPolyData* output,
   double progressBegin,
-  double progressEnd)
+  double progressEnd,
+  vtkIdType flatIndex)
 {
   const vtkSmartPointer<vtkPolyData> plain =
     vtkNormalMapping::detail::WithPlainCellStorage(inputAsGiven);
@@ -427,7 +440,7 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
     // Nothing to give frames to; not an error (vertices and lines only, or empty input).
     return passThrough();
   }
-  vtkDataArray* uvs = TextureCoordinatesOf(this, input, this->TCoordsArrayName);
+  vtkDataArray* uvs = TextureCoordinatesOf(this, input, this->TCoordsArrayName, flatIndex);
   if (!uvs)
   {
     return passThrough();

@@ -62,8 +62,10 @@
  * computes every frame.
  *
  * Composite input (a multiblock from a reader, for example) gives output of the same structure:
- * every polydata block gets its frames as if it were filtered alone, other blocks pass through
- * with a warning, and the counts below are the sums over the blocks.
+ * every polydata block gets its frames as if it were filtered alone, and the counts below are the
+ * sums over the blocks. Blocks that are not polydata, and polydata blocks without the texture
+ * coordinates, pass through with a warning that names the block (a scene's untextured parts are
+ * not an error).
  *
  * The work runs on vtkSMPTools and is deterministic: the output is bit-identical for any number
  * of threads, because each point adds its triangles in triangle order, whatever thread computed
@@ -279,11 +281,12 @@ private:
   void operator=(const vtkPolyDataTangentFrames&) = delete;
 
   /// Frames for one polydata; adds to the counts. Progress goes from progressBegin to
-  /// progressEnd.
+  /// progressEnd. `flatIndex`: the block's flat index in composite input, or -1.
   void ExecuteBlock(vtkPolyData* input,
     vtkPolyData* output,
     double progressBegin,
-    double progressEnd);
+    double progressEnd,
+    vtkIdType flatIndex);
 
   /// One polydata's inputs as ExecuteBlock checked them, and its share of the progress.
   struct BlockInput

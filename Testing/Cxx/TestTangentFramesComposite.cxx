@@ -221,6 +221,53 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
   EXPECT_GT(filter->GetOutput()->GetNumberOfPoints(), polyBlocks[0]->GetNumberOfPoints());
 }
 
+TEST(TangentFramesComposite, BlockWithoutTextureCoordinatesPassesWithAWarning)
+{
+  // A scene's untextured part is no error: the block passes through with a warning naming it,
+  // and the textured block still gets its frames.
+  auto untextured = Torus(false, 6);
+  untextured->GetPointData()->SetTCoords(nullptr);
+  vtkNew<vtkMultiBlockDataSet> input;
+  input->SetNumberOfBlocks(2);
+  input->SetBlock(0, Torus(true, 8));
+  input->SetBlock(1, untextured);
+
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  filter->SetInputData(input);
+  WarningCounter warnings(filter);
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&errors);
+  onError->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+  filter->AddObserver(vtkCommand::ErrorEvent, onError);
+  filter->Update();
+
+  EXPECT_EQ(errors, 0);
+  EXPECT_EQ(warnings.Warnings, 1) << warnings.Text;
+  EXPECT_NE(warnings.Text.find("Block 2 has no point array texture coordinates (no active "
+                               "TCoords); passing it through without frames."),
+    std::string::npos)
+    << warnings.Text;
+  auto* output = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
+  ASSERT_NE(output, nullptr);
+  auto* framed = vtkPolyData::SafeDownCast(output->GetBlock(0));
+  auto* passed = vtkPolyData::SafeDownCast(output->GetBlock(1));
+  ASSERT_NE(framed, nullptr);
+  ASSERT_NE(passed, nullptr);
+  EXPECT_NE(framed->GetPointData()->GetArray("Tangents"), nullptr);
+  EXPECT_EQ(passed->GetPointData()->GetArray("Tangents"), nullptr);
+  EXPECT_EQ(passed->GetNumberOfPoints(), untextured->GetNumberOfPoints());
+  EXPECT_EQ(passed->GetNumberOfPolys(), untextured->GetNumberOfPolys());
+
+  // Alone, the same polydata cannot get what the filter is for: an error.
+  vtkNew<vtkPolyDataTangentFrames> single;
+  single->SetInputData(untextured);
+  single->AddObserver(vtkCommand::ErrorEvent, onError);
+  single->Update();
+  EXPECT_EQ(errors, 1);
+}
+
 TEST(TangentFramesComposite, ProgressRisesOnceOverAllBlocks)
 {
   // Three polydata blocks: each block's execution reports progress within its own share, so the
