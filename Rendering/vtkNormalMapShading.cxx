@@ -273,22 +273,27 @@ vtkFloatArray* vtkNormalMapShading::NewPackedTangents(const Tangents& tangents)
 
 //------------------------------------------------------------------------------
 void vtkNormalMapShading::Warn(vtkObject* reporter,
-  const vtkActor* actor,
+  vtkActor* actor,
   const std::string& where,
   Reason reason,
   const std::string& message)
 {
-  unsigned& done = this->Warned[std::make_pair(actor, where)];
-  if (!(done & static_cast<unsigned>(reason)))
+  WarnedReasons& done = this->Warned[std::make_pair(actor, where)];
+  if (done.Actor != actor)
   {
-    done |= static_cast<unsigned>(reason);
+    done.Actor = actor;
+    done.Reasons = 0;
+  }
+  if (!(done.Reasons & static_cast<unsigned>(reason)))
+  {
+    done.Reasons |= static_cast<unsigned>(reason);
     vtkWarningWithObjectMacro(reporter, << where << message);
   }
 }
 
 //------------------------------------------------------------------------------
 void vtkNormalMapShading::WarnAboutTangents(vtkObject* reporter,
-  const vtkActor* actor,
+  vtkActor* actor,
   const Tangents& tangents,
   const Settings& settings,
   const std::string& where)

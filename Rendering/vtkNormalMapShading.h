@@ -11,6 +11,7 @@
 
 #include "vtkShader.h"       // For vtkShader::Type
 #include "vtkSmartPointer.h" // For the dataset without tangents
+#include "vtkWeakPointer.h"  // For the actors warned about
 
 #include <cstdint> // For std::uint64_t
 #include <map>     // For per-shader and per-actor state
@@ -144,7 +145,7 @@ public:
 
   /// Warns once per actor, datasets and reason why point tangents are not used as they are.
   void WarnAboutTangents(vtkObject* reporter,
-    const vtkActor* actor,
+    vtkActor* actor,
     const Tangents& tangents,
     const Settings& settings,
     const std::string& where);
@@ -181,7 +182,7 @@ public:
 private:
   enum class Reason : unsigned;
   void Warn(vtkObject* reporter,
-    const vtkActor* actor,
+    vtkActor* actor,
     const std::string& where,
     Reason reason,
     const std::string& message);
@@ -189,8 +190,15 @@ private:
   bool HidingNormalTexture = false;
   /// Per shader program (one per primitive type), the normal-map state it was built for.
   std::map<const vtkOpenGLHelper*, std::uint64_t> ShaderKeys;
-  /// Reasons already warned about, per actor and datasets.
-  std::map<std::pair<const vtkActor*, std::string>, unsigned> Warned;
+  /// Reasons already warned about for an actor, which the entry watches: an actor made later
+  /// at the address of a deleted one is warned about afresh.
+  struct WarnedReasons
+  {
+    vtkWeakPointer<vtkActor> Actor;
+    unsigned Reasons = 0;
+  };
+  /// Per actor and datasets, the reasons already warned about.
+  std::map<std::pair<const vtkActor*, std::string>, WarnedReasons> Warned;
 };
 
 #endif

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -118,6 +119,43 @@ int TestNormalMapBadInput(int, char*[])
     check(
       scene.NormalMapper->GetLastAppliedFrame() == Mapper::NOT_APPLIED && Same(first, unmapped, 0),
       "no texture coordinates: drawn without the map");
+
+    // Another actor of the mapper is warned about; so is one made where a deleted one was.
+    const auto newActor = [&]()
+    {
+      auto actor = vtkSmartPointer<vtkActor>::New();
+      actor->SetMapper(scene.NormalMapper);
+      actor->GetProperty()->SetNormalTexture(texture);
+      return actor;
+    };
+    scene.Renderer->RemoveActor(scene.Actor);
+    auto actor = newActor();
+    scene.Renderer->AddActor(actor);
+    scene.Render();
+    check(scene.Warnings.size() == 2, "no texture coordinates: one warning for another actor");
+    const void* deleted = actor.Get();
+    scene.Renderer->RemoveActor(actor);
+    actor = nullptr;
+    // The allocator usually gives the freed block to the next actor; the ones that land
+    // elsewhere stay alive so that the loop does not take their block again.
+    std::vector<vtkSmartPointer<vtkActor>> elsewhere;
+    for (int tries = 0; tries < 100 && actor.Get() != deleted; ++tries)
+    {
+      elsewhere.push_back(actor);
+      actor = newActor();
+    }
+    if (actor.Get() == deleted)
+    {
+      scene.Renderer->AddActor(actor);
+      scene.Render();
+      check(scene.Warnings.size() == 3,
+        "no texture coordinates: one warning for an actor at a deleted actor's address");
+    }
+    else
+    {
+      std::cout << "note: no actor was made at the deleted actor's address; that case is not "
+                   "checked here\n";
+    }
   }
   { // A one-channel image is a height map, not a normal map.
     Scene scene(quad,
