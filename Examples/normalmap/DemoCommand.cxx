@@ -130,7 +130,10 @@ int NormalMapTool::DemoCommand(int argc, char* argv[])
     {
       if (!NormalMapRender::ParseSize(value, width, height))
       {
-        return Fail(Name, "bad --size '" + value + "' (WxH, each 16..8192, e.g. 1200x800)", Usage);
+        return Fail(Name,
+          "bad --size '" + value +
+            "' (WxH, each 16..8192, e.g. 1200x800) (see normalmap demo --help)",
+          Usage);
       }
     }
     else
