@@ -90,7 +90,7 @@ public:
   ///@}
 
   ///@{
-  /// Point array with each block's handedness signs (default "TangentSigns").
+  /// Point array with each block's handedness signs (default "TangentSigns"; empty: none).
   void SetTangentSignsArrayName(const std::string& name);
   const std::string& GetTangentSignsArrayName() const
   {

@@ -115,6 +115,7 @@ public:
   /**
    * Point array with the handedness signs, used with 3-component tangents (default
    * "TangentSigns", what vtkPolyDataTangentFrames writes). Bitangent = sign * cross(N, T).
+   * Empty: no sign array; 3-component tangents are unsigned (sign +1, with a warning).
    */
   void SetTangentSignsArrayName(const std::string& name);
   const std::string& GetTangentSignsArrayName() const { return this->TangentSignsArrayName; }

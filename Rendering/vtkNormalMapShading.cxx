@@ -324,9 +324,11 @@ void vtkNormalMapShading::WarnAboutTangents(vtkObject* reporter,
       actor,
       where,
       Reason::UnsignedTangents,
-      "Point tangents have no handedness sign (no 4th component, no '" +
-        settings.TangentSignsArrayName +
-        "' array); using +1, so mirrored UVs shade inverted. vtkPolyDataTangentFrames "
+      "Point tangents have no handedness sign (no 4th component, " +
+        (settings.TangentSignsArrayName.empty()
+            ? std::string("no sign array named")
+            : "no '" + settings.TangentSignsArrayName + "' array") +
+        "); using +1, so mirrored UVs shade inverted. vtkPolyDataTangentFrames "
         "writes the signs.");
   }
 }

@@ -72,6 +72,10 @@ display.NormalMapEncoding = "Tangent space, OpenGL (+Y green)"
 display.TangentSignsArray = "NoSuchArray"
 Render(view)
 nm.measure_symmetry(view, "Normal Mapped Surface, signs not found", check, False, "no-signs")
+# A cleared name asks for unsigned tangents: TangentSigns, though present, is not read.
+display.TangentSignsArray = ""
+Render(view)
+nm.measure_symmetry(view, "Normal Mapped Surface, signs cleared", check, False, "signs-cleared")
 display.TangentSignsArray = "TangentSigns"
 
 # 4-component tangents, the sign in w (glTF's TANGENT), chosen as the Tangent Array: ParaView

@@ -59,10 +59,10 @@ void vtkNormalMappedSurfaceRepresentation::SetFrameSource(int source)
 
 void vtkNormalMappedSurfaceRepresentation::SetTangentSignsArray(const char* name)
 {
-  const std::string signs = name && *name ? name : "TangentSigns";
+  // Empty: no sign array, so that a user can choose unsigned tangents.
   for (int which : { 0, 1 })
   {
-    this->NormalMapper(which)->SetTangentSignsArrayName(signs);
+    this->NormalMapper(which)->SetTangentSignsArrayName(name ? name : "");
   }
   this->Modified();
 }

@@ -44,7 +44,7 @@ public:
   void SetMapEncoding(int encoding);
   /// vtkNormalMapPolyDataMapper::FrameSources, forwarded to both mappers.
   void SetFrameSource(int source);
-  /// Point array with the handedness signs (empty or null: "TangentSigns").
+  /// Point array with the handedness signs (empty or null: none, the tangents are unsigned).
   void SetTangentSignsArray(const char* name);
   /// ParaView's TangentArray: also the mappers' TangentsArrayName (null or empty: the active
   /// tangents), so that 4-component tangents are read too.
