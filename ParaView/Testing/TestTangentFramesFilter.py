@@ -1,11 +1,14 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Tangent Frames filter in ParaView: every setting reaches vtkPolyDataTangentFrames, and its
-arrays and counts on a mirrored mesh are those of the mirror seam.
+arrays and counts on a mirrored mesh are those of the mirror seam, it takes 3-component texture
+coordinates named from Python and multiblocks with blocks of other types.
 
 pvbatch TestTangentFramesFilter.py <plugin.so> <work dir>
 """
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
+from vtkmodules.vtkCommonCore import vtkFloatArray
+from vtkmodules.vtkCommonDataModel import vtkMultiBlockDataSet, vtkUnstructuredGrid
 
 import nmparaview as nm
 
@@ -162,6 +165,50 @@ again.SuppliedTangents = "Keep"
 again.UpdatePipeline()
 check(signs_by_side(servermanager.Fetch(again)) == ({-1.0}, {1.0}),
       "Keep writes the supplied (flipped) signs as they are")
+
+# Texture coordinates of 3 components (u, v, w) are not offered: data without texture
+# coordinates would get its normals chosen. Named from Python, their first two give the frames
+# of UV.
+quads = nm.mirrored_quads()
+uv = quads.GetPointData().GetArray("UV")
+uvw = vtkFloatArray()
+uvw.SetName("UVW")
+uvw.SetNumberOfComponents(3)
+for i in range(uv.GetNumberOfTuples()):
+    uvw.InsertNextTuple3(uv.GetTuple2(i)[0], uv.GetTuple2(i)[1], 0.5)
+quads.GetPointData().AddArray(uvw)
+with_uvw = PVTrivialProducer()
+with_uvw.GetClientSideObject().SetOutput(quads)
+with_uvw.UpdatePipeline()
+from_uvw = TangentFrames(Input=with_uvw)
+check("UVW" not in from_uvw.GetProperty("TextureCoordinates").Available,
+      "3-component texture coordinates are not offered (%s)"
+      % from_uvw.GetProperty("TextureCoordinates").Available)
+from_uvw.TextureCoordinates = "UVW"
+from_uvw.UpdatePipeline()
+check(signs_by_side(servermanager.Fetch(from_uvw)) == ({1.0}, {-1.0}),
+      "3-component texture coordinates named from Python give the frames of their first two")
+
+# A multiblock whose blocks are not all polydata (a scene with a volume) is accepted: the
+# polydata block gets frames, the other passes through.
+scene = vtkMultiBlockDataSet()
+scene.SetBlock(0, nm.mirrored_quads())
+grid = vtkUnstructuredGrid()
+grid.SetPoints(quads.GetPoints())
+scene.SetBlock(1, grid)
+mixed = PVTrivialProducer()
+mixed.GetClientSideObject().SetOutput(scene)
+mixed.UpdatePipeline()
+input_property = servermanager.CreateProxy("filters", "TangentFrames").GetProperty("Input")
+input_property.AddUncheckedInputConnection(mixed.SMProxy, 0)
+check(input_property.GetDomain("input_type").IsInDomain(input_property) == 1,
+      "a multiblock of polydata and an unstructured grid is a valid input")
+from_mixed = TangentFrames(Input=mixed)
+from_mixed.UpdatePipeline()
+blocks = servermanager.Fetch(from_mixed)
+check(blocks.GetBlock(0).GetPointData().GetArray("Tangents") is not None
+      and blocks.GetBlock(1).IsA("vtkUnstructuredGrid"),
+      "its polydata block gets frames, the grid passes through")
 
 # Bad input: no texture coordinates. The filter reports an error and passes the input through.
 plain = Sphere()

@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkNormalMappedSurfaceRepresentation.h"
 
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkInformationVector.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkTexture.h"
 
 vtkStandardNewMacro(vtkNormalMappedSurfaceRepresentation);
@@ -69,13 +75,61 @@ void vtkNormalMappedSurfaceRepresentation::SetTangentSignsArray(const char* name
 
 void vtkNormalMappedSurfaceRepresentation::SetTangentArray(const char* name)
 {
-  // ParaView makes the array the active tangents, which VTK allows for 3 components only.
-  this->Superclass::SetTangentArray(name);
+  // Not the superclass's: it would make the array the active tangents at every update, which VTK
+  // refuses for 4 components with a warning. RequestData decides, seeing the data.
+  this->TangentArrayName = name ? name : "";
   for (int which : { 0, 1 })
   {
-    this->NormalMapper(which)->SetTangentsArrayName(name ? name : "");
+    this->NormalMapper(which)->SetTangentsArrayName(this->TangentArrayName);
   }
-  this->Modified();
+  this->MarkModified();
+}
+
+namespace
+{
+/// Whether a dataset of `data` has the point array `name` with other than 3 components, which
+/// VTK refuses as the active tangents. A name no dataset has (ParaView's "None") is not refused:
+/// it clears the active tangents, as ParaView means it to.
+bool RefusedAsTangents(vtkDataObject* data, const std::string& name)
+{
+  const auto refused = [&](vtkDataObject* object)
+  {
+    auto* dataSet = vtkDataSet::SafeDownCast(object);
+    vtkDataArray* array = dataSet ? dataSet->GetPointData()->GetArray(name.c_str()) : nullptr;
+    return array && array->GetNumberOfComponents() != 3;
+  };
+  auto* composite = vtkCompositeDataSet::SafeDownCast(data);
+  if (!composite)
+  {
+    return refused(data);
+  }
+  auto it = vtk::TakeSmartPointer(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    if (refused(it->GetCurrentDataObject()))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
+int vtkNormalMappedSurfaceRepresentation::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  // What the superclass's SetTangentArray stores, without its MarkModified (this is the update
+  // itself); "" withdraws a name where null would be ignored. The mappers read the array by name
+  // in any case.
+  const bool refused = inputVector[0]->GetNumberOfInformationObjects() == 1 &&
+    RefusedAsTangents(vtkDataObject::GetData(inputVector[0], 0), this->TangentArrayName);
+  this->MultiBlockMaker->SetInputArrayToProcess(2,
+    0,
+    0,
+    vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    refused ? "" : this->TangentArrayName.c_str());
+  return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 
 void vtkNormalMappedSurfaceRepresentation::SetNormalTexture(vtkTexture* texture)

@@ -30,6 +30,8 @@
 #include "vtkNormalMappingRepresentationsModule.h" // For export macro
 #include "vtkSmartPointer.h"                       // For the textures
 
+#include <string> // For the tangent array name
+
 class vtkNormalMapCompositePolyDataMapper;
 
 class VTKNORMALMAPPINGREPRESENTATIONS_EXPORT vtkNormalMappedSurfaceRepresentation
@@ -46,8 +48,9 @@ public:
   void SetFrameSource(int source);
   /// Point array with the handedness signs (empty or null: none, the tangents are unsigned).
   void SetTangentSignsArray(const char* name);
-  /// ParaView's TangentArray: also the mappers' TangentsArrayName (null or empty: the active
-  /// tangents), so that 4-component tangents are read too.
+  /// ParaView's TangentArray: the mappers' TangentsArrayName (null or empty: the active
+  /// tangents), so that 4-component tangents are read too; ParaView makes it the active
+  /// tangents of the rendered data only when it has 3 components (RequestData).
   void SetTangentArray(const char* name) override;
 
   /// ParaView's NormalTexture property.
@@ -63,6 +66,9 @@ protected:
   vtkNormalMappedSurfaceRepresentation();
   ~vtkNormalMappedSurfaceRepresentation() override;
 
+  /// Gives ParaView the tangent array name where VTK can make it the active tangents.
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
 private:
   vtkNormalMappedSurfaceRepresentation(const vtkNormalMappedSurfaceRepresentation&) = delete;
   void operator=(const vtkNormalMappedSurfaceRepresentation&) = delete;
@@ -74,6 +80,7 @@ private:
   /// Gives the actor's property the strength of the texture in effect.
   void ApplyNormalScale();
 
+  std::string TangentArrayName;
   vtkSmartPointer<vtkTexture> ParaViewNormalTexture;
   vtkSmartPointer<vtkTexture> NormalMapTexture;
   double ParaViewNormalScale = 1.0;
