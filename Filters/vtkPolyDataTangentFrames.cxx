@@ -260,19 +260,10 @@ vtkPolyDataTangentFrames::~vtkPolyDataTangentFrames() = default;
 
 const char* vtkPolyDataTangentFrames::GetMethodName(int method)
 {
-  switch (method)
-  {
-    case UNWEIGHTED:
-      return "Unweighted";
-    case AREA_WEIGHTED:
-      return "AreaWeighted";
-    case ANGLE_WEIGHTED:
-      return "AngleWeighted";
-    case MIKKTSPACE:
-      return "MikkTSpace";
-    default:
-      return "Unknown";
-  }
+  static const char* const names[] = {
+    "Unweighted", "AreaWeighted", "AngleWeighted", "MikkTSpace"
+  };
+  return method >= UNWEIGHTED && method <= MIKKTSPACE ? names[method] : "Unknown";
 }
 
 void vtkPolyDataTangentFrames::SetTCoordsArrayName(const std::string& name)
