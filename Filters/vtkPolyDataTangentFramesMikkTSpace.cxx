@@ -303,35 +303,13 @@ struct Surface
   std::vector<long long> StripCornerStart;               // per strip + 1: first strip corner
 };
 
-/// Position of strip corner i in strip triangle j (which must contain it).
-int PositionInStripTriangle(long long i, long long j)
-{
-  if ((j & 1) == 0)
-  {
-    return static_cast<int>(i - j);
-  }
-  return i == j + 1 ? 0 : (i == j ? 1 : 2);
-}
-
 /// The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle).
 void LayOutStrips(vtkCellArray* strips, Surface& s)
 {
-  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  if (s.NumStrips == 0)
-  {
-    return;
-  }
   WithCellStorage(strips,
-    [&](const auto* off, const auto*)
-    {
-      for (vtkIdType k = 0; k < s.NumStrips; ++k)
-      {
-        const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
-        s.StripCornerStart[k + 1] = off[k + 1];
-        s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
-      }
-    });
+    [&](const auto* off, const auto*) { s.StripCornerStart.assign(off, off + s.NumStrips + 1); });
+  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  CellTriangleStarts(strips, s.StripFirstTriangle.data());
 }
 
 /// The polygons as the first faces: their offsets and ids copied to 64-bit storage.
@@ -375,7 +353,7 @@ void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, lo
             {
               const long long base = s.PolyCorners + 3 * (t0 + j);
               offsets[s.NumPolys + t0 + j + 1] = base + 3;
-              StripTriangle(ids + first, j, conn + base);
+              CellTriangle(ids + first, j, true, conn + base);
             }
           }
         });
@@ -541,10 +519,11 @@ void Assign(const Surface& s,
       // the kernel corner of strip corner i in strip triangle j, which contains it
       const auto slotIn = [&](long long j)
       { return s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j); };
-      const long long j = std::max(0LL, i - 2);
+      vtkIdType j, last;
+      TrianglesAtCorner(i, n, true, j, last);
       const long long slot = slotIn(j);
       visit(s.PolyCorners + first + i, slot);
-      for (long long later = j + 1; later <= std::min(i, n - 3); ++later)
+      for (long long later = j + 1; later <= last; ++later)
       {
         if (!SameFrame(kernelFrames[slotIn(later)], kernelFrames[slot]))
         {

@@ -113,35 +113,14 @@ void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
     });
 }
 
-/// Per polygon, then per strip, its first triangle (out.CellStart), and the number of triangles.
-void CountCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
-{
-  out.CellStart.resize(static_cast<size_t>(out.NumberOfCells + 1));
-  vtkIdType next = 0;
-  vtkIdType cell = 0;
-  for (int kind = 0; kind < 2; ++kind)
-  {
-    vtkCellArray* cells = cellArrays[kind];
-    WithCellStorage(cells,
-      [&](const auto* offsets, const auto*)
-      {
-        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c, ++cell)
-        {
-          out.CellStart[cell] = next;
-          next += std::max<vtkIdType>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]) - 2, 0);
-        }
-      });
-  }
-  out.CellStart[out.NumberOfCells] = next;
-  out.Count = next;
-}
-
-/**
- * The triangles of every polygon and strip, where CountCellTriangles put them: polygons fan from
- * their corner 0, strips keep their winding (StripTriangle).
- */
+/// The triangles of every polygon and strip (CellTriangle), in cell order.
 void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
 {
+  out.CellStart.assign(static_cast<size_t>(out.NumberOfCells + 1), 0);
+  vtkNormalMapping::detail::CellTriangleStarts(cellArrays[0], out.CellStart.data());
+  vtkNormalMapping::detail::CellTriangleStarts(
+    cellArrays[1], out.CellStart.data() + cellArrays[0]->GetNumberOfCells());
+  out.Count = out.CellStart.back();
   out.Storage.reset(new vtkIdType[3 * out.Count]);
   out.Ids = out.Storage.get();
   vtkIdType firstCell = 0;
@@ -157,19 +136,11 @@ void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
           {
             for (vtkIdType c = begin; c < end; ++c)
             {
-              const auto* pts = conn + offsets[c];
               const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
               vtkIdType* tri = out.Storage.get() + 3 * out.CellStart[firstCell + c];
               for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
               {
-                if (kind == 1)
-                {
-                  vtkNormalMapping::detail::StripTriangle(pts, j, tri);
-                  continue;
-                }
-                tri[0] = pts[0];
-                tri[1] = pts[j + 1];
-                tri[2] = pts[j + 2];
+                vtkNormalMapping::detail::CellTriangle(conn + offsets[c], j, kind == 1, tri);
               }
             }
           });
@@ -188,7 +159,6 @@ void BuildTriangles(vtkCellArray* const cellArrays[2], bool polysAreTriangles, T
     ShareTrianglePolygons(cellArrays[0], out);
     return;
   }
-  CountCellTriangles(cellArrays, out);
   ListCellTriangles(cellArrays, out);
 }
 
@@ -569,18 +539,6 @@ struct CornerSides
 };
 
 /**
- * The triangles [first, last] of a cell with n points that hold its corner k, in the order
- * ListCellTriangles lists them: a polygon's fan (0, j + 1, j + 2) has corner 0 in every triangle
- * and corner k > 0 in triangles k - 2 and k - 1; strip triangle j holds corners j to j + 2.
- */
-void TrianglesAtCorner(vtkIdType k, vtkIdType n, bool strip, vtkIdType& first, vtkIdType& last)
-{
-  first = std::max<vtkIdType>(k - 2, 0);
-  last =
-    strip ? std::min<vtkIdType>(k, n - 3) : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
-}
-
-/**
  * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
  * copy id), polygon positions first, then strip positions after the polygons' connectivity.
  * A corner's side is the majority handedness of its cell's triangles that hold it.
@@ -627,7 +585,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           const vtkIdType k = pos - static_cast<vtkIdType>(offsets[c]);
           const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
           vtkIdType first, last;
-          TrianglesAtCorner(k, n, strip, first, last);
+          vtkNormalMapping::detail::TrianglesAtCorner(k, n, strip, first, last);
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {

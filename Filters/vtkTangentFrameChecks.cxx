@@ -23,8 +23,7 @@ namespace
 constexpr unsigned char PositiveWinding = 1;
 constexpr unsigned char NegativeWinding = 2;
 
-/// The triangles of the polygons (fans from corner 0) and strips (every odd one reversed, so
-/// that all triangles of a strip share its winding), three point ids each.
+/// The triangles of the polygons and strips (detail::CellTriangle), three point ids each.
 std::vector<vtkIdType> ListTriangles(vtkPolyData* mesh)
 {
   std::vector<vtkIdType> ids;
@@ -39,11 +38,8 @@ std::vector<vtkIdType> ListTriangles(vtkPolyData* mesh)
       it->GetCurrentCell(n, pts);
       for (vtkIdType j = 0; j + 2 < n; ++j)
       {
-        vtkIdType tri[3] = { pts[0], pts[j + 1], pts[j + 2] };
-        if (strip)
-        {
-          detail::StripTriangle(pts, j, tri);
-        }
+        vtkIdType tri[3];
+        detail::CellTriangle(pts, j, strip, tri);
         ids.insert(ids.end(), tri, tri + 3);
       }
     }
