@@ -91,6 +91,17 @@ bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoi
   return (bits >> 63) == 0;
 }
 
+/**
+ * `array` when it has `components` components (0: any number) and a tuple for every point of
+ * `mesh`, else null with `problem` saying why ("<what> array 'name' has ..."). A null `array`
+ * gives null and leaves `problem` as it is.
+ */
+vtkDataArray* PointArray(vtkPolyData* mesh,
+  vtkDataArray* array,
+  const char* what,
+  int components,
+  std::string& problem);
+
 /// The degeneracy tolerances for positions and texture coordinates stored in these arrays: those
 /// of double for double arrays, of float for any other type.
 inline DegeneracyTolerance ToleranceFor(vtkDataArray* points, vtkDataArray* uvs)

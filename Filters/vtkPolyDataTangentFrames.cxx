@@ -46,14 +46,7 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
       "' is not numeric (" + abstract->GetClassName() + ")";
     return nullptr;
   }
-  if (array->GetNumberOfTuples() < input->GetNumberOfPoints())
-  {
-    problem = std::string("point array '") + (array->GetName() ? array->GetName() : "") + "' has " +
-      std::to_string(array->GetNumberOfTuples()) + " tuples for " +
-      std::to_string(input->GetNumberOfPoints()) + " points";
-    return nullptr;
-  }
-  return array;
+  return vtkNormalMapping::detail::PointArray(input, array, "point", 0, problem);
 }
 
 /**
