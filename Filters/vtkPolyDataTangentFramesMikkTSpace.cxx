@@ -52,11 +52,6 @@ bool SameFrame(const CornerFrame& a, const CornerFrame& b)
   return x[0] == y[0] && x[1] == y[1];
 }
 
-bool IsDefault(const CornerFrame& f)
-{
-  return SameFrame(f, mikk::DefaultCornerFrame);
-}
-
 /// |T.N| (unit N) allowed before a kernel tangent is made perpendicular: it keeps the
 /// reference's tangents where real files' normals are off unit length by more than float rounding,
 /// and corrects the default (1,0,0) and clearly non-unit normals (docs/mikktspace.md).
@@ -324,12 +319,8 @@ void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, lo
     });
 }
 
-/**
- * Fills `s`. Precondition: the cell arrays' offsets are consistent (the first 0, none smaller than
- * the one before, the last the connectivity size) and every id is a point's:
- * vtkPolyDataTangentFrames checks both (CellArrayProblem, PointIdsInRange) before any method
- * runs, and every read of the offsets, and of the ids between them, relies on it.
- */
+/// Fills `s` from cell arrays ExecuteBlock has checked (CellArrayProblem, PointIdsInRange): every
+/// read of the offsets, and of the ids between them, relies on it.
 void BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s)
 {
   s.NumPolys = polys->GetNumberOfCells();
@@ -544,7 +535,7 @@ void CellSums(const Surface& s,
     for (long long c = cb; c < ce; ++c)
     {
       const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!IsDefault(cf) && !IsCancelled(cf))
+      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
       {
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }

@@ -772,12 +772,6 @@ template<typename OutT>
 using OutArray =
   typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
 
-template<typename OutT>
-vtkSmartPointer<OutArray<OutT>> NewOutArray(const char* name, int components, vtkIdType tuples)
-{
-  return vtkNormalMapping::detail::NewArray<OutArray<OutT>>(name, components, tuples);
-}
-
 /// The output's frame arrays of values OutT.
 template<typename OutT>
 using OutFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
@@ -808,13 +802,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction) { return this->Self->ContinueBlock(*this, fraction); }
-
-  /// The triangles (their point ids are in range: see ExecuteBlock).
-  void ListTriangles()
-  {
-    BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
-    this->NumberOfTriangles = this->Tris.Count;
-  }
 
   /**
    * Calls body(visitRange), where visitRange(begin, end, visit) calls visit(first, block, count)
@@ -1072,7 +1059,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkSmartPointer<OutArray<OutT>> ComputedNormals()
   {
     const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
-    auto normals = NewOutArray<OutT>("Normals", 3, this->NumberOfPoints);
+    auto normals =
+      vtkNormalMapping::detail::NewArray<OutArray<OutT>>("Normals", 3, this->NumberOfPoints);
     OutT* out = normals->GetPointer(0);
     for (size_t p = 0; p < smooth.size(); ++p)
     {
@@ -1154,7 +1142,8 @@ void vtkPolyDataTangentFrames::Internals::Run()
   }
   if (!mikkTSpace || !this->Normals)
   {
-    this->ListTriangles();
+    BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
+    this->NumberOfTriangles = this->Tris.Count;
     if (!this->Continue(0.2))
     {
       return;
