@@ -39,7 +39,8 @@
  * on a multiversioned function). Empty for other compilers and targets, and when CMake's
  * NORMALMAPPING_MULTIVERSIONING is OFF: the function is then compiled once for the default
  * target. For the block loops whose speed depends on the width of the vector unit; the source
- * stays one portable function.
+ * stays one portable function. Every clone performs the same IEEE operations (no contraction into
+ * fused multiply-adds: CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
 #if defined(VTK_NORMALMAPPING_NO_MULTIVERSIONING)
 #define VTK_NORMALMAPPING_TARGET_CLONES

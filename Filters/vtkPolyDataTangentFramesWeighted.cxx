@@ -42,13 +42,10 @@
  * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
- * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order,
- *    each block of frames added as it is computed: each thread owns a range of point ids, goes
- *    through the triangles in tiles, computes the tiles that reach its points and adds only their
- *    corners (SumFrames). Each point adds the same terms in the same order, so the output is
- *    bit-identical for any number of threads. A point then takes the frame of its one handedness
- *    (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame goes to the
- *    point's copy) or the heavier side.
+ * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order
+ *    whatever thread computed them (SumFrames). A point then takes the frame of its one
+ *    handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame
+ *    goes to the point's copy) or the heavier side (KindOf).
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -261,10 +258,7 @@ struct ShadingNormals
 
 /**
  * ComputeTriangleBlock and, with `signedWeights`, SignCornerWeights for `method` (corner angles
- * only then, for AngleWeighted), compiled also for the wider vector units of x86-64 CPUs and
- * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES), as the point pass's ComputeUnitFrames
- * is. Every clone performs the same IEEE operations (no contraction into fused
- * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ * only then, for AngleWeighted), multiversioned (VTK_NORMALMAPPING_TARGET_CLONES).
  */
 VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeFrameBlock(TriangleBlock& block,
@@ -630,10 +624,7 @@ PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& si
   return PointKind::Conflict;
 }
 
-/**
- * ComputePointBlock, compiled also for the wider vector units of x86-64 CPUs, as
- * ComputeFrameBlock is.
- */
+/// ComputePointBlock, multiversioned (VTK_NORMALMAPPING_TARGET_CLONES).
 VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool normalize)
 {
