@@ -208,8 +208,7 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
   vtkDataArray*& cellNormals)
 {
   cellNormals = nullptr;
-  vtkDataArray* normals = input->GetPointData()->GetNormals();
-  if (normals)
+  if (vtkDataArray* normals = input->GetPointData()->GetNormals())
   {
     std::string problem;
     normals = NumericPointArray(input, "Normals", normals, problem);
@@ -219,14 +218,11 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
         " components instead of 3";
       normals = nullptr;
     }
-    if (!normals)
+    if (normals)
     {
-      vtkWarningWithObjectMacro(self, "Ignoring the point normals: " << problem << ".");
+      return normals;
     }
-  }
-  if (normals)
-  {
-    return normals;
+    vtkWarningWithObjectMacro(self, "Ignoring the point normals: " << problem << ".");
   }
   vtkDataArray* cn = input->GetCellData()->GetNormals();
   if (cn && cn->GetNumberOfComponents() == 3 &&

@@ -199,13 +199,13 @@ struct Links
 /// Every triangle's frame, kept for the cell tangents.
 struct TriangleFrames
 {
-  Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
-  Buffer<double> Normal;  // the winding normal, 3 per triangle
+  Buffer<dvec3> Tangent; // unit dP/du; zero without a frame
+  Buffer<dvec3> Normal;  // the winding normal
   Buffer<double> Area;
 
   explicit TriangleFrames(vtkIdType n)
-    : Tangent(new double[3 * n])
-    , Normal(new double[3 * n])
+    : Tangent(new dvec3[n])
+    , Normal(new dvec3[n])
     , Area(new double[n])
   {
   }
@@ -214,22 +214,11 @@ struct TriangleFrames
   {
     for (int i = 0; i < count; ++i)
     {
-      const vtkIdType t = first + i;
-      for (int k = 0; k < 3; ++k)
-      {
-        this->Tangent[3 * t + k] = b.Tangent[k][i];
-        this->Normal[3 * t + k] = b.Normal[k][i];
-      }
-      this->Area[t] = b.Area[i];
+      const TriangleFrame f = b.Frame(i);
+      this->Tangent[first + i] = f.Tangent;
+      this->Normal[first + i] = f.Normal;
+      this->Area[first + i] = f.Area;
     }
-  }
-  dvec3 TangentOf(vtkIdType t) const
-  {
-    return dvec3(this->Tangent[3 * t], this->Tangent[3 * t + 1], this->Tangent[3 * t + 2]);
-  }
-  dvec3 NormalOf(vtkIdType t) const
-  {
-    return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
   }
 };
 
@@ -1104,8 +1093,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
           {
             for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
             {
-              t += f.Area[i] * f.TangentOf(i);
-              n += f.Area[i] * SafeNormalize(f.NormalOf(i));
+              t += f.Area[i] * f.Tangent[i];
+              n += f.Area[i] * SafeNormalize(f.Normal[i]);
             }
           }));
     }
