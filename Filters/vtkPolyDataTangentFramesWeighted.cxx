@@ -214,10 +214,9 @@ struct TriangleFrames
   {
     for (int i = 0; i < count; ++i)
     {
-      const TriangleFrame f = b.Frame(i);
-      this->Tangent[first + i] = f.Tangent;
-      this->Normal[first + i] = f.Normal;
-      this->Area[first + i] = f.Area;
+      this->Tangent[first + i] = dvec3(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
+      this->Normal[first + i] = dvec3(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
+      this->Area[first + i] = b.Area[i];
     }
   }
 };
