@@ -685,27 +685,17 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
 
-  // WriteOutput for the output's array class, named by a null pointer of it.
-  const auto write = [&](auto* arrayClass)
-  {
-    WriteOutput<std::remove_pointer_t<decltype(arrayClass)>>(this,
-      input,
-      block.Output,
-      computedNormals ? normalArray : nullptr,
-      surface,
-      result.Corners,
-      positions,
-      contractNormals,
-      assignment);
-  };
-  if (this->DoubleOutput(input))
-  {
-    write(static_cast<vtkDoubleArray*>(nullptr));
-  }
-  else
-  {
-    write(static_cast<vtkFloatArray*>(nullptr));
-  }
+  const auto write =
+    this->DoubleOutput(input) ? WriteOutput<vtkDoubleArray> : WriteOutput<vtkFloatArray>;
+  write(this,
+    input,
+    block.Output,
+    computedNormals ? normalArray : nullptr,
+    surface,
+    result.Corners,
+    positions,
+    contractNormals,
+    assignment);
   this->ContinueBlock(block, 1.0);
   return result.NumberOfTriangles;
 }
