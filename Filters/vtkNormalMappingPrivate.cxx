@@ -101,7 +101,6 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   }
   else
   {
-    // The offsets do not change: the copy shares them and holds a new connectivity array.
     vtkDataArray* connectivity = cells->GetConnectivityArray();
     auto newConnectivity = vtk::TakeSmartPointer(connectivity->NewInstance());
     newConnectivity->DeepCopy(connectivity);

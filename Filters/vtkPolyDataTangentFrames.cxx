@@ -78,10 +78,9 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // One pass without early exit or 64-bit comparisons (SSE2 has none), so that it vectorizes
-      // with any instruction set; then a search only when something is wrong. In unsigned
-      // arithmetic a cell size n is negative when its top bit is set and, when no size is
-      // negative, below 3 when n - 3 has its top bit set.
+      // One pass of top-bit tests that vectorizes with any instruction set (as IdsInRange), then
+      // a search only when something is wrong: a cell size n is negative when its top bit is set
+      // and, when no size is negative, below 3 when n - 3 has its top bit set.
       using Bits = std::uint64_t;
       Bits negative = 0;
       Bits notThree = 0;
