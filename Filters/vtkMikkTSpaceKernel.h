@@ -33,21 +33,16 @@
  * as given. glTF stores v downward: tangents for glTF are obtained by running on the glTF UVs
  * and negating Sign.
  *
- * Threading: the per-triangle, per-vertex (grouping and accumulation) and per-face phases run
- * with vtkSMPTools; results are bit-identical for any number of threads. The radix sort and
- * comparison of point welding, the counting sort of corners by welded vertex and the orientation
- * adoption of zero-UV-area ("group with any") triangles, which the reference defines
- * sequentially, run on the calling thread; the adoption only visits vertices touching such
- * triangles.
+ * Threading: vtkSMPTools' threads (those of the enclosing LocalScope, if any); the results are
+ * bit-identical for any number of threads. vtkMikkTSpaceKernel.cxx lists the phases and which of
+ * them run on the calling thread.
  *
  * Limits: 3 * (number of face corners) + NumberOfPoints must be at most 2^31 - 17 (32-bit
  * indices); larger inputs return Result::TooLarge with default frames.
  *
- * Arithmetic: scalar float operations in the reference's order, acos evaluated in double and
- * rounded to float. Compile this translation unit without -ffast-math and without
- * floating-point contraction (the module's CMake adds -ffp-contract=off for GCC and Clang, the
- * source carries the STDC pragma for other compilers): a fused multiply-add changes the last
- * bits, and the output would no longer be the reference's.
+ * Build: without -ffast-math and without floating-point contraction, which would change the
+ * last bits of the reference's float arithmetic (see the FP_CONTRACT pragma in
+ * vtkMikkTSpaceKernel.cxx).
  */
 #ifndef vtkMikkTSpaceKernel_h
 #define vtkMikkTSpaceKernel_h
@@ -116,9 +111,7 @@ inline bool IsCancelled(const CornerFrame& f)
 }
 
 /**
- * Compute MikkTSpace tangents for every face corner, with vtkSMPTools' threads (those of the
- * enclosing LocalScope, if any).
- * Deterministic: identical output for any thread count.
+ * Compute MikkTSpace tangents for every face corner.
  * progressAndAbort: optional, called from the calling thread between phases with a progress in
  * [0,1]; returning true stops the computation (Result::Aborted, corners set to the default).
  * Empty Normals/TCoords/Positions pointers with a non-empty mesh yield all-default corners.

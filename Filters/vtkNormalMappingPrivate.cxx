@@ -20,6 +20,33 @@ int vtkNormalMapping::detail::UsableThreads()
   return std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
 }
 
+vtkDataArray* vtkNormalMapping::detail::PointArray(vtkPolyData* mesh,
+  vtkDataArray* array,
+  const char* what,
+  int components,
+  std::string& problem)
+{
+  if (!array)
+  {
+    return nullptr;
+  }
+  const std::string label =
+    std::string(what) + " array '" + (array->GetName() ? array->GetName() : "") + "' has ";
+  if (components > 0 && array->GetNumberOfComponents() != components)
+  {
+    problem = label + std::to_string(array->GetNumberOfComponents()) + " components instead of " +
+      std::to_string(components);
+    return nullptr;
+  }
+  if (array->GetNumberOfTuples() < mesh->GetNumberOfPoints())
+  {
+    problem = label + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
+      std::to_string(mesh->GetNumberOfPoints()) + " points";
+    return nullptr;
+  }
+  return array;
+}
+
 vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::WithPlainCellStorage(vtkPolyData* input)
 {
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
@@ -74,7 +101,6 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   }
   else
   {
-    // The offsets do not change: the copy shares them and holds a new connectivity array.
     vtkDataArray* connectivity = cells->GetConnectivityArray();
     auto newConnectivity = vtk::TakeSmartPointer(connectivity->NewInstance());
     newConnectivity->DeepCopy(connectivity);

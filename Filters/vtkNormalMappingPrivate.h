@@ -39,7 +39,8 @@
  * on a multiversioned function). Empty for other compilers and targets, and when CMake's
  * NORMALMAPPING_MULTIVERSIONING is OFF: the function is then compiled once for the default
  * target. For the block loops whose speed depends on the width of the vector unit; the source
- * stays one portable function.
+ * stays one portable function. Every clone performs the same IEEE operations (no contraction into
+ * fused multiply-adds: CMake/vtkNormalMappingModule.cmake), so all give the same bits.
  */
 #if defined(VTK_NORMALMAPPING_NO_MULTIVERSIONING)
 #define VTK_NORMALMAPPING_TARGET_CLONES
@@ -91,6 +92,17 @@ bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoi
   return (bits >> 63) == 0;
 }
 
+/**
+ * `array` when it has `components` components (0: any number) and a tuple for every point of
+ * `mesh`, else null with `problem` saying why ("<what> array 'name' has ..."). A null `array`
+ * gives null and leaves `problem` as it is.
+ */
+vtkDataArray* PointArray(vtkPolyData* mesh,
+  vtkDataArray* array,
+  const char* what,
+  int components,
+  std::string& problem);
+
 /// The degeneracy tolerances for positions and texture coordinates stored in these arrays: those
 /// of double for double arrays, of float for any other type.
 inline DegeneracyTolerance ToleranceFor(vtkDataArray* points, vtkDataArray* uvs)
@@ -101,16 +113,43 @@ inline DegeneracyTolerance ToleranceFor(vtkDataArray* points, vtkDataArray* uvs)
 }
 
 /**
- * Triangle j of a strip whose points are pts: (j, j+1, j+2), with every odd one reversed so that
- * all triangles of a strip share its winding.
+ * The layout of the triangles of a cell whose points are pts: triangle j of a polygon is the fan
+ * triangle (0, j + 1, j + 2); of a strip (j, j + 1, j + 2), every odd one reversed so that all
+ * triangles of a strip share its winding. A cell of n points holds max(n - 2, 0) triangles.
  */
 template<typename IdT, typename OutT>
-void StripTriangle(const IdT* pts, vtkIdType j, OutT tri[3])
+void CellTriangle(const IdT* pts, vtkIdType j, bool strip, OutT tri[3])
 {
   const bool odd = (j & 1) != 0;
-  tri[0] = static_cast<OutT>(pts[odd ? j + 1 : j]);
-  tri[1] = static_cast<OutT>(pts[odd ? j : j + 1]);
+  tri[0] = static_cast<OutT>(pts[strip ? (odd ? j + 1 : j) : 0]);
+  tri[1] = static_cast<OutT>(pts[strip && odd ? j : j + 1]);
   tri[2] = static_cast<OutT>(pts[j + 2]);
+}
+
+/// The position (0, 1 or 2) of strip corner i in strip triangle j, which holds it (CellTriangle).
+inline int PositionInStripTriangle(vtkIdType i, vtkIdType j)
+{
+  if ((j & 1) == 0)
+  {
+    return static_cast<int>(i - j);
+  }
+  return i == j + 1 ? 0 : (i == j ? 1 : 2);
+}
+
+/**
+ * The triangles [first, last] of a cell with n points that hold its corner k (CellTriangle): a
+ * polygon's corner 0 is in every triangle and its corner k > 0 in triangles k - 2 and k - 1;
+ * strip triangle j holds corners j to j + 2.
+ */
+inline void TrianglesAtCorner(vtkIdType k,
+  vtkIdType n,
+  bool strip,
+  vtkIdType& first,
+  vtkIdType& last)
+{
+  first = std::max<vtkIdType>(k - 2, 0);
+  last =
+    strip ? std::min<vtkIdType>(k, n - 3) : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
 }
 
 /// Calls worker(typed array, args...) through vtkArrayDispatch for the arrays whose value type is
@@ -155,6 +194,24 @@ decltype(auto) WithCellStorage(vtkCellArray* cells, F&& f)
   return f(
     cells->GetOffsetsArray32()->GetPointer(0), cells->GetConnectivityArray32()->GetPointer(0));
 #endif
+}
+
+/**
+ * Per cell of `cells`, the index of its first triangle (CellTriangle), counted on from first[0]:
+ * first[c + 1] is where cell c's triangles end.
+ */
+template<typename T>
+void CellTriangleStarts(vtkCellArray* cells, T* first)
+{
+  WithCellStorage(cells,
+    [&](const auto* offsets, const auto*)
+    {
+      for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+      {
+        const T n = static_cast<T>(offsets[c + 1] - offsets[c]);
+        first[c + 1] = first[c] + std::max<T>(n - 2, 0);
+      }
+    });
 }
 
 /**

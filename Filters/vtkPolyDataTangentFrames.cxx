@@ -46,14 +46,7 @@ vtkDataArray* NumericPointArray(vtkPolyData* input,
       "' is not numeric (" + abstract->GetClassName() + ")";
     return nullptr;
   }
-  if (array->GetNumberOfTuples() < input->GetNumberOfPoints())
-  {
-    problem = std::string("point array '") + (array->GetName() ? array->GetName() : "") + "' has " +
-      std::to_string(array->GetNumberOfTuples()) + " tuples for " +
-      std::to_string(input->GetNumberOfPoints()) + " points";
-    return nullptr;
-  }
-  return array;
+  return vtkNormalMapping::detail::PointArray(input, array, "point", 0, problem);
 }
 
 /**
@@ -85,10 +78,9 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // One pass without early exit or 64-bit comparisons (SSE2 has none), so that it vectorizes
-      // with any instruction set; then a search only when something is wrong. In unsigned
-      // arithmetic a cell size n is negative when its top bit is set and, when no size is
-      // negative, below 3 when n - 3 has its top bit set.
+      // One pass of top-bit tests that vectorizes with any instruction set (as IdsInRange), then
+      // a search only when something is wrong: a cell size n is negative when its top bit is set
+      // and, when no size is negative, below 3 when n - 3 has its top bit set.
       using Bits = std::uint64_t;
       Bits negative = 0;
       Bits notThree = 0;
@@ -215,8 +207,7 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
   vtkDataArray*& cellNormals)
 {
   cellNormals = nullptr;
-  vtkDataArray* normals = input->GetPointData()->GetNormals();
-  if (normals)
+  if (vtkDataArray* normals = input->GetPointData()->GetNormals())
   {
     std::string problem;
     normals = NumericPointArray(input, "Normals", normals, problem);
@@ -226,14 +217,11 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
         " components instead of 3";
       normals = nullptr;
     }
-    if (!normals)
+    if (normals)
     {
-      vtkWarningWithObjectMacro(self, "Ignoring the point normals: " << problem << ".");
+      return normals;
     }
-  }
-  if (normals)
-  {
-    return normals;
+    vtkWarningWithObjectMacro(self, "Ignoring the point normals: " << problem << ".");
   }
   vtkDataArray* cn = input->GetCellData()->GetNormals();
   if (cn && cn->GetNumberOfComponents() == 3 &&
@@ -260,19 +248,10 @@ vtkPolyDataTangentFrames::~vtkPolyDataTangentFrames() = default;
 
 const char* vtkPolyDataTangentFrames::GetMethodName(int method)
 {
-  switch (method)
-  {
-    case UNWEIGHTED:
-      return "Unweighted";
-    case AREA_WEIGHTED:
-      return "AreaWeighted";
-    case ANGLE_WEIGHTED:
-      return "AngleWeighted";
-    case MIKKTSPACE:
-      return "MikkTSpace";
-    default:
-      return "Unknown";
-  }
+  static const char* const names[] = {
+    "Unweighted", "AreaWeighted", "AngleWeighted", "MikkTSpace"
+  };
+  return method >= UNWEIGHTED && method <= MIKKTSPACE ? names[method] : "Unknown";
 }
 
 void vtkPolyDataTangentFrames::SetTCoordsArrayName(const std::string& name)

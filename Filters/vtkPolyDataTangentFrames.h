@@ -30,9 +30,8 @@
  * Degenerate input never produces NaN or Inf. Triangles with zero UV area or zero area (within a
  * few epsilons of the stored precision, see vtkNormalMapping::DegeneracyTolerance), with a
  * height within the rounding noise of their coordinates (vtkNormalMapping::IsRoundingNoise),
- * or with non-finite coordinates contribute nothing and are counted
- * (NumberOfDegenerateTriangles). A
- * point with no usable triangle (a "fallback" point) takes the mean of its neighbours' tangents
+ * or with non-finite coordinates contribute nothing and are counted (NumberOfDegenerateTriangles).
+ * A point with no usable triangle (a "fallback" point) takes the mean of its neighbours' tangents
  * projected onto its tangent plane, or where that fails a fixed rule (the Duff et al. basis of
  * the normal), and the majority sign of its neighbours (+1 if none); they are counted in
  * NumberOfFallbackPoints.
@@ -203,10 +202,8 @@ public:
   /// Triangles (after fan-triangulating polygons and strips) with no usable frame.
   vtkGetMacro(NumberOfDegenerateTriangles, vtkIdType);
   /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
-  /// For MIKKTSPACE: face corners MikkTSpace cannot resolve, which get (1, 0, 0) made
-  /// perpendicular to the normal: those it leaves at its default ((1, 0, 0), sign -1, which the
-  /// reference outputs whatever the normal) and those whose summed tangents cancel (the
-  /// reference outputs that sum unnormalised, or nearly zero; the sign is kept).
+  /// For MIKKTSPACE: face corners MikkTSpace leaves at its default ((1, 0, 0), sign -1) or whose
+  /// summed tangents cancel (sign kept); they get (1, 0, 0) made perpendicular to the normal.
   vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
   /// Points whose triangles disagree on handedness (mirror seams); for MIKKTSPACE, points whose
   /// corners have different frames.

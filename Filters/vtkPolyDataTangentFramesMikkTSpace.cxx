@@ -1,39 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The MikkTSpace method of vtkPolyDataTangentFrames: input polydata -> kernel faces ->
-// per-corner frames -> per-point output (points split where their corners disagree).
-//
-// Rules:
-// * Kernel faces: every polygon as it is (the kernel splits quads like the reference and fans
-//   larger polygons), then every strip triangle j as a triangle, (j, j+1, j+2) for even j and
-//   (j+1, j, j+2) for odd j, so that the strip's winding is kept. Positions, normals and the
-//   first two texture coordinates are converted to float (a 1-component TCoords gives v = 0);
-//   positions scaled by a power of two when their extent lies outside [2^-16, 2^16] or they
-//   are centred, and non-float positions centred when far from the origin (KernelPositions).
-// * Frame of an output corner: polygon corner k of cell c is kernel corner k of face c. A strip
-//   corner belongs to up to three strip triangles; it takes the frame of the *first* (lowest j)
-//   strip triangle containing it. Strip corners whose triangles disagree (bitwise) make their
-//   point a conflict.
-// * A point's frame is that of its first corner (cell order, then corner order, polygons before
-//   strips). A point whose corners carry bitwise different frames is a conflict. With Splitting
-//   every further distinct frame of it becomes a new point (appended after the input points in
-//   order of first appearance, with a copy of all point data), and the corners carrying that
-//   frame are re-pointed to it.
-// * The filter's contract (finite unit tangents perpendicular to the unit normal), applied to
-//   each output point's frame with the point's own normal, without touching the kernel's bits
-//   where they already meet it: a tangent that is not unit (mikk::IsCancelled: the reference
-//   leaves a sum that cancels at a corner unnormalised) is a cancelled corner and gets the fallback
-//   frame, (1,0,0) made perpendicular to the normal, keeping its sign; a unit tangent with |T.N|
-//   above 1e-4 (MikkTSpace's default (1,0,0) where the normal is not perpendicular to it, normals
-//   clearly off unit length, which the kernel takes as they are) is Gram-Schmidt-ed against the
-//   normal in double. Both use vtkNormalMapping::PerpendicularTangent (Duff et al.'s fixed basis
-//   where the tangent is parallel to the normal). Points used by no polygon or strip get the
-//   default frame treated the same way. Points are assigned and split on the kernel's frames (the
-//   contract is a function of the frame and the point's normal, so corners that share a frame share
-//   the result). NumberOfFallbackPoints counts the kernel's default corners and the cancelled ones.
-// * Cell tangents: the sum of the cell's kernel-corner tangents (corners that had the
-//   default's bits or cancelled excluded), made perpendicular to the cell's geometric normal (sum
-//   of the cross products of its kernel triangles) and normalised; if that fails the fixed
-//   perpendicular of vtkNormalMapping::FallbackTangent; (0, 0, 0) for vertex and line cells.
+// The MikkTSpace method of vtkPolyDataTangentFrames: input polydata -> kernel faces
+// (BuildSurface, KernelPositions) -> per-corner frames (vtkMikkTSpaceKernel.h) -> per-point output
+// (Assign: points split where their corners disagree; WritePointFrames: the filter's contract).
+// docs/mikktspace.md, "Through the filter", lists the rules.
 #include "vtkPolyDataTangentFrames.h"
 
 #include "vtkNormalMappingPrivate.h"
@@ -83,22 +52,19 @@ bool SameFrame(const CornerFrame& a, const CornerFrame& b)
   return x[0] == y[0] && x[1] == y[1];
 }
 
-bool IsDefault(const CornerFrame& f)
-{
-  return SameFrame(f, mikk::DefaultCornerFrame);
-}
-
-/// |T.N| (unit N) allowed before a kernel tangent is Gram-Schmidt-ed. MikkTSpace projects with
-/// the normal as given, so a normal off unit length by e leaves T.N of about 2e, and normals in
-/// real files are often off unit length by more than float rounding (docs/mikktspace.md). 1e-4
-/// (0.0057 degrees, far below the 1/127 rad step of an 8-bit normal map) keeps such tangents
-/// bit for bit, as the reference gives them, and corrects the default (1,0,0) and clearly
-/// non-unit normals.
+/// |T.N| (unit N) allowed before a kernel tangent is made perpendicular: it keeps the
+/// reference's tangents where real files' normals are off unit length by more than float rounding,
+/// and corrects the default (1,0,0) and clearly non-unit normals (docs/mikktspace.md).
 constexpr double kPerpendicularTolerance = 1e-4;
 
-/// The kernel frame `f` of a point with normal `n` (as given, any length; zero or non-finite:
-/// none) made to meet the filter's contract (see the rules at the top). The common case, a
-/// unit tangent perpendicular enough, is decided without a square root or a normalisation.
+/**
+ * The kernel frame `f` of a point with normal `n` (as given, any length; zero or non-finite:
+ * none) made to meet the filter's contract (finite unit tangents perpendicular to the normal),
+ * keeping the kernel's bits where they meet it already: a cancelled tangent (mikk::IsCancelled)
+ * becomes (1,0,0) made perpendicular to the normal, its sign kept; a tangent with |T.N| above
+ * kPerpendicularTolerance is made perpendicular in double (both PerpendicularTangent). The
+ * common case is decided without a square root or a normalisation.
+ */
 CornerFrame ContractFrame(const CornerFrame& f, const glm::dvec3& n)
 {
   const glm::dvec3 t(f.Tangent[0], f.Tangent[1], f.Tangent[2]);
@@ -200,18 +166,14 @@ struct ConvertPositions
 };
 
 /**
- * The positions the kernel gets. The kernel computes in float like the reference, whose
- * products of edges under- or overflow for meshes far from unit size, and whose rounding to
- * float loses what a double mesh far from the origin needs. So the positions are multiplied by
- * the power of two 2^k that brings the mesh's extent (the largest side of its bounding box)
- * into [0.5, 1) when it lies outside [2^-16, 2^16] or the mesh is centred: a mesh stored in
- * another type than float whose largest coordinate exceeds 16 times its extent is first moved,
- * in double, to its bounding box's centre. Multiplying by 2^k commutes with the rounding to float
- * and with every operation of the kernel (it normalizes directions and compares magnitudes with
- * each other; its FLT_MIN tests only matter where something under- or overflows), so float input,
- * and other input within 16 extents of the origin, give the reference's frames bit for bit wherever
- * the reference neither under- nor overflows. Float input is never moved: the reference rounds
- * nothing, so neither does this. A mesh without a finite, non-zero extent goes in unchanged.
+ * The positions the kernel gets, as floats like the reference's (docs/numerics.md, "Scale" and
+ * "Far from the origin"): multiplied by the power of two that brings the mesh's extent (the
+ * largest side of its bounding box) into [0.5, 1) when it lies outside [2^-16, 2^16] or the mesh
+ * is centred; a mesh stored in another type than float whose largest coordinate exceeds 16 times
+ * its extent is first moved, in double, to its bounding box's centre (float input never is: the
+ * reference rounds nothing, so neither does this). Scaling changes no bit of the reference's
+ * frames wherever they neither under- nor overflow. A mesh without a finite, non-zero extent goes
+ * in unchanged.
  */
 const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>& storage)
 {
@@ -242,11 +204,8 @@ const float* KernelPositions(vtkPoints* points, vtkIdType n, std::vector<float>&
     reach = extent;
   }
   // The exponent for the extent, limited so that no coordinate reaches 2^127, float's largest
-  // power of two (float input far from the origin compared with its extent, which stays where
-  // it is). Coordinate differences stay within the scaled extent, so only the coordinates
-  // themselves can overflow. Within [2^-16, 2^16] no product of up to four position differences
-  // leaves float's normal range, so scaling could not change a bit and is skipped (float input
-  // is then read without a copy).
+  // power of two (coordinate differences stay within the scaled extent). Within [2^-16, 2^16]
+  // scaling could not change a bit and is skipped (float input is then read without a copy).
   const bool ordinary = extent >= 0x1p-16 && extent <= 0x1p16;
   const int k =
     centred || !ordinary ? std::min(UnitExponent(extent), UnitExponent(reach) + 127) : 0;
@@ -303,35 +262,13 @@ struct Surface
   std::vector<long long> StripCornerStart;               // per strip + 1: first strip corner
 };
 
-/// Position of strip corner i in strip triangle j (which must contain it).
-int PositionInStripTriangle(long long i, long long j)
-{
-  if ((j & 1) == 0)
-  {
-    return static_cast<int>(i - j);
-  }
-  return i == j + 1 ? 0 : (i == j ? 1 : 2);
-}
-
 /// The strips' corner and triangle layout (s.StripCornerStart, s.StripFirstTriangle).
 void LayOutStrips(vtkCellArray* strips, Surface& s)
 {
-  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  s.StripCornerStart.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
-  if (s.NumStrips == 0)
-  {
-    return;
-  }
   WithCellStorage(strips,
-    [&](const auto* off, const auto*)
-    {
-      for (vtkIdType k = 0; k < s.NumStrips; ++k)
-      {
-        const long long n = static_cast<long long>(off[k + 1]) - static_cast<long long>(off[k]);
-        s.StripCornerStart[k + 1] = off[k + 1];
-        s.StripFirstTriangle[k + 1] = s.StripFirstTriangle[k] + std::max(0LL, n - 2);
-      }
-    });
+    [&](const auto* off, const auto*) { s.StripCornerStart.assign(off, off + s.NumStrips + 1); });
+  s.StripFirstTriangle.assign(static_cast<size_t>(s.NumStrips) + 1, 0);
+  CellTriangleStarts(strips, s.StripFirstTriangle.data());
 }
 
 /// The polygons as the first faces: their offsets and ids copied to 64-bit storage.
@@ -375,19 +312,15 @@ void UnrollStrips(vtkCellArray* strips, const Surface& s, long long* offsets, lo
             {
               const long long base = s.PolyCorners + 3 * (t0 + j);
               offsets[s.NumPolys + t0 + j + 1] = base + 3;
-              StripTriangle(ids + first, j, conn + base);
+              CellTriangle(ids + first, j, true, conn + base);
             }
           }
         });
     });
 }
 
-/**
- * Fills `s`. Precondition: the cell arrays' offsets are consistent (the first 0, none smaller than
- * the one before, the last the connectivity size) and every id is a point's:
- * vtkPolyDataTangentFrames checks both (CellArrayProblem, PointIdsInRange) before any method
- * runs, and every read of the offsets, and of the ids between them, relies on it.
- */
+/// Fills `s` from cell arrays ExecuteBlock has checked (CellArrayProblem, PointIdsInRange): every
+/// read of the offsets, and of the ids between them, relies on it.
 void BuildSurface(vtkCellArray* polys, vtkCellArray* strips, Surface& s)
 {
   s.NumPolys = polys->GetNumberOfCells();
@@ -541,10 +474,11 @@ void Assign(const Surface& s,
       // the kernel corner of strip corner i in strip triangle j, which contains it
       const auto slotIn = [&](long long j)
       { return s.PolyCorners + 3 * (t0 + j) + PositionInStripTriangle(i, j); };
-      const long long j = std::max(0LL, i - 2);
+      vtkIdType j, last;
+      TrianglesAtCorner(i, n, true, j, last);
       const long long slot = slotIn(j);
       visit(s.PolyCorners + first + i, slot);
-      for (long long later = j + 1; later <= std::min(i, n - 3); ++later)
+      for (long long later = j + 1; later <= last; ++later)
       {
         if (!SameFrame(kernelFrames[slotIn(later)], kernelFrames[slot]))
         {
@@ -601,7 +535,7 @@ void CellSums(const Surface& s,
     for (long long c = cb; c < ce; ++c)
     {
       const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!IsDefault(cf) && !IsCancelled(cf))
+      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
       {
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
@@ -618,7 +552,8 @@ void CellSums(const Surface& s,
  * Every output point's frame: the kernel frame Assignment gives it (the default for points no
  * corner with a frame reaches), made to meet the contract with the normal of the input point it
  * comes from (ContractFrame), its sign times `signFactor` (-1 for glTF's convention), and its
- * bitangent.
+ * bitangent. Points are assigned and split on the kernel's frames before: the contract depends
+ * only on the frame and the point's normal, so corners that share a frame share the result.
  */
 template<typename OutArray>
 void WritePointFrames(float signFactor,
@@ -750,27 +685,17 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
 
-  // WriteOutput for the output's array class, named by a null pointer of it.
-  const auto write = [&](auto* arrayClass)
-  {
-    WriteOutput<std::remove_pointer_t<decltype(arrayClass)>>(this,
-      input,
-      block.Output,
-      computedNormals ? normalArray : nullptr,
-      surface,
-      result.Corners,
-      positions,
-      contractNormals,
-      assignment);
-  };
-  if (this->DoubleOutput(input))
-  {
-    write(static_cast<vtkDoubleArray*>(nullptr));
-  }
-  else
-  {
-    write(static_cast<vtkFloatArray*>(nullptr));
-  }
+  const auto write =
+    this->DoubleOutput(input) ? WriteOutput<vtkDoubleArray> : WriteOutput<vtkFloatArray>;
+  write(this,
+    input,
+    block.Output,
+    computedNormals ? normalArray : nullptr,
+    surface,
+    result.Corners,
+    positions,
+    contractNormals,
+    assignment);
   this->ContinueBlock(block, 1.0);
   return result.NumberOfTriangles;
 }

@@ -151,17 +151,8 @@ void KeepFrames(const FrameOutput& out,
 
 const char* vtkPolyDataTangentFrames::GetSuppliedTangentsName(int mode)
 {
-  switch (mode)
-  {
-    case RECOMPUTE:
-      return "Recompute";
-    case KEEP:
-      return "Keep";
-    case KEEP_VALID:
-      return "KeepValid";
-    default:
-      return "Unknown";
-  }
+  static const char* const names[] = { "Recompute", "Keep", "KeepValid" };
+  return mode >= RECOMPUTE && mode <= KEEP_VALID ? names[mode] : "Unknown";
 }
 
 void vtkPolyDataTangentFrames::SetSuppliedTangentsArrayName(const std::string& name)

@@ -42,13 +42,10 @@
  * 3. Every triangle gets its frame (ComputeTriangleFrame, a block of triangles at a time) and, per
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
- * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order,
- *    each block of frames added as it is computed: each thread owns a range of point ids, goes
- *    through the triangles in tiles, computes the tiles that reach its points and adds only their
- *    corners (SumFrames). Each point adds the same terms in the same order, so the output is
- *    bit-identical for any number of threads. A point then takes the frame of its one handedness
- *    (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame goes to the
- *    point's copy) or the heavier side.
+ * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order
+ *    whatever thread computed them (SumFrames). A point then takes the frame of its one
+ *    handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame
+ *    goes to the point's copy) or the heavier side (KindOf).
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -113,35 +110,14 @@ void ShareTrianglePolygons(vtkCellArray* polys, Triangles& out)
     });
 }
 
-/// Per polygon, then per strip, its first triangle (out.CellStart), and the number of triangles.
-void CountCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
-{
-  out.CellStart.resize(static_cast<size_t>(out.NumberOfCells + 1));
-  vtkIdType next = 0;
-  vtkIdType cell = 0;
-  for (int kind = 0; kind < 2; ++kind)
-  {
-    vtkCellArray* cells = cellArrays[kind];
-    WithCellStorage(cells,
-      [&](const auto* offsets, const auto*)
-      {
-        for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c, ++cell)
-        {
-          out.CellStart[cell] = next;
-          next += std::max<vtkIdType>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]) - 2, 0);
-        }
-      });
-  }
-  out.CellStart[out.NumberOfCells] = next;
-  out.Count = next;
-}
-
-/**
- * The triangles of every polygon and strip, where CountCellTriangles put them: polygons fan from
- * their corner 0, strips keep their winding (StripTriangle).
- */
+/// The triangles of every polygon and strip (CellTriangle), in cell order.
 void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
 {
+  out.CellStart.assign(static_cast<size_t>(out.NumberOfCells + 1), 0);
+  vtkNormalMapping::detail::CellTriangleStarts(cellArrays[0], out.CellStart.data());
+  vtkNormalMapping::detail::CellTriangleStarts(
+    cellArrays[1], out.CellStart.data() + cellArrays[0]->GetNumberOfCells());
+  out.Count = out.CellStart.back();
   out.Storage.reset(new vtkIdType[3 * out.Count]);
   out.Ids = out.Storage.get();
   vtkIdType firstCell = 0;
@@ -157,19 +133,11 @@ void ListCellTriangles(vtkCellArray* const cellArrays[2], Triangles& out)
           {
             for (vtkIdType c = begin; c < end; ++c)
             {
-              const auto* pts = conn + offsets[c];
               const vtkIdType n = static_cast<vtkIdType>(offsets[c + 1] - offsets[c]);
               vtkIdType* tri = out.Storage.get() + 3 * out.CellStart[firstCell + c];
               for (vtkIdType j = 0; j + 2 < n; ++j, tri += 3)
               {
-                if (kind == 1)
-                {
-                  vtkNormalMapping::detail::StripTriangle(pts, j, tri);
-                  continue;
-                }
-                tri[0] = pts[0];
-                tri[1] = pts[j + 1];
-                tri[2] = pts[j + 2];
+                vtkNormalMapping::detail::CellTriangle(conn + offsets[c], j, kind == 1, tri);
               }
             }
           });
@@ -188,7 +156,6 @@ void BuildTriangles(vtkCellArray* const cellArrays[2], bool polysAreTriangles, T
     ShareTrianglePolygons(cellArrays[0], out);
     return;
   }
-  CountCellTriangles(cellArrays, out);
   ListCellTriangles(cellArrays, out);
 }
 
@@ -232,13 +199,13 @@ struct Links
 /// Every triangle's frame, kept for the cell tangents.
 struct TriangleFrames
 {
-  Buffer<double> Tangent; // unit dP/du, 3 per triangle; zero without a frame
-  Buffer<double> Normal;  // the winding normal, 3 per triangle
+  Buffer<dvec3> Tangent; // unit dP/du; zero without a frame
+  Buffer<dvec3> Normal;  // the winding normal
   Buffer<double> Area;
 
   explicit TriangleFrames(vtkIdType n)
-    : Tangent(new double[3 * n])
-    , Normal(new double[3 * n])
+    : Tangent(new dvec3[n])
+    , Normal(new dvec3[n])
     , Area(new double[n])
   {
   }
@@ -247,22 +214,10 @@ struct TriangleFrames
   {
     for (int i = 0; i < count; ++i)
     {
-      const vtkIdType t = first + i;
-      for (int k = 0; k < 3; ++k)
-      {
-        this->Tangent[3 * t + k] = b.Tangent[k][i];
-        this->Normal[3 * t + k] = b.Normal[k][i];
-      }
-      this->Area[t] = b.Area[i];
+      this->Tangent[first + i] = dvec3(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
+      this->Normal[first + i] = dvec3(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
+      this->Area[first + i] = b.Area[i];
     }
-  }
-  dvec3 TangentOf(vtkIdType t) const
-  {
-    return dvec3(this->Tangent[3 * t], this->Tangent[3 * t + 1], this->Tangent[3 * t + 2]);
-  }
-  dvec3 NormalOf(vtkIdType t) const
-  {
-    return dvec3(this->Normal[3 * t], this->Normal[3 * t + 1], this->Normal[3 * t + 2]);
   }
 };
 
@@ -291,10 +246,7 @@ struct ShadingNormals
 
 /**
  * ComputeTriangleBlock and, with `signedWeights`, SignCornerWeights for `method` (corner angles
- * only then, for AngleWeighted), compiled also for the wider vector units of x86-64 CPUs and
- * picked at load time (VTK_NORMALMAPPING_TARGET_CLONES), as the point pass's ComputeUnitFrames
- * is. Every clone performs the same IEEE operations (no contraction into fused
- * multiply-adds: see CMake/vtkNormalMappingModule.cmake), so all give the same bits.
+ * only then, for AngleWeighted), multiversioned (VTK_NORMALMAPPING_TARGET_CLONES).
  */
 VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeFrameBlock(TriangleBlock& block,
@@ -569,18 +521,6 @@ struct CornerSides
 };
 
 /**
- * The triangles [first, last] of a cell with n points that hold its corner k, in the order
- * ListCellTriangles lists them: a polygon's fan (0, j + 1, j + 2) has corner 0 in every triangle
- * and corner k > 0 in triangles k - 2 and k - 1; strip triangle j holds corners j to j + 2.
- */
-void TrianglesAtCorner(vtkIdType k, vtkIdType n, bool strip, vtkIdType& first, vtkIdType& last)
-{
-  first = std::max<vtkIdType>(k - 2, 0);
-  last =
-    strip ? std::min<vtkIdType>(k, n - 3) : (k == 0 ? n - 3 : std::min<vtkIdType>(k - 1, n - 3));
-}
-
-/**
  * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
  * copy id), polygon positions first, then strip positions after the polygons' connectivity.
  * A corner's side is the majority handedness of its cell's triangles that hold it.
@@ -627,7 +567,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           const vtkIdType k = pos - static_cast<vtkIdType>(offsets[c]);
           const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
           vtkIdType first, last;
-          TrianglesAtCorner(k, n, strip, first, last);
+          vtkNormalMapping::detail::TrianglesAtCorner(k, n, strip, first, last);
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
@@ -672,10 +612,7 @@ PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& si
   return PointKind::Conflict;
 }
 
-/**
- * ComputePointBlock, compiled also for the wider vector units of x86-64 CPUs, as
- * ComputeFrameBlock is.
- */
+/// ComputePointBlock, multiversioned (VTK_NORMALMAPPING_TARGET_CLONES).
 VTK_NORMALMAPPING_TARGET_CLONES
 void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool normalize)
 {
@@ -814,12 +751,6 @@ template<typename OutT>
 using OutArray =
   typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
 
-template<typename OutT>
-vtkSmartPointer<OutArray<OutT>> NewOutArray(const char* name, int components, vtkIdType tuples)
-{
-  return vtkNormalMapping::detail::NewArray<OutArray<OutT>>(name, components, tuples);
-}
-
 /// The output's frame arrays of values OutT.
 template<typename OutT>
 using OutFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
@@ -850,13 +781,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction) { return this->Self->ContinueBlock(*this, fraction); }
-
-  /// The triangles (their point ids are in range: see ExecuteBlock).
-  void ListTriangles()
-  {
-    BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
-    this->NumberOfTriangles = this->Tris.Count;
-  }
 
   /**
    * Calls body(visitRange), where visitRange(begin, end, visit) calls visit(first, block, count)
@@ -1114,7 +1038,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkSmartPointer<OutArray<OutT>> ComputedNormals()
   {
     const std::vector<dvec3> smooth = this->SmoothNormals(this->CellNormals, dvec3(0.0, 0.0, 1.0));
-    auto normals = NewOutArray<OutT>("Normals", 3, this->NumberOfPoints);
+    auto normals =
+      vtkNormalMapping::detail::NewArray<OutArray<OutT>>("Normals", 3, this->NumberOfPoints);
     OutT* out = normals->GetPointer(0);
     for (size_t p = 0; p < smooth.size(); ++p)
     {
@@ -1167,8 +1092,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
           {
             for (vtkIdType i = tris.FirstTriangle(c); i < tris.FirstTriangle(c + 1); ++i)
             {
-              t += f.Area[i] * f.TangentOf(i);
-              n += f.Area[i] * SafeNormalize(f.NormalOf(i));
+              t += f.Area[i] * f.Tangent[i];
+              n += f.Area[i] * SafeNormalize(f.Normal[i]);
             }
           }));
     }
@@ -1196,7 +1121,8 @@ void vtkPolyDataTangentFrames::Internals::Run()
   }
   if (!mikkTSpace || !this->Normals)
   {
-    this->ListTriangles();
+    BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);
+    this->NumberOfTriangles = this->Tris.Count;
     if (!this->Continue(0.2))
     {
       return;

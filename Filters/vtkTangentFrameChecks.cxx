@@ -23,8 +23,7 @@ namespace
 constexpr unsigned char PositiveWinding = 1;
 constexpr unsigned char NegativeWinding = 2;
 
-/// The triangles of the polygons (fans from corner 0) and strips (every odd one reversed, so
-/// that all triangles of a strip share its winding), three point ids each.
+/// The triangles of the polygons and strips (detail::CellTriangle), three point ids each.
 std::vector<vtkIdType> ListTriangles(vtkPolyData* mesh)
 {
   std::vector<vtkIdType> ids;
@@ -39,11 +38,8 @@ std::vector<vtkIdType> ListTriangles(vtkPolyData* mesh)
       it->GetCurrentCell(n, pts);
       for (vtkIdType j = 0; j + 2 < n; ++j)
       {
-        vtkIdType tri[3] = { pts[0], pts[j + 1], pts[j + 2] };
-        if (strip)
-        {
-          detail::StripTriangle(pts, j, tri);
-        }
+        vtkIdType tri[3];
+        detail::CellTriangle(pts, j, strip, tri);
         ids.insert(ids.end(), tri, tri + 3);
       }
     }
@@ -210,33 +206,6 @@ FrameCheckCounts CountDefects(const std::vector<unsigned char>& defects,
   return counts;
 }
 
-/// Whether `array` is numeric with `components` components and a tuple for every point.
-vtkDataArray* PointArray(vtkPolyData* mesh,
-  vtkDataArray* array,
-  const char* what,
-  int components,
-  std::string& problem)
-{
-  if (!array)
-  {
-    return nullptr;
-  }
-  if (components > 0 && array->GetNumberOfComponents() != components)
-  {
-    problem = std::string(what) + " array '" + (array->GetName() ? array->GetName() : "") +
-      "' has " + std::to_string(array->GetNumberOfComponents()) + " components instead of " +
-      std::to_string(components);
-    return nullptr;
-  }
-  if (array->GetNumberOfTuples() < mesh->GetNumberOfPoints())
-  {
-    problem = std::string(what) + " array '" + (array->GetName() ? array->GetName() : "") +
-      "' has " + std::to_string(array->GetNumberOfTuples()) + " tuples for " +
-      std::to_string(mesh->GetNumberOfPoints()) + " points";
-    return nullptr;
-  }
-  return array;
-}
 } // namespace
 
 SuppliedFrameArrays FindSuppliedFrames(vtkPolyData* mesh,
@@ -270,7 +239,7 @@ SuppliedFrameArrays FindSuppliedFrames(vtkPolyData* mesh,
       std::to_string(components) + " components instead of 3 or 4";
     return result;
   }
-  tangents = PointArray(mesh, tangents, "the supplied tangent", components, problem);
+  tangents = detail::PointArray(mesh, tangents, "the supplied tangent", components, problem);
   if (!tangents)
   {
     return result;
@@ -279,7 +248,7 @@ SuppliedFrameArrays FindSuppliedFrames(vtkPolyData* mesh,
   if (components == 3)
   {
     problem = "the supplied tangents have 3 components and there is no point array 'TangentSigns'";
-    signs = PointArray(mesh, pd->GetArray("TangentSigns"), "the supplied sign", 1, problem);
+    signs = detail::PointArray(mesh, pd->GetArray("TangentSigns"), "the supplied sign", 1, problem);
     if (!signs)
     {
       return result;

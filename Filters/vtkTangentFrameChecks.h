@@ -31,25 +31,16 @@ class vtkPolyData;
 namespace vtkNormalMapping
 {
 /**
- * How far a supplied frame may be from the ideal before it counts as broken. The defaults
- * accept tangents and normals stored as 8-bit normalized integers (KHR_mesh_quantization:
- * rounding each component to a step of 1/127 moves a unit vector by up to sqrt(3)/254, about
- * 0.007, in length and in its dot product with an exact unit vector; twice that between two
- * rounded ones) and reject defects large enough to show in shading (docs/filter.md lists those
- * of real files).
+ * How far a supplied frame may be from the ideal before it counts as broken. The defaults accept
+ * tangents and normals stored as 8-bit normalized integers (KHR_mesh_quantization) and reject
+ * defects large enough to show in shading; docs/filter.md, "Supplied tangents", gives the reason
+ * for each and the defects of real files.
  */
 struct FrameCheckTolerances
 {
-  /// Largest | |T| - 1 |. Renderers normalize the interpolated tangent, so a length error of
-  /// 1% changes no pixel; unnormalized tangent sums are off by far more.
-  double Unit = 1e-2;
-  /// Largest |T.N| / |T|, the cosine of the angle between the tangent and the normal: 0.02 (1.1
-  /// degrees out of the tangent plane) is above the 0.014 of two 8-bit rounded vectors; a shader
-  /// that re-orthogonalizes turns such a frame by no more than that angle.
-  double Perpendicular = 2e-2;
-  /// Largest | |w| - 1 |. glTF requires w = +1 or -1, which floats and 8-bit normalized integers
-  /// (127 / 127) store exactly; anything beyond rounding is a wrong value.
-  double Sign = 1e-2;
+  double Unit = 1e-2;          ///< largest | |T| - 1 |
+  double Perpendicular = 2e-2; ///< largest |T.N| / |T|, the cosine of the tangent-normal angle
+  double Sign = 1e-2;          ///< largest | |w| - 1 |
 };
 
 /// What can be wrong with one point's supplied frame (bits of FrameCheck::Defects).

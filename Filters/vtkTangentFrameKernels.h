@@ -8,14 +8,11 @@
  * the precision of the stored data: float input converts to double exactly, and the rounding of
  * the double arithmetic lies far below that of the stored float coordinates.
  *
- * Robustness at the extremes: edge and UV-delta vectors whose largest component lies outside
- * [2^-160, 2^160] are rescaled by an exact power of two before any product is formed, so any
- * finite positions and UVs give the same frame directions (bit-identical under power-of-two
- * scaling) with no underflow or overflow. Inside that range no product of up to four edge or UV
- * components can overflow or leave the normal range, so rescaling would not change a single bit
- * of a direction, ratio or test below and is skipped: every float input is inside it (float
- * differences lie in [2^-149, 2^129]). Non-finite input makes a triangle degenerate instead of
- * spreading NaN.
+ * Robustness at the extremes (docs/numerics.md, "Scale"): edge and UV-delta vectors whose largest
+ * component lies outside [2^-160, 2^160] are rescaled by an exact power of two before any product
+ * is formed; inside, where every float input lies (float differences lie in [2^-149, 2^129]),
+ * rescaling could not change a bit and is skipped. Non-finite input makes a triangle degenerate
+ * instead of spreading NaN.
  *
  * The block loops (ComputeTriangleBlock, SignCornerWeights, ComputePointBlock) and the functions
  * their bodies call are VTK_ALWAYS_INLINE: every compiler then sees each loop whole and can
@@ -82,14 +79,12 @@ struct DegeneracyTolerance
 
 /**
  * Whether a triangle's height h = |n| / L (n the cross product of two edges, L the longest edge)
- * lies within the rounding noise of its coordinates: h <= noise * m, where m is the largest
- * coordinate magnitude of its corners and noise = DegeneracyTolerance::PositionNoise. Moving a
- * corner by its coordinates' rounding turns such a triangle's plane by 1/64 radian or more, so it
- * carries no direction; the seams and poles of parametric surfaces make such triangles, with
- * full-size UVs (docs/numerics.md). Both sides scale with the coordinates, so scaling a mesh
- * changes no classification. Inputs are those of ComputeTriangleFrame, in its rescaled units:
- * twiceArea2 = |n|^2, longest2 = L^2, m scaled likewise (inf where that overflows, which makes the
- * triangle noise, as it is). Squared, without a square root; NaN is noise.
+ * lies within the rounding noise of its coordinates, where it carries no direction
+ * (docs/numerics.md, "Degenerate triangles"): h <= noise * m, where m is the largest coordinate
+ * magnitude of its corners and noise = DegeneracyTolerance::PositionNoise. Inputs are those of
+ * ComputeTriangleFrame, in its rescaled units: twiceArea2 = |n|^2, longest2 = L^2, m scaled
+ * likewise (inf where that overflows, which makes the triangle noise, as it is). Squared, without
+ * a square root; NaN is noise.
  */
 VTK_ALWAYS_INLINE bool IsRoundingNoise(double twiceArea2, double longest2, double m, double noise)
 {
@@ -326,20 +321,6 @@ VTK_ALWAYS_INLINE double CornerAngle(double area, double scaledCosine)
   return sine > 0.0 ? angle : 0.0;
 }
 
-/// The three interior angles of a triangle (CornerAngle) whose edges FrameFromEdges took and
-/// whose frame f it gave.
-inline void FrameCornerAngles(const glm::dvec3& e1,
-  const glm::dvec3& e2,
-  const TriangleFrame& f,
-  double angles[3])
-{
-  ScaledCornerCosines(e1, e2, angles);
-  for (int k = 0; k < 3; ++k)
-  {
-    angles[k] = CornerAngle(f.Area, angles[k]);
-  }
-}
-
 /// The largest coordinate magnitude of a triangle's corners (the scale of their rounding).
 inline double MaxCoordinate(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2)
 {
@@ -387,7 +368,11 @@ inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
   TriangleFrame frame = detail::FrameFromEdges(e1, e2, d1, d2, scaledMaxP, tol);
   if (angles)
   {
-    detail::FrameCornerAngles(e1, e2, frame, angles);
+    detail::ScaledCornerCosines(e1, e2, angles);
+    for (int k = 0; k < 3; ++k)
+    {
+      angles[k] = detail::CornerAngle(frame.Area, angles[k]);
+    }
   }
   // Back to the input's units; an area beyond DBL_MAX still weighs as the largest double.
   const double area =
