@@ -105,6 +105,7 @@ FrameOutput NewFrameOutput(vtkPointData* pd, bool bitangents, vtkIdType tuples)
  */
 bool ComputedFrameOutput(vtkPolyData* input,
   vtkPolyData* output,
+  bool bitangents,
   FrameOutput& out,
   vtkSmartPointer<vtkIdTypeArray>& sourceIds)
 {
@@ -114,11 +115,15 @@ bool ComputedFrameOutput(vtkPolyData* input,
   outPD->RemoveArray(SourceIdsName);
   out.Tangents = outPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName());
   out.Signs = outPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
-  out.Bitangents = outPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName());
+  // Without ComputeBitangents an array of that name is the input's, passed through.
+  out.Bitangents =
+    bitangents ? outPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName()) : nullptr;
   return sourceIds && out.Tangents && out.Signs &&
     sourceIds->GetNumberOfTuples() == output->GetNumberOfPoints() &&
     out.Tangents != inPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName()) &&
-    out.Signs != inPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
+    out.Signs != inPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName()) &&
+    (!out.Bitangents ||
+      out.Bitangents != inPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName()));
 }
 
 /**
@@ -232,7 +237,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
       kept.begin(),
       [replaced](unsigned char defects) { return (defects & replaced) == 0; });
     compute(WithSourceIds(input), kept.data());
-    if (!ComputedFrameOutput(input, output, out, sourceIds))
+    if (!ComputedFrameOutput(input, output, this->ComputeBitangents, out, sourceIds))
     {
       return;
     }

@@ -5,6 +5,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -58,6 +59,22 @@ inline vtkSmartPointer<vtkPolyData> MakeGrid(int nu,
   mesh->GetPointData()->SetNormals(normals);
   mesh->GetPointData()->SetTCoords(tcoords);
   return mesh;
+}
+
+/// A float point array of `mesh`, `components` per point, every value `value`; added to the
+/// mesh's point data, which owns it.
+inline vtkFloatArray* AddFilledPointArray(vtkPolyData* mesh,
+  const char* name,
+  int components,
+  double value)
+{
+  vtkNew<vtkFloatArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  array->Fill(value);
+  mesh->GetPointData()->AddArray(array);
+  return array;
 }
 }
 

@@ -700,11 +700,7 @@ TEST(PolyDataTangentFrames, InputTangentsOfAnotherNamePassThrough)
   // The output's Tangents take the attribute, and the input's array stays point data like any
   // other, split with the points, for every method.
   auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
-  vtkNew<vtkFloatArray> supplied;
-  supplied->SetName("TANGENT");
-  supplied->SetNumberOfComponents(3);
-  supplied->SetNumberOfTuples(mesh->GetNumberOfPoints());
-  supplied->Fill(7.0);
+  vtkFloatArray* supplied = NormalMappingTesting::AddFilledPointArray(mesh, "TANGENT", 3, 7.0);
   mesh->GetPointData()->SetTangents(supplied);
   for (int method = vtkPolyDataTangentFrames::UNWEIGHTED;
        method <= vtkPolyDataTangentFrames::MIKKTSPACE;

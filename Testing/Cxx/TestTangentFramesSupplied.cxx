@@ -21,6 +21,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace
 {
@@ -454,6 +455,44 @@ TEST(TangentFramesSupplied, KeptFramesSplitNoPoint)
   }
 }
 
+TEST(TangentFramesSupplied, AnInputArrayNamedBitangentsIsNeverWritten)
+{
+  // Some frames replaced, so that computed frames are written: without ComputeBitangents the
+  // input's own Bitangents passes through unchanged, and with it the output gets computed ones.
+  // Float unit vectors' squared length is within 1e-6 of 1; 1e-5 allows for that.
+  // Without a mirror seam the output shares the input's point arrays; with one it has copies.
+  for (const int run : { 0, 1, 2, 3 })
+  {
+    const bool bitangents = run & 1;
+    const bool mirror = run & 2;
+    SCOPED_TRACE(std::string(bitangents ? "ComputeBitangents on" : "ComputeBitangents off") +
+      (mirror ? ", mirrored" : ""));
+    auto mesh = Plane(mirror);
+    auto supplied = SuppliedVec4(mesh, Turn, mirror);
+    supplied->SetTuple4(0, 5.0, 0.0, 0.0, 1.0); // not unit: replaced
+    vtkFloatArray* user = NormalMappingTesting::AddFilledPointArray(mesh, "Bitangents", 3, 7.0);
+    SuppliedRun filter(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
+    filter.Filter->SetComputeBitangents(bitangents);
+    filter.Update();
+    ASSERT_GT(filter.Filter->GetNumberOfReplacedTangents(), 0);
+    for (vtkIdType i = 0; i < user->GetNumberOfValues(); ++i)
+    {
+      ASSERT_EQ(user->GetValue(i), 7.0f) << "input value " << i;
+    }
+    // The output's: the input's values (with copies for split points), or computed unit vectors.
+    vtkDataArray* out = filter.Output->GetPointData()->GetArray("Bitangents");
+    ASSERT_NE(out, nullptr);
+    ASSERT_EQ(out->GetNumberOfTuples(), filter.Output->GetNumberOfPoints());
+    for (vtkIdType p = 0; p < out->GetNumberOfTuples(); ++p)
+    {
+      double b[3];
+      out->GetTuple(p, b);
+      const double expected = bitangents ? 1.0 : 3.0 * 7.0 * 7.0;
+      ASSERT_NEAR(b[0] * b[0] + b[1] * b[1] + b[2] * b[2], expected, 1e-5) << "point " << p;
+    }
+  }
+}
+
 TEST(TangentFramesSupplied, CheckCountsSignsAndLargestErrors)
 {
   // The counts `normalmap check` reports: the points with a positive sign, and the largest
@@ -563,12 +602,7 @@ TEST(TangentFramesSupplied, SuppliedArraysOfTheWrongShapeWarnAndCompute)
     mesh->GetPointData()->AddArray(tangents);
     if (signs)
     {
-      vtkNew<vtkFloatArray> wide;
-      wide->SetName("TangentSigns");
-      wide->SetNumberOfComponents(3);
-      wide->SetNumberOfTuples(mesh->GetNumberOfPoints());
-      wide->Fill(1.0);
-      mesh->GetPointData()->AddArray(wide);
+      NormalMappingTesting::AddFilledPointArray(mesh, "TangentSigns", 3, 1.0);
     }
     SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
     run.Update();
