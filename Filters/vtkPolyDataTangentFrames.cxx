@@ -20,6 +20,7 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
@@ -297,7 +298,8 @@ int vtkPolyDataTangentFrames::RequestDataObject(vtkInformation*,
   vtkDataObject* output = vtkDataObject::GetData(outInfo);
   if (vtkCompositeDataSet::SafeDownCast(input))
   {
-    if (!output || !output->IsA(input->GetClassName()))
+    // The exact class: a vtkMultiPieceDataSet output IsA vtkPartitionedDataSet.
+    if (!output || std::strcmp(output->GetClassName(), input->GetClassName()) != 0)
     {
       auto composite = vtk::TakeSmartPointer(input->NewInstance());
       outInfo->Set(vtkDataObject::DATA_OBJECT(), composite);

@@ -11,7 +11,9 @@
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkMultiBlockDataSet.h"
+#include "vtkMultiPieceDataSet.h"
 #include "vtkNew.h"
+#include "vtkPartitionedDataSet.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -266,6 +268,37 @@ TEST(TangentFramesComposite, BlockWithoutTextureCoordinatesPassesWithAWarning)
   single->AddObserver(vtkCommand::ErrorEvent, onError);
   single->Update();
   EXPECT_EQ(errors, 1);
+}
+
+TEST(TangentFramesComposite, OutputHasTheInputsExactType)
+{
+  // vtkMultiPieceDataSet derives from vtkPartitionedDataSet in VTK 9.1: an output made for one
+  // must not be kept for the other.
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  for (const char* type : { "vtkMultiPieceDataSet",
+         "vtkPartitionedDataSet",
+         "vtkMultiPieceDataSet",
+         "vtkMultiBlockDataSet" })
+  {
+    vtkSmartPointer<vtkCompositeDataSet> input;
+    if (std::strcmp(type, "vtkMultiBlockDataSet") == 0)
+    {
+      auto blocks = vtkSmartPointer<vtkMultiBlockDataSet>::New();
+      blocks->SetBlock(0, Torus(false, 6));
+      input = blocks;
+    }
+    else
+    {
+      auto pieces = vtkSmartPointer<vtkPartitionedDataSet>::Take(
+        std::strcmp(type, "vtkMultiPieceDataSet") == 0 ? vtkMultiPieceDataSet::New()
+                                                       : vtkPartitionedDataSet::New());
+      pieces->SetPartition(0, Torus(false, 6));
+      input = pieces;
+    }
+    filter->SetInputData(input);
+    filter->Update();
+    EXPECT_STREQ(filter->GetOutputDataObject(0)->GetClassName(), type);
+  }
 }
 
 TEST(TangentFramesComposite, ProgressRisesOnceOverAllBlocks)
