@@ -317,9 +317,29 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
  * tangents. An array of another name that held the attribute (a reader's tangents) stays, as
  * other point or cell data does: SetTangents would remove it.
  */
+/**
+ * Adds a frame array to `attributes` in place of an array of its name. An array of that name that
+ * holds the normals or texture coordinates (named like a frame array; ExecuteBlock warns) is
+ * removed first, so that the attribute does not come to name frame data; another attribute (the
+ * scalars, say) moves to the frame array, as AddArray leaves it.
+ */
+inline void AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array)
+{
+  int index = -1;
+  if (attributes->GetAbstractArray(array->GetName(), index))
+  {
+    const int attribute = attributes->IsArrayAnAttribute(index);
+    if (attribute == vtkDataSetAttributes::NORMALS || attribute == vtkDataSetAttributes::TCOORDS)
+    {
+      attributes->RemoveArray(index);
+    }
+  }
+  attributes->AddArray(array);
+}
+
 inline void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents)
 {
-  attributes->AddArray(tangents);
+  AddFrameArray(attributes, tangents);
   attributes->SetActiveTangents(tangents->GetName());
 }
 
@@ -441,10 +461,10 @@ struct OutputFrames
   void AddTo(vtkPointData* pd) const
   {
     AddActiveTangents(pd, this->Tangents);
-    pd->AddArray(this->Signs);
+    AddFrameArray(pd, this->Signs);
     if (this->Bitangents)
     {
-      pd->AddArray(this->Bitangents);
+      AddFrameArray(pd, this->Bitangents);
     }
   }
 };

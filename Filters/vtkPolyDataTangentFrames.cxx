@@ -7,6 +7,7 @@
 #include "vtkNormalMappingPrivate.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDemandDrivenPipeline.h"
@@ -19,9 +20,11 @@
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkPolyDataTangentFrames);
 
@@ -195,6 +198,42 @@ vtkDataArray* TextureCoordinatesOf(vtkPolyDataTangentFrames* self,
                               << " components; using the first two.");
   }
   return uvs;
+}
+
+/**
+ * Warns about the input's point normals, texture coordinates `uvs` and, with cell tangents, cell
+ * normals when they are named like an output frame array, which replaces them: the output then
+ * lacks them.
+ */
+void WarnAboutNameClashes(vtkPolyDataTangentFrames* self, vtkPolyData* input, vtkDataArray* uvs)
+{
+  std::vector<std::string> pointNames = { vtkPolyDataTangentFrames::TangentsArrayName(),
+    vtkPolyDataTangentFrames::SignsArrayName() };
+  if (self->GetComputeBitangents())
+  {
+    pointNames.emplace_back(vtkPolyDataTangentFrames::BitangentsArrayName());
+  }
+  const auto check = [&](
+                       vtkDataArray* array, const char* what, const std::vector<std::string>& names)
+  {
+    const char* name = array ? array->GetName() : nullptr;
+    if (name && std::find(names.begin(), names.end(), name) != names.end())
+    {
+      vtkWarningWithObjectMacro(self,
+        "The input's " << what << " are named '" << name
+                       << "', as an output frame array is: that array replaces them, so the "
+                          "output has no "
+                       << what << ". Rename them to keep them.");
+    }
+  };
+  check(input->GetPointData()->GetNormals(), "point normals", pointNames);
+  check(uvs, "texture coordinates", pointNames);
+  if (self->GetComputeCellTangents())
+  {
+    check(input->GetCellData()->GetNormals(),
+      "cell normals",
+      { vtkPolyDataTangentFrames::TangentsArrayName() });
+  }
 }
 
 /**
@@ -426,6 +465,7 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   {
     return passThrough();
   }
+  WarnAboutNameClashes(this, input, uvs);
   vtkDataArray* cellNormals = nullptr;
   vtkDataArray* normals = PointNormalsOf(this, input, cellNormals);
   // Checked once here for every method, and for kept supplied frames, which list no triangles.

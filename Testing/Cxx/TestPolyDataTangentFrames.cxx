@@ -719,6 +719,55 @@ TEST(PolyDataTangentFrames, InputTangentsOfAnotherNamePassThrough)
   }
 }
 
+TEST(PolyDataTangentFrames, AttributesNamedLikeFrameArraysAreReplacedWithAWarning)
+{
+  // The input's normals or texture coordinates named like an output frame array: the frame
+  // array replaces them (as it replaces any array of its name), with a warning, and the output's
+  // attribute is gone rather than naming frame data. With and without split points, for every
+  // method.
+  for (int method = vtkPolyDataTangentFrames::UNWEIGHTED;
+       method <= vtkPolyDataTangentFrames::MIKKTSPACE;
+       ++method)
+  {
+    for (const bool mirrored : { false, true })
+    {
+      SCOPED_TRACE(std::string(vtkPolyDataTangentFrames::GetMethodName(method)) +
+        (mirrored ? ", mirrored" : ""));
+      vtkNormalMapping::TorusOptions options = MirroredTorusOptions(16, 4);
+      options.MirrorU = mirrored;
+      auto mesh = vtkNormalMapping::MakeTorus(options);
+      mesh->GetPointData()->GetNormals()->SetName("Bitangents");
+      mesh->GetPointData()->GetTCoords()->SetName("TangentSigns");
+      vtkNew<vtkFloatArray> cellNormals;
+      cellNormals->SetName("Tangents");
+      cellNormals->SetNumberOfComponents(3);
+      cellNormals->SetNumberOfTuples(mesh->GetNumberOfCells());
+      cellNormals->Fill(0.0);
+      mesh->GetCellData()->SetNormals(cellNormals);
+
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      filter->SetInputData(mesh);
+      filter->SetMethod(method);
+      filter->ComputeBitangentsOn();
+      filter->ComputeCellTangentsOn();
+      Messages messages(filter);
+      filter->Update();
+      vtkPolyData* out = filter->GetOutput();
+      EXPECT_TRUE(messages.Has(messages.Warnings, "point normals are named 'Bitangents'"));
+      EXPECT_TRUE(messages.Has(messages.Warnings, "texture coordinates are named 'TangentSigns'"));
+      EXPECT_TRUE(messages.Has(messages.Warnings, "cell normals are named 'Tangents'"));
+      EXPECT_EQ(out->GetPointData()->GetNormals(), nullptr);
+      EXPECT_EQ(out->GetPointData()->GetTCoords(), nullptr);
+      EXPECT_EQ(out->GetCellData()->GetNormals(), nullptr);
+      EXPECT_EQ(out->GetPointData()->GetTangents(), out->GetPointData()->GetArray("Tangents"));
+      EXPECT_EQ(out->GetCellData()->GetTangents(), out->GetCellData()->GetArray("Tangents"));
+      vtkDataArray* signs = out->GetPointData()->GetArray("TangentSigns");
+      ASSERT_NE(signs, nullptr);
+      ASSERT_EQ(signs->GetNumberOfComponents(), 1);
+    }
+  }
+}
+
 TEST(PolyDataTangentFrames, SplitPointsCopyNoGlobalIds)
 {
   // Global ids name each point once (VTK's parallel filters match points by them). Split copies
