@@ -348,6 +348,19 @@ void vtkNormalMapShading::FilterTextures(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// Whether the actor transforms its texture coordinates (vtkProp::GeneralTextureTransform):
+/// VTK compiles the transform into its shader only when the actor has one at the build.
+const double* TextureTransform(vtkActor* actor)
+{
+  vtkInformation* keys = actor->GetPropertyKeys();
+  return keys && keys->Has(vtkProp::GeneralTextureTransform())
+    ? keys->Get(vtkProp::GeneralTextureTransform())
+    : nullptr;
+}
+}
+
 bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   vtkActor* actor,
   unsigned framesKey,
@@ -355,7 +368,8 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
 {
   // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
   // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes, the
-  // components of the texture coordinates it is sampled with).
+  // components of the texture coordinates it is sampled with), and on whether VTK's shader
+  // applies a texture transform, which nmTextureFrame must match.
   std::uint64_t key = 0;
   vtkTexture* texture = NormalTexture(actor);
   if (texture)
@@ -363,7 +377,8 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
     key = 1u + (texture->GetUseSRGBColorSpace() ? 2u : 0u) +
       (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5) +
       (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32) +
-      (MapsThroughLookupTable(texture) ? std::uint64_t(1) << 40 : 0);
+      (MapsThroughLookupTable(texture) ? std::uint64_t(1) << 40 : 0) +
+      (TextureTransform(actor) ? std::uint64_t(1) << 41 : 0);
   }
   std::uint64_t& stored = this->ShaderKeys[cellBO];
   if (stored != key)
@@ -616,10 +631,8 @@ void vtkNormalMapShading::SetMapUniforms(vtkShaderProgram* program,
     // v' = m4 u + m5 v + m7; ParaView's Flip Textures sets one), so the map's u' axis runs along
     // M^-1's first column, (m5, -m4) / det M, in the frame of the point tangents.
     float frame[3] = { 1.0f, 0.0f, 1.0f };
-    vtkInformation* keys = actor->GetPropertyKeys();
-    if (keys && keys->Has(vtkProp::GeneralTextureTransform()))
+    if (const double* m = TextureTransform(actor))
     {
-      const double* m = keys->Get(vtkProp::GeneralTextureTransform());
       const double det = m[0] * m[5] - m[1] * m[4];
       if (det != 0.0)
       {

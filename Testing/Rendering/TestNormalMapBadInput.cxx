@@ -11,6 +11,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
+#include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkNormalMapObjectFactory.h"
@@ -156,6 +157,28 @@ int TestNormalMapBadInput(int, char*[])
       std::cout << "note: no actor was made at the deleted actor's address; that case is not "
                    "checked here\n";
     }
+  }
+  { // A texture transform added, then removed, between renders: the image is that of a scene
+    // built with the final state (VTK compiles the transform into its shader only when present
+    // at the build; the point-tangent frame must follow it). Same renderer: within 2 levels.
+    const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+    vtkNew<vtkInformation> keys;
+    keys->Set(vtkProp::GeneralTextureTransform(), flip, 16);
+    // A texture of its own: VTK 9.1's texture keeps the graphics resources of one window.
+    Scene fresh(quad,
+      nmtest::MakeNormalTexture(nmtest::MakeNormalMapImage(Pattern::Rivets, 64, Storage::OpenGL)));
+    fresh.Actor->SetPropertyKeys(keys);
+    const auto flipped = fresh.Render();
+    Scene later(quad, texture);
+    later.Render();
+    later.Actor->SetPropertyKeys(keys);
+    check(Same(later.Render(), flipped, 2),
+      "texture transform added after a render: drawn as when present from the start");
+    later.Actor->SetPropertyKeys(nullptr);
+    check(Same(later.Render(), mapped, 2), "texture transform removed: drawn as without one");
+    fresh.Actor->SetPropertyKeys(nullptr);
+    check(Same(fresh.Render(), mapped, 2),
+      "texture transform present from the start, then removed: drawn as without one");
   }
   { // A one-channel image is a height map, not a normal map.
     Scene scene(quad,
