@@ -313,11 +313,6 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
 }
 
 /**
- * Adds `tangents` to `attributes` (in place of an array of the same name) as the active
- * tangents. An array of another name that held the attribute (a reader's tangents) stays, as
- * other point or cell data does: SetTangents would remove it.
- */
-/**
  * Adds a frame array to `attributes` in place of an array of its name. An array of that name that
  * holds the normals or texture coordinates (named like a frame array; ExecuteBlock warns) is
  * removed first, so that the attribute does not come to name frame data; another attribute (the
@@ -337,6 +332,11 @@ inline void AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array)
   attributes->AddArray(array);
 }
 
+/**
+ * Adds `tangents` to `attributes` (AddFrameArray) as the active tangents. An array of another
+ * name that held the attribute (a reader's tangents) stays, as other point or cell data does:
+ * SetTangents would remove it.
+ */
 inline void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents)
 {
   AddFrameArray(attributes, tangents);
