@@ -61,9 +61,10 @@ inline vtkSmartPointer<vtkPolyData> MakeGrid(int nu,
   return mesh;
 }
 
-/// A float point array of `mesh`, `components` per point, every value `value`; added to the
-/// mesh's point data, which owns it.
-inline vtkFloatArray* AddFilledPointArray(vtkPolyData* mesh,
+/// A float array of `tuples` tuples of `components` values, every value `value`; added to
+/// `data` (a mesh's point or cell data), which owns it.
+inline vtkFloatArray* AddFilledArray(vtkDataSetAttributes* data,
+  vtkIdType tuples,
   const char* name,
   int components,
   double value)
@@ -71,9 +72,9 @@ inline vtkFloatArray* AddFilledPointArray(vtkPolyData* mesh,
   vtkNew<vtkFloatArray> array;
   array->SetName(name);
   array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(mesh->GetNumberOfPoints());
+  array->SetNumberOfTuples(tuples);
   array->Fill(value);
-  mesh->GetPointData()->AddArray(array);
+  data->AddArray(array);
   return array;
 }
 }

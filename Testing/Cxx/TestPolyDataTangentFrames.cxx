@@ -700,7 +700,8 @@ TEST(PolyDataTangentFrames, InputTangentsOfAnotherNamePassThrough)
   // The output's Tangents take the attribute, and the input's array stays point data like any
   // other, split with the points, for every method.
   auto mesh = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
-  vtkFloatArray* supplied = NormalMappingTesting::AddFilledPointArray(mesh, "TANGENT", 3, 7.0);
+  vtkFloatArray* supplied = NormalMappingTesting::AddFilledArray(
+    mesh->GetPointData(), mesh->GetNumberOfPoints(), "TANGENT", 3, 7.0);
   mesh->GetPointData()->SetTangents(supplied);
   for (int method = vtkPolyDataTangentFrames::UNWEIGHTED;
        method <= vtkPolyDataTangentFrames::MIKKTSPACE;
@@ -738,12 +739,8 @@ TEST(PolyDataTangentFrames, AttributesNamedLikeFrameArraysAreReplacedWithAWarnin
       auto mesh = vtkNormalMapping::MakeTorus(options);
       mesh->GetPointData()->GetNormals()->SetName("Bitangents");
       mesh->GetPointData()->GetTCoords()->SetName("TangentSigns");
-      vtkNew<vtkFloatArray> cellNormals;
-      cellNormals->SetName("Tangents");
-      cellNormals->SetNumberOfComponents(3);
-      cellNormals->SetNumberOfTuples(mesh->GetNumberOfCells());
-      cellNormals->Fill(0.0);
-      mesh->GetCellData()->SetNormals(cellNormals);
+      mesh->GetCellData()->SetNormals(NormalMappingTesting::AddFilledArray(
+        mesh->GetCellData(), mesh->GetNumberOfCells(), "Tangents", 3, 0.0));
 
       vtkNew<vtkPolyDataTangentFrames> filter;
       filter->SetInputData(mesh);

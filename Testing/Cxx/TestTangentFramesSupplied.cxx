@@ -470,7 +470,8 @@ TEST(TangentFramesSupplied, AnInputArrayNamedBitangentsIsNeverWritten)
     auto mesh = Plane(mirror);
     auto supplied = SuppliedVec4(mesh, Turn, mirror);
     supplied->SetTuple4(0, 5.0, 0.0, 0.0, 1.0); // not unit: replaced
-    vtkFloatArray* user = NormalMappingTesting::AddFilledPointArray(mesh, "Bitangents", 3, 7.0);
+    vtkFloatArray* user = NormalMappingTesting::AddFilledArray(
+      mesh->GetPointData(), mesh->GetNumberOfPoints(), "Bitangents", 3, 7.0);
     SuppliedRun filter(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
     filter.Filter->SetComputeBitangents(bitangents);
     filter.Update();
@@ -602,7 +603,8 @@ TEST(TangentFramesSupplied, SuppliedArraysOfTheWrongShapeWarnAndCompute)
     mesh->GetPointData()->AddArray(tangents);
     if (signs)
     {
-      NormalMappingTesting::AddFilledPointArray(mesh, "TangentSigns", 3, 1.0);
+      NormalMappingTesting::AddFilledArray(
+        mesh->GetPointData(), mesh->GetNumberOfPoints(), "TangentSigns", 3, 1.0);
     }
     SuppliedRun run(mesh, vtkPolyDataTangentFrames::KEEP_VALID);
     run.Update();
