@@ -52,6 +52,12 @@ bool SameFrame(const CornerFrame& a, const CornerFrame& b)
   return x[0] == y[0] && x[1] == y[1];
 }
 
+/// Whether a kernel frame is a fallback: the default, or a cancelled tangent (mikk::IsCancelled).
+bool IsFallback(const CornerFrame& f)
+{
+  return SameFrame(f, mikk::DefaultCornerFrame) || IsCancelled(f);
+}
+
 /// |T.N| (unit N) allowed before a kernel tangent is made perpendicular: it keeps the
 /// reference's tangents where real files' normals are off unit length by more than float rounding,
 /// and corrects the default (1,0,0) and clearly non-unit normals (docs/mikktspace.md).
@@ -535,7 +541,7 @@ void CellSums(const Surface& s,
     for (long long c = cb; c < ce; ++c)
     {
       const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
+      if (!IsFallback(cf))
       {
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
@@ -546,6 +552,20 @@ void CellSums(const Surface& s,
       n += glm::cross(position(c) - o, position(c + 1) - o);
     }
   }
+}
+
+/// The kernel corners of kept points (non-zero in `kept`; null: none) whose frame is a fallback:
+/// those points keep their supplied frames, so these corners are not counted.
+long long KeptFallbackCorners(const Surface& s,
+  const std::vector<CornerFrame>& frames,
+  const unsigned char* kept)
+{
+  long long count = 0;
+  for (size_t c = 0; kept && c < frames.size(); ++c)
+  {
+    count += kept[s.FaceConnectivity[c]] && IsFallback(frames[c]) ? 1 : 0;
+  }
+  return count;
 }
 
 /**
@@ -674,7 +694,8 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
   this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
-  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
+  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners -
+    KeptFallbackCorners(surface, result.Corners, block.KeptPoints);
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);

@@ -1172,18 +1172,15 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
     self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());
+  // Points whose supplied frames the caller keeps are neither split nor counted.
+  const auto kept = [&](vtkIdType p) { return this->KeptPoints && this->KeptPoints[p] != 0; };
   std::vector<vtkIdType> conflicts = PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
-  if (this->KeptPoints)
-  {
-    conflicts.erase(
-      std::remove_if(
-        conflicts.begin(), conflicts.end(), [&](vtkIdType p) { return this->KeptPoints[p] != 0; }),
-      conflicts.end());
-  }
+  conflicts.erase(std::remove_if(conflicts.begin(), conflicts.end(), kept), conflicts.end());
   const std::vector<vtkIdType> fallbacks =
     PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
   self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());
-  self->NumberOfFallbackPoints += static_cast<vtkIdType>(fallbacks.size());
+  self->NumberOfFallbackPoints += static_cast<vtkIdType>(
+    fallbacks.size() - std::count_if(fallbacks.begin(), fallbacks.end(), kept));
   if (!this->Continue(0.7))
   {
     return;
@@ -1227,8 +1224,8 @@ void vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
                                    << " triangles has a usable frame (zero area, zero texture-"
                                       "coordinate area, or a height at the rounding noise of "
                                       "coordinates far from the origin for their precision): "
-                                      "every point gets a fallback tangent. Check the texture "
-                                      "coordinates, or store the positions in double or nearer "
-                                      "the origin.");
+                                      "every point frame computed here is a fallback. Check the "
+                                      "texture coordinates, or store the positions in double or "
+                                      "nearer the origin.");
   }
 }

@@ -413,6 +413,41 @@ TEST(TangentFramesSupplied, CellTangentsAreComputedWhenEveryFrameIsKept)
   }
 }
 
+TEST(TangentFramesSupplied, KeptPointsAreNotCountedAsFallbacks)
+{
+  // Collapsed texture coordinates give no triangle a frame, so every frame the filter computes
+  // is a fallback (the weighted methods count the triangles as degenerate; MIKKTSPACE does not).
+  // With KEEP and cell tangents it computes the point frames too, but keeps every supplied one: no
+  // point gets a fallback frame, and none is counted as one.
+  auto mesh = Plane(false);
+  auto supplied = SuppliedVec4(mesh, Turn, false);
+  mesh->GetPointData()->GetTCoords()->Fill(0.0);
+  for (int method : { vtkPolyDataTangentFrames::UNWEIGHTED,
+         vtkPolyDataTangentFrames::AREA_WEIGHTED,
+         vtkPolyDataTangentFrames::ANGLE_WEIGHTED,
+         vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    SuppliedRun recompute(mesh, vtkPolyDataTangentFrames::RECOMPUTE);
+    recompute.Filter->SetMethod(method);
+    recompute.Update();
+    // MIKKTSPACE counts face corners, every one here.
+    const bool mikk = method == vtkPolyDataTangentFrames::MIKKTSPACE;
+    EXPECT_EQ(mikk ? 3 * 2 * 8 * 8 : mesh->GetNumberOfPoints(),
+      recompute.Filter->GetNumberOfFallbackPoints());
+    SuppliedRun keep(mesh, vtkPolyDataTangentFrames::KEEP);
+    keep.Filter->SetMethod(method);
+    keep.Filter->ComputeCellTangentsOn();
+    keep.Update();
+    EXPECT_EQ(mikk ? 0 : 2 * 8 * 8, keep.Filter->GetNumberOfDegenerateTriangles());
+    EXPECT_EQ(0, keep.Filter->GetNumberOfFallbackPoints());
+    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    {
+      EXPECT_TRUE(HasFrame(keep, p, Supplied(supplied, p)));
+    }
+  }
+}
+
 TEST(TangentFramesSupplied, KeptFramesSplitNoPoint)
 {
   // KEEP on a mirrored plane whose seam points are shared: every kept point has its one
