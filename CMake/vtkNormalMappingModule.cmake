@@ -30,6 +30,12 @@ set(_nm_private_headers
   Filters/vtkTangentFrameKernels.h
   Rendering/vtkNormalMapShading.h)
 
+# The filter's sources, compiled without fused multiply-adds (below).
+set(_nm_filter_sources ${_nm_sources})
+list(FILTER _nm_filter_sources INCLUDE REGEX "^Filters/")
+list(APPEND _nm_filter_sources Filters/vtkPolyDataTangentFrames.cxx)
+list(TRANSFORM _nm_filter_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
+
 list(TRANSFORM _nm_classes PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_nowrap_headers PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
 list(TRANSFORM _nm_sources PREPEND "${NORMALMAPPING_SOURCE_DIR}/")
@@ -50,16 +56,15 @@ foreach(_nm_shader IN ITEMS vtkNormalMapVS vtkNormalMapGS vtkNormalMapFS)
   list(APPEND _nm_private_headers "${_nm_shader_header}")
 endforeach()
 
-# The MikkTSpace kernel reproduces the reference's float rounding, and the weighted methods give
-# the same bits on every CPU (their frame loop is compiled for several instruction sets): no
-# fused multiply-add (GCC contracts by default and ignores the STDC FP_CONTRACT pragma the
-# MikkTSpace source carries for others). Neither reads errno nor floating-point exception flags,
+# The MikkTSpace kernel reproduces the reference's float rounding, and the filter gives the same
+# bits on every CPU (the weighted methods' frame loop is compiled for several instruction sets,
+# and the supplied-tangent checks must find the handedness the methods give): no fused
+# multiply-add (GCC contracts by default and ignores the STDC FP_CONTRACT pragma the MikkTSpace
+# source carries for others). The filter reads neither errno nor floating-point exception flags,
 # so sqrt and divisions may be vectorised (with the default -fmath-errno / -ftrapping-math GCC
 # keeps them scalar); neither option changes a result.
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-  set_property(SOURCE
-    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkMikkTSpaceKernel.cxx"
-    "${NORMALMAPPING_SOURCE_DIR}/Filters/vtkPolyDataTangentFramesWeighted.cxx"
+  set_property(SOURCE ${_nm_filter_sources}
     APPEND PROPERTY COMPILE_OPTIONS -ffp-contract=off -fno-math-errno -fno-trapping-math)
 endif()
 
