@@ -9,6 +9,7 @@
 #include "vtkPolyData.h"
 #include "vtkTypeInt64Array.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vtkNormalMapping

@@ -32,7 +32,8 @@ namespace
 {
 using vtkNormalMapping::detail::WithCellStorage;
 
-/// Checks a numeric point array: exists, numeric, long enough.
+/// `abstract` when it is a numeric array with a tuple per point, else null with `problem` saying
+/// why (`name` names it when it is missing).
 vtkDataArray* NumericPointArray(vtkPolyData* input,
   const char* name,
   vtkAbstractArray* abstract,
@@ -250,7 +251,7 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
   if (vtkDataArray* normals = input->GetPointData()->GetNormals())
   {
     std::string problem;
-    normals = NumericPointArray(input, "Normals", normals, problem);
+    normals = vtkNormalMapping::detail::PointArray(input, normals, "point", 0, problem);
     if (normals && normals->GetNumberOfComponents() != 3)
     {
       problem = "point normals have " + std::to_string(normals->GetNumberOfComponents()) +
@@ -299,6 +300,21 @@ void vtkPolyDataTangentFrames::SetTCoordsArrayName(const std::string& name)
   if (name != this->TCoordsArrayName)
   {
     this->TCoordsArrayName = name;
+    this->Modified();
+  }
+}
+
+const char* vtkPolyDataTangentFrames::GetSuppliedTangentsName(int mode)
+{
+  static const char* const names[] = { "Recompute", "Keep", "KeepValid" };
+  return mode >= RECOMPUTE && mode <= KEEP_VALID ? names[mode] : "Unknown";
+}
+
+void vtkPolyDataTangentFrames::SetSuppliedTangentsArrayName(const std::string& name)
+{
+  if (name != this->SuppliedTangentsArrayName)
+  {
+    this->SuppliedTangentsArrayName = name;
     this->Modified();
   }
 }
@@ -512,16 +528,16 @@ void vtkPolyDataTangentFrames::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeBitangents: " << (this->ComputeBitangents ? "On" : "Off") << "\n";
   os << indent << "ComputeCellTangents: " << (this->ComputeCellTangents ? "On" : "Off") << "\n";
   os << indent << "OutputPrecision: " << this->OutputPrecision << "\n";
-  os << indent << "NumberOfDegenerateTriangles: " << this->NumberOfDegenerateTriangles << "\n";
-  os << indent << "NumberOfFallbackPoints: " << this->NumberOfFallbackPoints << "\n";
-  os << indent << "NumberOfHandednessConflicts: " << this->NumberOfHandednessConflicts << "\n";
-  os << indent << "NumberOfSplitPoints: " << this->NumberOfSplitPoints << "\n";
-  os << indent << "NumberOfInvalidNormals: " << this->NumberOfInvalidNormals << "\n";
   os << indent << "SuppliedTangents: " << GetSuppliedTangentsName(this->SuppliedTangents) << "\n";
   os << indent << "SuppliedTangentsArrayName: "
      << (this->SuppliedTangentsArrayName.empty() ? "(active tangents)"
                                                  : this->SuppliedTangentsArrayName)
      << "\n";
+  os << indent << "NumberOfDegenerateTriangles: " << this->NumberOfDegenerateTriangles << "\n";
+  os << indent << "NumberOfFallbackPoints: " << this->NumberOfFallbackPoints << "\n";
+  os << indent << "NumberOfHandednessConflicts: " << this->NumberOfHandednessConflicts << "\n";
+  os << indent << "NumberOfSplitPoints: " << this->NumberOfSplitPoints << "\n";
+  os << indent << "NumberOfInvalidNormals: " << this->NumberOfInvalidNormals << "\n";
   os << indent << "NumberOfReplacedTangents: " << this->NumberOfReplacedTangents << "\n";
   os << indent << "NumberOfNonFiniteTangents: " << this->NumberOfNonFiniteTangents << "\n";
   os << indent << "NumberOfNonUnitTangents: " << this->NumberOfNonUnitTangents << "\n";

@@ -88,11 +88,15 @@ public:
   vtkTypeMacro(vtkPolyDataTangentFrames, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Values of Method (see vtkNormalMapping::TangentMethod for what each costs and gets right).
+  /// Values of Method (docs/filter.md, "Methods", says what each costs and gets right).
   enum Methods
   {
+    /// The sum of the unit tangents of the point's triangles.
     UNWEIGHTED = 0,
+    /// The same, each weighted by its triangle's area.
     AREA_WEIGHTED = 1,
+    /// The same, each weighted by its triangle's angle at the point: independent of how a fan
+    /// is split into triangles.
     ANGLE_WEIGHTED = 2,
     /// MikkTSpace-compatible frames (the tangents Blender, Substance, xNormal, Unity, Unreal
     /// and glTF bake normal maps against); see vtkMikkTSpaceKernel.h.
@@ -102,7 +106,7 @@ public:
   ///@{
   /**
    * How the triangles around a point are weighted. Default ANGLE_WEIGHTED: independent of how a
-   * fan is tessellated, at the cost of three atan2 per triangle.
+   * fan is tessellated, at the cost of three corner angles per triangle.
    */
   vtkSetClampMacro(Method, int, UNWEIGHTED, MIKKTSPACE);
   vtkGetMacro(Method, int);
@@ -133,7 +137,9 @@ public:
   /**
    * Sign convention for texture coordinates whose v axis points down, as glTF's do (default
    * off: VTK's v-up convention). When on, the MikkTSpace method negates its signs so that
-   * bitangent = sign * cross(N, T) matches glTF's TANGENT.w.
+   * bitangent = sign * cross(N, T) matches glTF's TANGENT.w, and supplied signs are read in
+   * glTF's convention (see SuppliedTangents): checked against the v-down coordinates, and kept
+   * in the convention of the method's own signs.
    */
   vtkSetMacro(GLTFSignConvention, bool);
   vtkGetMacro(GLTFSignConvention, bool);

@@ -154,21 +154,6 @@ void KeepFrames(const FrameOutput& out,
 }
 } // namespace
 
-const char* vtkPolyDataTangentFrames::GetSuppliedTangentsName(int mode)
-{
-  static const char* const names[] = { "Recompute", "Keep", "KeepValid" };
-  return mode >= RECOMPUTE && mode <= KEEP_VALID ? names[mode] : "Unknown";
-}
-
-void vtkPolyDataTangentFrames::SetSuppliedTangentsArrayName(const std::string& name)
-{
-  if (name != this->SuppliedTangentsArrayName)
-  {
-    this->SuppliedTangentsArrayName = name;
-    this->Modified();
-  }
-}
-
 void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
 {
   vtkPolyData* input = block.Input;

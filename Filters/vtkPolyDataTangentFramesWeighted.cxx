@@ -13,7 +13,6 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -26,7 +25,6 @@
 #include <memory>
 #include <numeric>
 #include <optional>
-#include <string>
 #include <type_traits>
 #include <unordered_map>
 #include <utility>
@@ -35,7 +33,8 @@
 /*
  * How the weighted methods run (everything in double, the passes on vtkSMPTools::For):
  * 1. The polygons (fans from corner 0) and strips are listed as triangles, in cell order; where
- *    normals are computed, every point gets the list of its triangles in that order (the links).
+ *    normals are computed or replaced, every point gets the list of its triangles in that order
+ *    (the links).
  * 2. Every point gets its shading normal: the input's, or where that is unusable (or the input
  *    has none) the area-weighted sum of its triangles' normals, through the links. Float normals
  *    that are all usable are read in place (ShadingNormals); any others become unit vectors.
@@ -64,6 +63,11 @@ using vtkNormalMapping::TriangleFrame;
 using vtkNormalMapping::detail::DispatchArray;
 using vtkNormalMapping::detail::FrameStorage;
 using vtkNormalMapping::detail::WithCellStorage;
+
+static_assert(static_cast<int>(TangentMethod::Unweighted) == vtkPolyDataTangentFrames::UNWEIGHTED &&
+    static_cast<int>(TangentMethod::AreaWeighted) == vtkPolyDataTangentFrames::AREA_WEIGHTED &&
+    static_cast<int>(TangentMethod::AngleWeighted) == vtkPolyDataTangentFrames::ANGLE_WEIGHTED,
+  "the weighted values of Method convert to TangentMethod");
 
 /// Storage whose every entry the filter writes before reading it (not cleared first).
 template<typename T>
@@ -214,9 +218,10 @@ struct TriangleFrames
   {
     for (int i = 0; i < count; ++i)
     {
-      this->Tangent[first + i] = dvec3(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
-      this->Normal[first + i] = dvec3(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
-      this->Area[first + i] = b.Area[i];
+      const TriangleFrame f = b.Frame(i);
+      this->Tangent[first + i] = f.Tangent;
+      this->Normal[first + i] = f.Normal;
+      this->Area[first + i] = f.Area;
     }
   }
 };
@@ -488,7 +493,6 @@ struct CornerSides
   }
   /// Corner k of the triangles, from triangle `first` on.
   signed char* Corner(int k, vtkIdType first) { return this->Side.get() + k * this->Count + first; }
-  int Of(vtkIdType t, int k) const { return this->Side[k * this->Count + t]; }
 
   /// The handedness triangle t gives its corner at point id.
   int At(const Triangles& tris, vtkIdType t, vtkIdType id) const
@@ -497,7 +501,7 @@ struct CornerSides
     {
       if (tris.Ids[3 * t + k] == id)
       {
-        return this->Of(t, k);
+        return this->Side[k * this->Count + t];
       }
     }
     return 0;
@@ -679,9 +683,8 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
 /**
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
  * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
- * corners in order collects, per fallback point, its neighbours in triangle order (the order of
- * the links, which this pass does not need). A fallback point's corners have no handedness
- * (`sides`), so only those corners are looked at.
+ * corners in order collects, per fallback point, its neighbours in triangle order. A fallback
+ * point's corners have no handedness (`sides`), so only those corners are looked at.
  */
 template<typename OutT, typename NormalT>
 void FillFallbacks(const Triangles& tris,

@@ -15,9 +15,10 @@
  * instead of spreading NaN.
  *
  * The block loops (ComputeTriangleBlock, SignCornerWeights, ComputePointBlock) and the functions
- * their bodies call are VTK_ALWAYS_INLINE: every compiler then sees each loop whole and can
- * vectorize it, also inside the clones of a multiversioned caller
- * (VTK_NORMALMAPPING_TARGET_CLONES), which only inline what they are made to.
+ * their vectorized loops call are VTK_ALWAYS_INLINE: every compiler then sees each such loop
+ * whole and can vectorize it, also inside the clones of a multiversioned caller
+ * (VTK_NORMALMAPPING_TARGET_CLONES), which only inline what they are made to. The loops over the
+ * rare cases call ordinary functions.
  */
 #ifndef vtkTangentFrameKernels_h
 #define vtkTangentFrameKernels_h
@@ -47,7 +48,7 @@ enum class TangentMethod : int
   /// accumulation with explicit area weights). Large triangles dominate; cheap.
   AreaWeighted = 1,
   /// Each unit per-triangle tangent weighted by the triangle's interior angle at the point.
-  /// Independent of how a fan is split into triangles; costs three atan2 per triangle.
+  /// Independent of how a fan is split into triangles; costs three corner angles per triangle.
   AngleWeighted = 2,
 };
 
