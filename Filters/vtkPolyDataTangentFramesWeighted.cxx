@@ -314,7 +314,7 @@ vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
  * corner), and the other handedness, which only points on mirror seams have, aside. A corner
  * whose triangle has a frame adds a weight with the sign of its handedness (its angle, its area
  * clamped to DBL_MAX, or 1), non-zero unless an area underflows; other corners add zero (Add).
- * So a side with a corner of non-zero weight has a non-zero Weight. Each side adds its corners in
+ * So a Sum with a corner of non-zero weight has a non-zero Weight. Each Sum adds its corners in
  * the order they come (SumFrames: triangle order). The points are split into contiguous ranges,
  * one per owner; Add may run concurrently for points of different owners.
  */
@@ -322,7 +322,7 @@ struct ScatteredSums
 {
   /// One handedness' sums of a point: 32 bytes, aligned to 32 so that adding a corner reads and
   /// writes one cache line, not two.
-  struct alignas(32) Side
+  struct alignas(32) Sum
   {
     dvec3 Tangent{ 0.0 };
     double Weight = 0.0;
@@ -332,10 +332,10 @@ struct ScatteredSums
       this->Weight += signedWeight; // -(a + b) == -a + -b: |Weight| is the sum of the |weights|
     }
   };
-  static_assert(sizeof(Side) == 32, "a Side fills half a cache line");
-  std::vector<Side> First;
+  static_assert(sizeof(Sum) == 32, "a Sum fills half a cache line");
+  std::vector<Sum> First;
   std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
-  std::vector<std::unordered_map<vtkIdType, Side>> Other; // per owner
+  std::vector<std::unordered_map<vtkIdType, Sum>> Other; // per owner
   vtkIdType PointsPerOwner = 1;
 
   /// `owners` owners (at least one) of about equal ranges of points.
@@ -372,18 +372,18 @@ struct ScatteredSums
   }
 
   /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
-  /// of zero weight (its triangle has no frame) goes to the first side and changes none of its
+  /// of zero weight (its triangle has no frame) goes to the first Sum and changes none of its
   /// bits: it adds zeros to sums that are never -0.
   void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
   {
-    Side& side = this->First[p];
+    Sum& first = this->First[p];
     // One branch, taken only on mirror seams: whether the point's first handedness is already
     // set and differs from this corner's.
-    const bool otherSide = (side.Weight != 0.0) & (signedWeight != 0.0) &
-      (std::signbit(side.Weight) != std::signbit(signedWeight));
-    if (!otherSide)
+    const bool other = (first.Weight != 0.0) & (signedWeight != 0.0) &
+      (std::signbit(first.Weight) != std::signbit(signedWeight));
+    if (!other)
     {
-      side.Add(signedWeight, tangent);
+      first.Add(signedWeight, tangent);
       return;
     }
     this->AddOther(p, signedWeight, tangent);
@@ -420,12 +420,12 @@ struct ScatteredSums
     }
   }
 
-  /// Side 0 (handedness +1) or 1 (handedness -1) of a point on a mirror seam (HasOther), whose
-  /// two sides have opposite signs; safe to call from several threads.
-  const Side& SeamSide(vtkIdType p, int side) const
+  /// The +1 or the -1 (`negative`) Sum of a point on a mirror seam (HasOther), whose
+  /// two Sums have opposite signs; safe to call from several threads.
+  const Sum& SeamSum(vtkIdType p, bool negative) const
   {
-    const Side& first = this->First[p];
-    return (first.Weight > 0.0) == (side == 0) ? first : this->Other[this->OwnerOf(p)].at(p);
+    const Sum& first = this->First[p];
+    return (first.Weight < 0.0) == negative ? first : this->Other[this->OwnerOf(p)].at(p);
   }
 };
 
@@ -481,18 +481,21 @@ struct SplitPoint
  * without a frame or weight), one array per corner index k, so that each block of triangles
  * stores its handedness as three runs.
  */
-struct CornerSides
+struct CornerHandedness
 {
   vtkIdType Count = 0; // triangles
-  Buffer<signed char> Side;
+  Buffer<signed char> Values;
 
-  explicit CornerSides(vtkIdType count)
+  explicit CornerHandedness(vtkIdType count)
     : Count(count)
-    , Side(new signed char[3 * count])
+    , Values(new signed char[3 * count])
   {
   }
   /// Corner k of the triangles, from triangle `first` on.
-  signed char* Corner(int k, vtkIdType first) { return this->Side.get() + k * this->Count + first; }
+  signed char* Corner(int k, vtkIdType first)
+  {
+    return this->Values.get() + k * this->Count + first;
+  }
 
   /// The handedness triangle t gives its corner at point id.
   int At(const Triangles& tris, vtkIdType t, vtkIdType id) const
@@ -501,7 +504,7 @@ struct CornerSides
     {
       if (tris.Ids[3 * t + k] == id)
       {
-        return this->Side[k * this->Count + t];
+        return this->Values[k * this->Count + t];
       }
     }
     return 0;
@@ -511,7 +514,7 @@ struct CornerSides
   std::vector<vtkIdType> Without() const
   {
     std::vector<vtkIdType> corners;
-    const signed char* const begin = this->Side.get();
+    const signed char* const begin = this->Values.get();
     const signed char* const end = begin + 3 * this->Count;
     for (const void* at = std::memchr(begin, 0, end - begin); at;)
     {
@@ -531,7 +534,7 @@ struct CornerSides
  */
 std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
-  const CornerSides& sides,
+  const CornerHandedness& handedness,
   const std::vector<SplitPoint>& splits,
   vtkIdType numPoints)
 {
@@ -575,7 +578,7 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           int vote = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
-            vote += sides.At(tris, firstTriangle + j, id);
+            vote += handedness.At(tris, firstTriangle + j, id);
           }
           if (vote < 0)
           {
@@ -595,24 +598,28 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
 }
 
 /**
- * What point p's sums make of it, the handedness (0: +1, 1: -1) whose frame it takes, and that
- * side's tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it takes
- * its neighbours' frames later), or on a mirror seam (Conflict) the +1 side with splitting, else
- * the heavier side (+1 on a tie).
+ * What point p's sums make of it, the handedness (+1 or -1) whose frame it takes, and that
+ * handedness' tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it
+ * takes its neighbours' frames later), or on a mirror seam (Conflict) +1 with splitting, else the
+ * heavier side (+1 on a tie).
  */
-PointKind KindOf(const ScatteredSums& sums, vtkIdType p, bool splitting, int& side, dvec3& tangent)
+PointKind KindOf(const ScatteredSums& sums,
+  vtkIdType p,
+  bool splitting,
+  double& sign,
+  dvec3& tangent)
 {
   if (!sums.HasOther[p])
   {
-    const ScatteredSums::Side& first = sums.First[p];
-    side = first.Weight > 0.0 ? 0 : 1;
+    const ScatteredSums::Sum& first = sums.First[p];
+    sign = first.Weight > 0.0 ? 1.0 : -1.0;
     tangent = first.Tangent;
     return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
   }
-  const ScatteredSums::Side& positive = sums.SeamSide(p, 0);
-  const ScatteredSums::Side& negative = sums.SeamSide(p, 1);
-  side = splitting || !(std::abs(negative.Weight) > std::abs(positive.Weight)) ? 0 : 1;
-  tangent = (side == 0 ? positive : negative).Tangent;
+  const ScatteredSums::Sum& positive = sums.SeamSum(p, false);
+  const ScatteredSums::Sum& negative = sums.SeamSum(p, true);
+  sign = splitting || !(std::abs(negative.Weight) > std::abs(positive.Weight)) ? 1.0 : -1.0;
+  tangent = (sign > 0.0 ? positive : negative).Tangent;
   return PointKind::Conflict;
 }
 
@@ -624,8 +631,8 @@ void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool norm
 }
 
 /**
- * Every point's frame from its sums (KindOf): the tangent of its side made perpendicular to its
- * unit normal, a block of points at a time (ComputeUnitFrames). Fallback points are only marked
+ * Every point's frame from its sums (KindOf): the tangent of its handedness made perpendicular to
+ * its unit normal, a block of points at a time (ComputeUnitFrames). Fallback points are only marked
  * in `kinds`.
  */
 template<typename OutT, typename NormalT>
@@ -648,11 +655,9 @@ void WriteFrames(vtkIdType numPoints,
         const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
         for (int i = 0; i < count; ++i)
         {
-          int side = 0;
           dvec3 tangent;
-          kinds[first + i] = KindOf(sums, first + i, splitting, side, tangent);
+          kinds[first + i] = KindOf(sums, first + i, splitting, signs[i], tangent);
           b.Set(i, normals.Stored(first + i), tangent);
-          signs[i] = side == 0 ? 1.0 : -1.0;
         }
         ComputeUnitFrames(b, count, !normals.Unit);
         for (int i = 0; i < count; ++i)
@@ -684,11 +689,11 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
  * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
  * corners in order collects, per fallback point, its neighbours in triangle order. A fallback
- * point's corners have no handedness (`sides`), so only those corners are looked at.
+ * point's corners have no handedness (`handedness`), so only those corners are looked at.
  */
 template<typename OutT, typename NormalT>
 void FillFallbacks(const Triangles& tris,
-  const CornerSides& sides,
+  const CornerHandedness& handedness,
   const ShadingNormals<NormalT>& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
@@ -696,7 +701,7 @@ void FillFallbacks(const Triangles& tris,
 {
   std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
   std::vector<int> votes(fallbacks.size(), 0);
-  for (const vtkIdType c : sides.Without())
+  for (const vtkIdType c : handedness.Without())
   {
     const vtkIdType p = tris.Ids[c];
     if (kinds[p] != PointKind::Fallback)
@@ -743,7 +748,7 @@ std::vector<SplitPoint> SplitFrames(const ScatteredSums& sums,
       {
         const vtkIdType p = conflicts[i];
         const dvec3 n = normals.UnitOf(p);
-        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSide(p, 1).Tangent) };
+        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSum(p, true).Tangent) };
       }
     });
   return splits;
@@ -780,7 +785,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   vtkIdType NumberOfTriangles = 0;
   std::unique_ptr<TriangleFrames> Frames;
   /// Per corner, the handedness its triangle gives it.
-  std::unique_ptr<CornerSides> Sides;
+  std::unique_ptr<CornerHandedness> Handedness;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction) { return this->Self->ContinueBlock(*this, fraction); }
@@ -919,8 +924,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    * range of points goes through the triangles in order, computes the frames of the tiles that
    * reach its points (TileBounds) and adds the corners of its points: no thread reads what
    * another wrote, and only the tiles at the edges of the ranges are computed twice. A tile's
-   * first owner stores the handedness of its corners in Sides and, with cell tangents, its frames.
-   * Counts the triangles without a frame in `degenerate`.
+   * first owner stores the handedness of its corners in Handedness and, with cell tangents, its
+   * frames. Counts the triangles without a frame in `degenerate`.
    */
   template<typename NormalT>
   ScatteredSums SumFrames(TangentMethod method,
@@ -965,7 +970,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
             {
               for (int k = 0; k < 3; ++k)
               {
-                std::memcpy(this->Sides->Corner(k, firstTriangle), b.Handedness[k], n);
+                std::memcpy(this->Handedness->Corner(k, firstTriangle), b.Handedness[k], n);
               }
               for (int i = 0; i < n; ++i)
               {
@@ -1081,7 +1086,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         -1.0);
     }
     const auto repoint =
-      MirroredCorners(this->Cells, this->Tris, *this->Sides, splits, this->NumberOfPoints);
+      MirroredCorners(this->Cells, this->Tris, *this->Handedness, splits, this->NumberOfPoints);
     vtkNormalMapping::detail::WriteSplitOutput(
       this->Input, this->Output, splitSource, repoint, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
@@ -1165,7 +1170,7 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  this->Sides.reset(new CornerSides(this->Tris.Count));
+  this->Handedness.reset(new CornerHandedness(this->Tris.Count));
   std::optional<ScatteredSums> sums(
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
@@ -1190,7 +1195,7 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(this->Tris, *this->Sides, normals, kinds.get(), fallbacks, frames.Storage());
+    FillFallbacks(this->Tris, *this->Handedness, normals, kinds.get(), fallbacks, frames.Storage());
   }
   const std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
