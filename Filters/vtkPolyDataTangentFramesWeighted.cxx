@@ -771,21 +771,25 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   Internals(const BlockInput& block, vtkPolyDataTangentFrames* self)
     : BlockInput(block)
     , Self(self)
+    , NumberOfPoints(block.Input->GetNumberOfPoints())
+    , Cells{ block.Input->GetPolys(), block.Input->GetStrips() }
+    , FirstSurfaceCell(block.Input->GetNumberOfVerts() + block.Input->GetNumberOfLines())
   {
   }
 
   vtkPolyDataTangentFrames* Self;
 
-  vtkIdType NumberOfPoints = 0;
-  vtkCellArray* Cells[2] = { nullptr, nullptr }; // polygons, strips
-  vtkIdType FirstSurfaceCell = 0;
+  const vtkIdType NumberOfPoints;
+  vtkCellArray* const Cells[2]; // polygons, strips
+  const vtkIdType FirstSurfaceCell;
   Triangles Tris;
   /// The triangles this execution computed frames for (the weighted methods' Tris, or
   /// MikkTSpace's), for the warning when none has a frame.
   vtkIdType NumberOfTriangles = 0;
-  std::unique_ptr<TriangleFrames> Frames;
-  /// Per corner, the handedness its triangle gives it.
+  /// What SumFrames keeps per triangle: the handedness it gives each corner, and its frame when
+  /// cell tangents are asked for.
   std::unique_ptr<CornerHandedness> Handedness;
+  std::unique_ptr<TriangleFrames> Frames;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
   bool Continue(double fraction) { return this->Self->ContinueBlock(*this, fraction); }
@@ -942,6 +946,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const int owners = sums.Owners();
     const std::vector<IdRange> bounds =
       owners > 1 ? TileBounds(this->Tris) : std::vector<IdRange>();
+    this->Handedness.reset(new CornerHandedness(count));
     if (cellTangents)
     {
       this->Frames.reset(new TriangleFrames(count));
@@ -1112,11 +1117,6 @@ template<typename OutT>
 void vtkPolyDataTangentFrames::Internals::Run()
 {
   vtkPolyDataTangentFrames* self = this->Self;
-  vtkPolyData* input = this->Input;
-  this->NumberOfPoints = input->GetNumberOfPoints();
-  this->Cells[0] = input->GetPolys();
-  this->Cells[1] = input->GetStrips();
-  this->FirstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
   const bool mikkTSpace = self->Method == MIKKTSPACE;
 
   // Normals: the input's, or computed when it has none; how the frames read them follows below.
@@ -1170,7 +1170,6 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  this->Handedness.reset(new CornerHandedness(this->Tris.Count));
   std::optional<ScatteredSums> sums(
     this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
 
