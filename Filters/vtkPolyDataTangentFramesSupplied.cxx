@@ -27,8 +27,8 @@ namespace
 /// which copies all point data to the points it splits.
 constexpr const char* SourceIdsName = "vtkPolyDataTangentFrames_SourcePointIds";
 
-/// The output's frame arrays, and how kept frames are written into them.
-struct FrameOutput
+/// Writes kept frames into the output's frame arrays.
+struct KeptFrameWriter
 {
   vtkDataArray* Tangents = nullptr;
   vtkDataArray* Signs = nullptr;
@@ -86,11 +86,11 @@ vtkSmartPointer<vtkPolyData> WithSourceIds(vtkPolyData* input)
 
 /// New frame arrays of `tuples` tuples of class ArrayT in `pd`.
 template<typename ArrayT>
-FrameOutput NewFrameOutput(vtkPointData* pd, bool bitangents, vtkIdType tuples)
+KeptFrameWriter NewKeptFrameWriter(vtkPointData* pd, bool bitangents, vtkIdType tuples)
 {
   const vtkNormalMapping::detail::OutputFrames<ArrayT> arrays(tuples, bitangents);
   arrays.AddTo(pd);
-  FrameOutput out;
+  KeptFrameWriter out;
   out.Tangents = arrays.Tangents;
   out.Signs = arrays.Signs;
   out.Bitangents = arrays.Bitangents;
@@ -103,10 +103,10 @@ FrameOutput NewFrameOutput(vtkPointData* pd, bool bitangents, vtkIdType tuples)
  * to write into: after an error ComputeBlock passes the input through (its arrays, shared: never
  * written) and after an abort the output is empty.
  */
-bool ComputedFrameOutput(vtkPolyData* input,
+bool ComputedFrameWriter(vtkPolyData* input,
   vtkPolyData* output,
   bool bitangents,
-  FrameOutput& out,
+  KeptFrameWriter& out,
   vtkSmartPointer<vtkIdTypeArray>& sourceIds)
 {
   vtkPointData* outPD = output->GetPointData();
@@ -130,7 +130,7 @@ bool ComputedFrameOutput(vtkPolyData* input,
  * Output points [0, numOut) keep the supplied frames of their input points (`sourceIds`, or the
  * same id without it), except those whose defects include a bit of `replaced`.
  */
-void KeepFrames(const FrameOutput& out,
+void KeepFrames(const KeptFrameWriter& out,
   const vtkNormalMapping::SuppliedFrameArrays& supplied,
   vtkDataArray* normals,
   const vtkNormalMapping::FrameCheck& check,
@@ -212,7 +212,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   }
 
   // Computed frames first, where some are needed; then the kept frames over them.
-  FrameOutput out;
+  KeptFrameWriter out;
   vtkSmartPointer<vtkIdTypeArray> sourceIds;
   if (numReplaced > 0 || this->ComputeCellTangents)
   {
@@ -222,7 +222,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
       kept.begin(),
       [replaced](unsigned char defects) { return (defects & replaced) == 0; });
     compute(WithSourceIds(input), kept.data());
-    if (!ComputedFrameOutput(input, output, this->ComputeBitangents, out, sourceIds))
+    if (!ComputedFrameWriter(input, output, this->ComputeBitangents, out, sourceIds))
     {
       return;
     }
@@ -230,8 +230,8 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   else
   {
     output->ShallowCopy(input);
-    const auto make =
-      this->DoubleOutput(input) ? NewFrameOutput<vtkDoubleArray> : NewFrameOutput<vtkFloatArray>;
+    const auto make = this->DoubleOutput(input) ? NewKeptFrameWriter<vtkDoubleArray>
+                                                : NewKeptFrameWriter<vtkFloatArray>;
     out = make(output->GetPointData(), this->ComputeBitangents, output->GetNumberOfPoints());
   }
   // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:

@@ -62,6 +62,7 @@ using vtkNormalMapping::TriangleBlock;
 using vtkNormalMapping::TriangleFrame;
 using vtkNormalMapping::detail::DispatchArray;
 using vtkNormalMapping::detail::FrameStorage;
+using vtkNormalMapping::detail::OutputFrames;
 using vtkNormalMapping::detail::WithCellStorage;
 
 static_assert(static_cast<int>(TangentMethod::Unweighted) == vtkPolyDataTangentFrames::UNWEIGHTED &&
@@ -759,10 +760,6 @@ template<typename OutT>
 using OutArray =
   typename std::conditional<std::is_same<OutT, float>::value, vtkFloatArray, vtkDoubleArray>::type;
 
-/// The output's frame arrays of values OutT.
-template<typename OutT>
-using OutFrames = vtkNormalMapping::detail::OutputFrames<OutArray<OutT>>;
-
 } // namespace
 
 /// One execution on one polydata, with what it needs from the filter.
@@ -1077,7 +1074,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    */
   template<typename OutT>
   void WriteOutput(const std::vector<SplitPoint>& splits,
-    const OutFrames<OutT>& frames,
+    const OutputFrames<OutArray<OutT>>& frames,
     vtkDataArray* computedNormals)
   {
     const FrameStorage<OutT> out = frames.Storage();
@@ -1175,7 +1172,8 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
 
   // Room for the split points' frames too: with splitting, each mirror-seam point (a Conflict
   // point) gets one copy, unless the caller keeps its frame.
-  OutFrames<OutT> frames(numPoints + (self->Splitting ? sums->SeamPoints(this->KeptPoints) : 0),
+  OutputFrames<OutArray<OutT>> frames(
+    numPoints + (self->Splitting ? sums->SeamPoints(this->KeptPoints) : 0),
     self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());
