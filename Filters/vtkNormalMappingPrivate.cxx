@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkNormalMappingPrivate.h"
 
+#include "vtkIdList.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -151,4 +152,102 @@ bool vtkNormalMapping::detail::PointIdsInRange(vtkPolyDataTangentFrames* filter,
     output->ShallowCopy(input);
   }
   return !bad;
+}
+
+vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(
+  vtkAbstractArray* array,
+  vtkIdType numIn,
+  const std::vector<vtkIdType>& source)
+{
+  if (array->GetNumberOfTuples() < numIn)
+  {
+    return array;
+  }
+  const vtkIdType extra = static_cast<vtkIdType>(source.size());
+  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
+  copy->SetNumberOfComponents(array->GetNumberOfComponents());
+  copy->SetName(array->GetName());
+  copy->CopyComponentNames(array);
+  if (array->HasInformation())
+  {
+    copy->CopyInformation(array->GetInformation());
+  }
+  auto* values = vtkDataArray::SafeDownCast(array);
+  if (values && values->GetLookupTable())
+  {
+    vtkDataArray::SafeDownCast(copy)->SetLookupTable(values->GetLookupTable());
+  }
+  copy->SetNumberOfTuples(numIn + extra);
+  copy->InsertTuples(0, numIn, 0, array);
+  vtkNew<vtkIdList> src, dst;
+  src->SetNumberOfIds(extra);
+  dst->SetNumberOfIds(extra);
+  for (vtkIdType i = 0; i < extra; ++i)
+  {
+    src->SetId(i, source[static_cast<size_t>(i)]);
+    dst->SetId(i, numIn + i);
+  }
+  copy->InsertTuples(dst, src, array);
+  return copy;
+}
+
+void vtkNormalMapping::detail::CopyWithAppendedPoints(vtkPolyData* input,
+  vtkPolyData* output,
+  const std::vector<vtkIdType>& source,
+  const std::vector<std::string>& replaced)
+{
+  output->CopyStructure(input);
+  output->GetCellData()->PassData(input->GetCellData());
+  vtkPointData* inPD = input->GetPointData();
+  vtkPointData* outPD = output->GetPointData();
+  if (source.empty())
+  {
+    outPD->PassData(inPD);
+    return;
+  }
+  const vtkIdType numIn = input->GetNumberOfPoints();
+  vtkNew<vtkPoints> points;
+  points->SetData(
+    vtkDataArray::SafeDownCast(ExtendPointArray(input->GetPoints()->GetData(), numIn, source)));
+  output->SetPoints(points);
+  outPD->Initialize();
+  for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
+  {
+    const int attribute = inPD->IsArrayAnAttribute(k);
+    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+    {
+      continue; // copies would repeat their source's id (VTK's filters drop them too)
+    }
+    vtkAbstractArray* array = inPD->GetAbstractArray(k);
+    const char* name = array->GetName();
+    const bool isReplaced =
+      name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
+    outPD->AddArray(isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
+                               : ExtendPointArray(array, numIn, source));
+    if (attribute >= 0)
+    {
+      outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
+    }
+  }
+}
+
+void vtkNormalMapping::detail::AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array)
+{
+  int index = -1;
+  if (attributes->GetAbstractArray(array->GetName(), index))
+  {
+    const int attribute = attributes->IsArrayAnAttribute(index);
+    if (attribute == vtkDataSetAttributes::NORMALS || attribute == vtkDataSetAttributes::TCOORDS)
+    {
+      attributes->RemoveArray(index);
+    }
+  }
+  attributes->AddArray(array);
+}
+
+void vtkNormalMapping::detail::AddActiveTangents(vtkDataSetAttributes* attributes,
+  vtkDataArray* tangents)
+{
+  AddFrameArray(attributes, tangents);
+  attributes->SetActiveTangents(tangents->GetName());
 }

@@ -11,7 +11,6 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
-#include "vtkIdList.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -229,41 +228,9 @@ bool PointIdsInRange(vtkPolyDataTangentFrames* filter, vtkPolyData* input, vtkPo
  * exactly its tuples. An array shorter than numIn cannot follow the points and is returned as
  * it is.
  */
-inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* array,
+vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* array,
   vtkIdType numIn,
-  const std::vector<vtkIdType>& source)
-{
-  if (array->GetNumberOfTuples() < numIn)
-  {
-    return array;
-  }
-  const vtkIdType extra = static_cast<vtkIdType>(source.size());
-  vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
-  copy->SetNumberOfComponents(array->GetNumberOfComponents());
-  copy->SetName(array->GetName());
-  copy->CopyComponentNames(array);
-  if (array->HasInformation())
-  {
-    copy->CopyInformation(array->GetInformation());
-  }
-  auto* values = vtkDataArray::SafeDownCast(array);
-  if (values && values->GetLookupTable())
-  {
-    vtkDataArray::SafeDownCast(copy)->SetLookupTable(values->GetLookupTable());
-  }
-  copy->SetNumberOfTuples(numIn + extra);
-  copy->InsertTuples(0, numIn, 0, array);
-  vtkNew<vtkIdList> src, dst;
-  src->SetNumberOfIds(extra);
-  dst->SetNumberOfIds(extra);
-  for (vtkIdType i = 0; i < extra; ++i)
-  {
-    src->SetId(i, source[static_cast<size_t>(i)]);
-    dst->SetId(i, numIn + i);
-  }
-  copy->InsertTuples(dst, src, array);
-  return copy;
-}
+  const std::vector<vtkIdType>& source);
 
 /**
  * The output's structure and cell data from the input; its points and point data from the
@@ -272,45 +239,10 @@ inline vtkSmartPointer<vtkAbstractArray> ExtendPointArray(vtkAbstractArray* arra
  * the input array's place, so until then the input's array stands there. The caller re-points
  * the cells to the new points.
  */
-inline void CopyWithAppendedPoints(vtkPolyData* input,
+void CopyWithAppendedPoints(vtkPolyData* input,
   vtkPolyData* output,
   const std::vector<vtkIdType>& source,
-  const std::vector<std::string>& replaced)
-{
-  output->CopyStructure(input);
-  output->GetCellData()->PassData(input->GetCellData());
-  vtkPointData* inPD = input->GetPointData();
-  vtkPointData* outPD = output->GetPointData();
-  if (source.empty())
-  {
-    outPD->PassData(inPD);
-    return;
-  }
-  const vtkIdType numIn = input->GetNumberOfPoints();
-  vtkNew<vtkPoints> points;
-  points->SetData(
-    vtkDataArray::SafeDownCast(ExtendPointArray(input->GetPoints()->GetData(), numIn, source)));
-  output->SetPoints(points);
-  outPD->Initialize();
-  for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
-  {
-    const int attribute = inPD->IsArrayAnAttribute(k);
-    if (attribute == vtkDataSetAttributes::GLOBALIDS)
-    {
-      continue; // copies would repeat their source's id (VTK's filters drop them too)
-    }
-    vtkAbstractArray* array = inPD->GetAbstractArray(k);
-    const char* name = array->GetName();
-    const bool isReplaced =
-      name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
-    outPD->AddArray(isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
-                               : ExtendPointArray(array, numIn, source));
-    if (attribute >= 0)
-    {
-      outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
-    }
-  }
-}
+  const std::vector<std::string>& replaced);
 
 /**
  * Adds a frame array to `attributes` in place of an array of its name. An array of that name that
@@ -318,30 +250,14 @@ inline void CopyWithAppendedPoints(vtkPolyData* input,
  * removed first, so that the attribute does not come to name frame data; another attribute (the
  * scalars, say) moves to the frame array, as AddArray leaves it.
  */
-inline void AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array)
-{
-  int index = -1;
-  if (attributes->GetAbstractArray(array->GetName(), index))
-  {
-    const int attribute = attributes->IsArrayAnAttribute(index);
-    if (attribute == vtkDataSetAttributes::NORMALS || attribute == vtkDataSetAttributes::TCOORDS)
-    {
-      attributes->RemoveArray(index);
-    }
-  }
-  attributes->AddArray(array);
-}
+void AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array);
 
 /**
  * Adds `tangents` to `attributes` (AddFrameArray) as the active tangents. An array of another
  * name that held the attribute (a reader's tangents) stays, as other point or cell data does:
  * SetTangents would remove it.
  */
-inline void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents)
-{
-  AddFrameArray(attributes, tangents);
-  attributes->SetActiveTangents(tangents->GetName());
-}
+void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents);
 
 /// A new array of class ArrayT with the given name, components and tuples (values not set).
 template<typename ArrayT>
