@@ -490,7 +490,7 @@ namespace detail
  * inlines and vectorizes.
  */
 template<bool WithAngles>
-VTK_ALWAYS_INLINE void ComputeSafeTriangleBlock(TriangleBlock& b,
+VTK_ALWAYS_INLINE void ComputeCommonTriangleBlock(TriangleBlock& b,
   int count,
   const DegeneracyTolerance& tol)
 {
@@ -533,11 +533,11 @@ VTK_ALWAYS_INLINE void ComputeTriangleBlock(TriangleBlock& b,
 {
   if (withAngles)
   {
-    detail::ComputeSafeTriangleBlock<true>(b, count, tol);
+    detail::ComputeCommonTriangleBlock<true>(b, count, tol);
   }
   else
   {
-    detail::ComputeSafeTriangleBlock<false>(b, count, tol);
+    detail::ComputeCommonTriangleBlock<false>(b, count, tol);
   }
   for (int i = 0; i < count; ++i)
   {
