@@ -575,13 +575,11 @@ inline int CornerSign(const TriangleFrame& frame, const glm::dvec3& n)
   return CornerSign<int>(frame.Orientation, frame.Normal, n);
 }
 
-/**
- * For the first `count` triangles of a block whose frames ComputeTriangleBlock gave (with their
- * corner angles for AngleWeighted) and whose corner normals are set: each corner's CornerWeight,
- * signed with the handedness its triangle gives its shading normal (CornerSign), and that sign,
- * in a plain loop the compiler vectorizes.
- */
-VTK_ALWAYS_INLINE void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+namespace detail
+{
+/// SignCornerWeights for one method, a template argument so that the loops have no branch.
+template<TangentMethod Method>
+VTK_ALWAYS_INLINE void SignCornerWeightsFor(TriangleBlock& b, int count)
 {
   for (int k = 0; k < 3; ++k)
   {
@@ -589,11 +587,38 @@ VTK_ALWAYS_INLINE void SignCornerWeights(TriangleBlock& b, int count, TangentMet
     {
       const glm::dvec3 normal(b.Normal[0][i], b.Normal[1][i], b.Normal[2][i]);
       const glm::dvec3 n(b.CornerNormal[k][0][i], b.CornerNormal[k][1][i], b.CornerNormal[k][2][i]);
-      const double weight =
-        CornerSign(b.Orientation[i], normal, n) * CornerWeight(method, b.Area[i], b.Angle[k][i]);
-      b.SignedWeight[k][i] = weight;
+      b.SignedWeight[k][i] =
+        CornerSign(b.Orientation[i], normal, n) * CornerWeight(Method, b.Area[i], b.Angle[k][i]);
+    }
+    // A loop of its own: compilers vectorize a conversion to bytes apart from the doubles.
+    for (int i = 0; i < count; ++i)
+    {
+      const double weight = b.SignedWeight[k][i];
       b.Handedness[k][i] = static_cast<signed char>((weight > 0.0) - (weight < 0.0));
     }
+  }
+}
+} // namespace detail
+
+/**
+ * For the first `count` triangles of a block whose frames ComputeTriangleBlock gave (with their
+ * corner angles for AngleWeighted) and whose corner normals are set: each corner's CornerWeight,
+ * signed with the handedness its triangle gives its shading normal (CornerSign), and that sign,
+ * in plain loops the compiler vectorizes.
+ */
+VTK_ALWAYS_INLINE void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
+{
+  switch (method)
+  {
+    case TangentMethod::Unweighted:
+      detail::SignCornerWeightsFor<TangentMethod::Unweighted>(b, count);
+      break;
+    case TangentMethod::AreaWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AreaWeighted>(b, count);
+      break;
+    case TangentMethod::AngleWeighted:
+      detail::SignCornerWeightsFor<TangentMethod::AngleWeighted>(b, count);
+      break;
   }
 }
 
