@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -66,50 +67,28 @@ constexpr uint8_t kMulti0 = 32;    // (kMulti0 << i): corner i's face corner has
 constexpr uint8_t kExcluded = kDegenerate | kDead;
 
 //------------------------------------------------------------------------------
-// Float vector helpers, evaluated as the reference does (left-to-right sums).
-struct V3
-{
-  float x, y, z;
-};
-V3 Sub(const V3& a, const V3& b)
-{
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
-}
-V3 Add(const V3& a, const V3& b)
-{
-  return { a.x + b.x, a.y + b.y, a.z + b.z };
-}
-V3 Scale(const V3& v, float s)
-{
-  return { v.x * s, v.y * s, v.z * s };
-}
-float Dot(const V3& a, const V3& b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
 bool NotZero(float f)
 {
   return std::fabs(f) > kFltMin;
 }
-bool NotZero(const V3& v)
+
+// Float vector, evaluated as the reference does (left-to-right sums, every operation rounded).
+struct V3
 {
-  const bool x = NotZero(v.x), y = NotZero(v.y), z = NotZero(v.z);
-  return x | y | z; // no branches, see NormalizeNonZero
-}
-bool Equal(const V3& a, const V3& b)
-{
-  return a.x == b.x && a.y == b.y && a.z == b.z;
-}
-bool Finite(const V3& v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-// v / |v| unless v is (numerically) zero. Written without branches (the square root and division
-// are evaluated either way) so that loops over it can be vectorised.
+  float x, y, z;
+  V3 operator+(const V3& b) const { return { x + b.x, y + b.y, z + b.z }; }
+  V3 operator-(const V3& b) const { return { x - b.x, y - b.y, z - b.z }; }
+  V3 operator*(float s) const { return { x * s, y * s, z * s }; }
+  bool operator==(const V3& b) const { return x == b.x && y == b.y && z == b.z; }
+  float Dot(const V3& b) const { return x * b.x + y * b.y + z * b.z; }
+  bool NotZero() const { return mikk::NotZero(x) || mikk::NotZero(y) || mikk::NotZero(z); }
+  bool Finite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+};
+
+// v / |v| unless v is (numerically) zero.
 V3 NormalizeNonZero(const V3& v)
 {
-  const float inv = 1.0f / std::sqrt(Dot(v, v));
-  return NotZero(v) ? Scale(v, inv) : v;
+  return v.NotZero() ? v * (1.0f / std::sqrt(v.Dot(v))) : v;
 }
 
 //------------------------------------------------------------------------------
@@ -132,12 +111,12 @@ struct PendingFrame
 // The reference's average of two frames written to one face corner.
 Frame Average(const Frame& a, const Frame& b)
 {
-  if (a.MagS == b.MagS && a.MagT == b.MagT && Equal(a.S, b.S) && Equal(a.T, b.T))
+  if (a.MagS == b.MagS && a.MagT == b.MagT && a.S == b.S && a.T == b.T)
   {
     return a;
   }
-  return { NormalizeNonZero(Add(a.S, b.S)),
-    NormalizeNonZero(Add(a.T, b.T)),
+  return { NormalizeNonZero(a.S + b.S),
+    NormalizeNonZero(a.T + b.T),
     0.5f * (a.MagS + b.MagS),
     0.5f * (a.MagT + b.MagT) };
 }
@@ -162,30 +141,6 @@ struct Member
   // contribute).
   V3 S, T;
   float MagS, MagT, Angle;
-};
-
-// Per-thread scratch of the triangle phase: the unnormalised directions (the reference's vOs,
-// vOt) and UV determinant of each triangle of a chunk, in separate arrays so that their
-// normalisation (Kernel::FinishDirections) vectorises.
-struct TriangleRows
-{
-  std::vector<float> Sx, Sy, Sz, Tx, Ty, Tz, Det, MagS, MagT;
-  void Resize(size_t n)
-  {
-    for (std::vector<float>* v : { &Sx, &Sy, &Sz, &Tx, &Ty, &Tz, &Det, &MagS, &MagT })
-    {
-      v->resize(n);
-    }
-  }
-  void SetDirections(size_t j, const V3& s, const V3& t)
-  {
-    Sx[j] = s.x;
-    Sy[j] = s.y;
-    Sz[j] = s.z;
-    Tx[j] = t.x;
-    Ty[j] = t.y;
-    Tz[j] = t.z;
-  }
 };
 
 // Per-thread scratch of the vertex phase (and of the sequential FloodGroup).
@@ -368,26 +323,10 @@ struct Kernel
 
   bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
   bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
-  /// Calls visit(b, e, t) for each face of chunk c that gives triangles, in order: [b, e) are
-  /// its offsets and t its first triangle.
+  /// visit(b, e, t) for every face that gives triangles, in parallel over chunks of faces:
+  /// [b, e) are its offsets and t its first triangle.
   template<typename Visit>
-  void ForEachTriangulatedFace(long long c, Visit&& visit) const
-  {
-    Idx t = ChunkTriBase[size_t(c)];
-    const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
-    for (long long f = c * kFaceChunk; f < fe; ++f)
-    {
-      const long long b = Off[f], e = Off[f + 1];
-      if (FaceHasTriangles(b, e))
-      {
-        visit(b, e, t);
-        t += Idx(e - b - 2);
-      }
-    }
-  }
-  /// f(c) for every chunk of faces, in parallel.
-  template<typename F>
-  void ForEachFaceChunk(F&& f) const
+  void ForEachTriangulatedFace(Visit&& visit) const
   {
     vtkSMPTools::For(0,
       vtkIdType(NumFaceChunks),
@@ -396,26 +335,27 @@ struct Kernel
       {
         for (vtkIdType c = cb; c < ce; ++c)
         {
-          f(c);
+          Idx t = ChunkTriBase[size_t(c)];
+          const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
+          for (long long f = c * kFaceChunk; f < fe; ++f)
+          {
+            const long long b = Off[f], e = Off[f + 1];
+            if (FaceHasTriangles(b, e))
+            {
+              visit(b, e, t);
+              t += Idx(e - b - 2);
+            }
+          }
         }
       });
   }
 
-  // Faces of one chunk that give no triangles, and its triangles' classes.
-  struct Counts
-  {
-    long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
-  };
-
   void Weld();
   void CountTriangles();
-  void SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n);
-  void SetupChunk(long long c, TriangleRows& rows, Counts& n);
   void BuildTriangles();
-  void SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row);
-  void SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row);
-  void FinishDirections(Idx t0, TriangleRows& rows);
-  void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
+  bool SetupFace(long long b, long long e, Idx t);
+  float SetupTriangle(Idx t, Idx s0, Idx s1, Idx s2);
+  void SetupQuad(Idx t, Idx base);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
   void AdoptGroupWithAnyOrientation();
@@ -546,96 +486,69 @@ void Kernel::Weld()
 }
 
 //------------------------------------------------------------------------------
-// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo): its
-// corners and degeneracy, and its unnormalised directions and UV determinant in `row` of `rows`
-// (FinishDirections completes them).
-void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row)
+// |v|, and unit = sign v / |v| unless |v| is numerically zero (reference: InitTriInfo).
+float SignedUnit(const V3& v, float sign, V3& unit)
 {
-  Triangle& tri = Tris[size_t(t)];
-  Idx pts[3];
-  for (int i = 0; i < 3; ++i)
+  const float length = std::sqrt(v.Dot(v));
+  if (NotZero(length))
   {
-    pts[i] = Idx(Conn[slots[i]]);
-    if (Slots)
-    {
-      Slots[3 * size_t(t) + size_t(i)] = slots[i];
-    }
+    unit = v * (sign / length);
   }
-  const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
-  tri.Flags = Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2) ? kDegenerate : 0;
+  return length;
+}
+
+// Triangle t with face corners s0, s1, s2 (reference: degenerate test, InitTriInfo): its
+// degeneracy, orientation and GWA flags, unit directions and magnitudes. Returns its UV
+// determinant.
+float Kernel::SetupTriangle(Idx t, Idx s0, Idx s1, Idx s2)
+{
+  if (Slots)
+  {
+    Idx* slots = Slots.get() + 3 * size_t(t);
+    slots[0] = s0;
+    slots[1] = s1;
+    slots[2] = s2;
+  }
+  const Idx a = Idx(Conn[s0]), b = Idx(Conn[s1]), c = Idx(Conn[s2]);
+  const V3 p0 = Pos(a), p1 = Pos(b), p2 = Pos(c);
   const float* U = In.TCoords;
-  const float u0 = U[2 * size_t(pts[0])], v0 = U[2 * size_t(pts[0]) + 1];
-  const float t21x = U[2 * size_t(pts[1])] - u0, t21y = U[2 * size_t(pts[1]) + 1] - v0;
-  const float t31x = U[2 * size_t(pts[2])] - u0, t31y = U[2 * size_t(pts[2]) + 1] - v0;
-  const V3 d1 = Sub(p1, p0), d2 = Sub(p2, p0);
-  rows.Det[row] = t21x * t31y - t21y * t31x;
-  rows.SetDirections(
-    row, Sub(Scale(d1, t31y), Scale(d2, t21y)), Add(Scale(d1, -t31x), Scale(d2, t21x)));
-}
-
-// One direction of the reference's InitTriInfo for count triangles: (x[j], y[j], z[j]) made
-// unit and signed by the UV determinant det[j] (zero when its length is numerically zero), and
-// mag[j] = its length / |det[j]|. Branch-free over separate arrays, so that compilers vectorise
-// it; square root and division are correctly rounded either way.
-void SignedDirections(float* x, float* y, float* z, const float* det, float* mag, size_t count)
-{
-  for (size_t j = 0; j < count; ++j)
+  const float t21x = U[2 * size_t(b)] - U[2 * size_t(a)];
+  const float t21y = U[2 * size_t(b) + 1] - U[2 * size_t(a) + 1];
+  const float t31x = U[2 * size_t(c)] - U[2 * size_t(a)];
+  const float t31y = U[2 * size_t(c) + 1] - U[2 * size_t(a) + 1];
+  const float det = t21x * t31y - t21y * t31x;
+  Triangle& tri = Tris[size_t(t)];
+  tri = Triangle{ { 0, 0, 0 }, { 0, 0, 0 }, kDegenerate };
+  if (p0 == p1 || p0 == p2 || p1 == p2)
   {
-    const V3 v{ x[j], y[j], z[j] };
-    const float len = std::sqrt(Dot(v, v));
-    const float sign = det[j] > 0 ? 1.0f : -1.0f;
-    const V3 r = NotZero(len) ? Scale(v, sign / len) : V3{ 0, 0, 0 };
-    x[j] = r.x;
-    y[j] = r.y;
-    z[j] = r.z;
-    mag[j] = len / std::fabs(det[j]);
+    return det;
   }
-}
-
-// Completes the directions of the triangles t0, t0 + 1, ... of `rows` with their magnitudes,
-// orientation and GWA flags (reference: InitTriInfo); degenerate and dead triangles get none.
-void Kernel::FinishDirections(Idx t0, TriangleRows& r)
-{
-  const size_t n = r.Det.size();
-  SignedDirections(r.Sx.data(), r.Sy.data(), r.Sz.data(), r.Det.data(), r.MagS.data(), n);
-  SignedDirections(r.Tx.data(), r.Ty.data(), r.Tz.data(), r.Det.data(), r.MagT.data(), n);
-  for (size_t j = 0; j < n; ++j)
+  tri.Flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
+  float magS = 0, magT = 0;
+  if (NotZero(det))
   {
-    Triangle& tri = Tris[size_t(t0) + j];
-    tri.S = tri.T = V3{ 0, 0, 0 };
-    float* mags = Mags ? Mags.get() + 2 * (size_t(t0) + j) : nullptr;
-    if (mags)
+    const V3 d1 = p1 - p0, d2 = p2 - p0;
+    const float sign = det > 0 ? 1.0f : -1.0f;
+    magS = SignedUnit(d1 * t31y - d2 * t21y, sign, tri.S) / std::fabs(det);
+    magT = SignedUnit(d1 * -t31x + d2 * t21x, sign, tri.T) / std::fabs(det);
+    if (NotZero(magS) && NotZero(magT))
     {
-      mags[0] = mags[1] = 0;
+      tri.Flags = uint8_t(tri.Flags & ~kGWA);
     }
-    if (tri.Flags & kExcluded)
-    {
-      continue;
-    }
-    const float det = r.Det[j];
-    uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
-    if (NotZero(det))
-    {
-      tri.S = V3{ r.Sx[j], r.Sy[j], r.Sz[j] };
-      tri.T = V3{ r.Tx[j], r.Ty[j], r.Tz[j] };
-      if (mags)
-      {
-        mags[0] = r.MagS[j];
-        mags[1] = r.MagT[j];
-      }
-      if (NotZero(r.MagS[j]) && NotZero(r.MagT[j]))
-      {
-        flags = uint8_t(flags & ~kGWA);
-      }
-    }
-    tri.Flags |= flags;
   }
+  if (Mags)
+  {
+    Mags[2 * size_t(t)] = magS;
+    Mags[2 * size_t(t) + 1] = magT;
+  }
+  return det;
 }
 
-// The two triangles t, t+1 of the quad with face corners base..base+3: split on the shorter UV
-// diagonal (the position diagonal on an exact tie); QuadOrientation applies the reference's quad
-// rules once the directions are complete.
-void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
+// The two triangles t, t+1 of the quad with face corners base..base+3, split on the shorter UV
+// diagonal (the position diagonal on an exact tie), and the reference's rule for them: two good
+// triangles of different orientation take the one of the larger UV area (a GWA second triangle
+// always takes the first's).
+void Kernel::SetupQuad(Idx t, Idx base)
 {
   const float* U = In.TCoords;
   Idx q[4];
@@ -653,71 +566,76 @@ void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
   bool diag02 = uv02 < uv13;
   if (!(uv02 < uv13) && !(uv13 < uv02))
   {
-    const V3 e02 = Sub(Pos(q[2]), Pos(q[0])), e13 = Sub(Pos(q[3]), Pos(q[1]));
-    diag02 = !(Dot(e13, e13) < Dot(e02, e02));
+    const V3 e02 = Pos(q[2]) - Pos(q[0]), e13 = Pos(q[3]) - Pos(q[1]);
+    diag02 = !(e13.Dot(e13) < e02.Dot(e02));
   }
-  const Idx sa[3] = { base, base + 1, base + (diag02 ? 2 : 3) };
-  const Idx sb[3] = { base + (diag02 ? 0 : 1), base + 2, base + 3 };
-  SetupTriangle(t, sa, rows, row);
-  SetupTriangle(t + 1, sb, rows, row + 1);
-  // the diagonal's face corners are written by both triangles:
-  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
-  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
-  Tris[size_t(t)].Flags |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
-  Tris[size_t(t) + 1].Flags |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
-}
-
-// The reference's rule for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
-// their directions are complete: two good triangles of different orientation take the one of
-// the larger UV area (a GWA second triangle always takes the first's).
-void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
-{
+  const float detA = SetupTriangle(t, base, base + 1, base + (diag02 ? 2 : 3));
+  const float detB = SetupTriangle(t + 1, base + (diag02 ? 0 : 1), base + 2, base + 3);
   uint8_t& fa = Tris[size_t(t)].Flags;
   uint8_t& fb = Tris[size_t(t) + 1].Flags;
   if (!((fa | fb) & kDegenerate) && ((fa ^ fb) & kOrient))
   {
-    const bool firstWins = (fb & kGWA) || std::fabs(rows.Det[row]) >= std::fabs(rows.Det[row + 1]);
+    const bool firstWins = (fb & kGWA) || std::fabs(detA) >= std::fabs(detB);
     uint8_t& dst = firstWins ? fb : fa;
     const uint8_t src = firstWins ? fa : fb;
     dst = uint8_t((dst & ~kOrient) | (src & kOrient));
   }
+  // the diagonal's face corners are written by both triangles:
+  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
+  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
+  fa |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
+  fb |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
 }
 
-// Per chunk of faces, the number of its triangles (ChunkTriBase becomes their prefix sums), and
-// whether any face has more than 3 corners (AnyMulti) or any is not stored as corners
-// (3f, 3f + 1, 3f + 2) (Slots needed); allocates the triangle records.
+// Per chunk of faces, the number of its triangles (ChunkTriBase becomes their prefix sums), the
+// faces that give none, and whether any face has more than 3 corners (AnyMulti) or any is not
+// stored as corners (3f, 3f + 1, 3f + 2) (Slots needed); allocates the triangle records.
 void Kernel::CountTriangles()
 {
   const long long nf = In.NumberOfFaces;
   NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
   ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
-  std::vector<uint8_t> chunkMulti(size_t(NumFaceChunks), 0);
-  std::vector<uint8_t> chunkInOrder(size_t(NumFaceChunks), 1);
-  ForEachFaceChunk(
-    [&](long long c)
+  struct Tally
+  {
+    long long Skipped = 0, Invalid = 0;
+    bool Multi = false, InOrder = true;
+  };
+  vtkSMPThreadLocal<Tally> tallies;
+  vtkSMPTools::For(0,
+    vtkIdType(NumFaceChunks),
+    1,
+    [&](vtkIdType cb, vtkIdType ce)
     {
-      Idx sum = 0;
-      const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-      for (long long f = c * kFaceChunk; f < fe; ++f)
+      Tally& n = tallies.Local();
+      for (vtkIdType c = cb; c < ce; ++c)
       {
-        const long long b = Off[f], e = Off[f + 1];
-        chunkInOrder[size_t(c)] &= b == 3 * f && e == b + 3;
-        if (FaceHasTriangles(b, e))
+        const long long fe = std::min(nf, (c + 1) * kFaceChunk);
+        for (long long f = c * kFaceChunk; f < fe; ++f)
         {
-          sum += Idx(e - b - 2);
-          chunkMulti[size_t(c)] |= e - b > 3;
+          const long long b = Off[f], e = Off[f + 1];
+          n.InOrder = n.InOrder && b == 3 * f && e == b + 3;
+          if (FaceHasTriangles(b, e))
+          {
+            ChunkTriBase[size_t(c) + 1] += Idx(e - b - 2);
+            n.Multi = n.Multi || e - b > 3;
+          }
+          else
+          {
+            ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
+          }
         }
       }
-      ChunkTriBase[size_t(c) + 1] = sum;
     });
   bool inOrder = true;
-  for (long long c = 0; c < NumFaceChunks; ++c)
+  for (const Tally& n : tallies)
   {
-    ChunkTriBase[size_t(c) + 1] += ChunkTriBase[size_t(c)];
-    AnyMulti = AnyMulti || chunkMulti[size_t(c)];
-    inOrder = inOrder && chunkInOrder[size_t(c)];
+    NumSkipped += n.Skipped;
+    NumInvalid += n.Invalid;
+    AnyMulti = AnyMulti || n.Multi;
+    inOrder = inOrder && n.InOrder;
   }
-  NumTris = ChunkTriBase[size_t(NumFaceChunks)];
+  std::partial_sum(ChunkTriBase.begin(), ChunkTriBase.end(), ChunkTriBase.begin());
+  NumTris = ChunkTriBase.back();
   Tris.reset(new Triangle[size_t(NumTris)]);
   if (!inOrder)
   {
@@ -729,99 +647,59 @@ void Kernel::CountTriangles()
   }
 }
 
-// The triangles of face [b, e) from triangle t on, in `rows` from `row` on: one triangle, a quad
-// split on a diagonal (SetupQuad), or a fan (0, k+1, k+2) of a larger polygon; a face with an id
-// outside the points gives dead triangles and counts as invalid.
-void Kernel::SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n)
+// The triangles of face [b, e) from triangle t on: one triangle, a quad split on a diagonal
+// (SetupQuad), or a fan (0, k+1, k+2) of a larger polygon; a face with an id outside the points
+// gives dead triangles; returns whether it does.
+bool Kernel::SetupFace(long long b, long long e, Idx t)
 {
   const Idx base = Idx(b), nTri = Idx(e - b - 2);
   if (!std::all_of(Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; }))
   {
-    ++n.Invalid;
     std::fill(Tris.get() + t, Tris.get() + t + nTri, Triangle{ {}, {}, kDead }); // never in a fan
+    return true;
   }
   else if (nTri == 1)
   {
-    const Idx slots[3] = { base, base + 1, base + 2 };
-    SetupTriangle(t, slots, rows, row);
+    SetupTriangle(t, base, base + 1, base + 2);
   }
   else if (nTri == 2)
   {
-    SetupQuad(t, base, rows, row);
+    SetupQuad(t, base);
   }
   else
   {
     // corner 0 is shared by all the fan's triangles, corners 1 and 2 by neighbours
     for (Idx k = 0; k < nTri; ++k)
     {
-      const Idx slots[3] = { base, base + k + 1, base + k + 2 };
-      SetupTriangle(t + k, slots, rows, row + size_t(k));
+      SetupTriangle(t + k, base, base + k + 1, base + k + 2);
       Tris[size_t(t) + size_t(k)].Flags |=
         uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
     }
   }
-}
-
-// The triangles of chunk c of faces, complete (directions, flags, quad rules), and their counts.
-void Kernel::SetupChunk(long long c, TriangleRows& rows, Counts& n)
-{
-  const Idx t0 = ChunkTriBase[size_t(c)];
-  rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
-  const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
-  Idx t = t0;
-  for (long long f = c * kFaceChunk; f < fe; ++f)
-  {
-    const long long b = Off[f], e = Off[f + 1];
-    if (!FaceHasTriangles(b, e))
-    {
-      ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
-      continue;
-    }
-    SetupFace(b, e, t, rows, size_t(t - t0), n);
-    t += Idx(e - b - 2);
-  }
-  FinishDirections(t0, rows);
-  ForEachTriangulatedFace(c,
-    [&](long long b, long long e, Idx u)
-    {
-      if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
-      {
-        QuadOrientation(u, rows, size_t(u - t0));
-      }
-    });
-  for (Idx u = t0; u < t; ++u)
-  {
-    const uint8_t fl = Tris[size_t(u)].Flags;
-    n.Degenerate += (fl & kDegenerate) ? 1 : 0;
-    n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
-  }
+  return false;
 }
 
 void Kernel::BuildTriangles()
 {
   CountTriangles();
-  std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
-  vtkSMPThreadLocal<TriangleRows> scratch;
-  ForEachFaceChunk([&](long long c) { SetupChunk(c, scratch.Local(), counts[size_t(c)]); });
-  for (const Counts& n : counts)
-  {
-    NumDegenerate += n.Degenerate;
-    NumGWA += n.GWA;
-    NumSkipped += n.Skipped;
-    NumInvalid += n.Invalid;
-  }
+  std::atomic<long long> invalid(0);
+  ForEachTriangulatedFace([&](long long b, long long e, Idx t) { invalid += SetupFace(b, e, t); });
+  NumInvalid += invalid;
 }
 
 //------------------------------------------------------------------------------
 // Counting sort of the corners of non-degenerate triangles by welded id; every fan lists its
-// corners in ascending order.
+// corners in ascending order. Counts the degenerate and GWA triangles.
 void Kernel::BuildFans()
 {
   NumVerts = NumPoints + (AnyNaNPoint ? NumSlots : 0);
   FanStart.assign(size_t(NumVerts) + 1, 0);
   for (Idx t = 0; t < NumTris; ++t)
   {
-    if (!(Tris[size_t(t)].Flags & kExcluded))
+    const uint8_t flags = Tris[size_t(t)].Flags;
+    NumDegenerate += (flags & kDegenerate) ? 1 : 0;
+    NumGWA += (flags & (kExcluded | kGWA)) == kGWA ? 1 : 0;
+    if (!(flags & kExcluded))
     {
       for (int i = 0; i < 3; ++i)
       {
@@ -951,7 +829,7 @@ void ProjectNormalizeAll(float* x, float* y, float* z, size_t count, const V3& n
   for (size_t j = 0; j < count; ++j)
   {
     const V3 v{ x[j], y[j], z[j] };
-    const V3 r = NormalizeNonZero(Sub(v, Scale(n, Dot(n, v))));
+    const V3 r = NormalizeNonZero(v - n * n.Dot(v));
     x[j] = r.x;
     y[j] = r.y;
     z[j] = r.z;
@@ -987,10 +865,10 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
     const Triangle& tri = Tris[size_t(a.Corner / 3)];
     set(j, tri.S);
     set(k + j, tri.T);
-    set(2 * k + j, Sub(Pos(PointOfWeld(a.Next)), p));
+    set(2 * k + j, Pos(PointOfWeld(a.Next)) - p);
     if (a.Link[1] < 0)
     {
-      set(rows++, Sub(Pos(PointOfWeld(a.Prev)), p));
+      set(rows++, Pos(PointOfWeld(a.Prev)) - p);
     }
   }
   ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), rows, n);
@@ -1001,7 +879,7 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
     a.S = get(j);
     a.T = get(k + j);
     const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
-    const float c = Dot(e1, get(2 * k + j));
+    const float c = e1.Dot(get(2 * k + j));
     a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
   }
   for (Member& a : s.Members)
@@ -1100,7 +978,7 @@ void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
     [&](Idx j)
     {
       const Member& a = s.Members[size_t(j)];
-      return (a.Flags & kGWA) || (Dot(first.S, a.S) > 0.01f && Dot(first.T, a.T) > 0.01f);
+      return (a.Flags & kGWA) || (first.S.Dot(a.S) > 0.01f && first.T.Dot(a.T) > 0.01f);
     });
   if (!single)
   {
@@ -1126,8 +1004,8 @@ Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
     {
       continue;
     }
-    r.S = Add(r.S, Scale(a.S, a.Angle));
-    r.T = Add(r.T, Scale(a.T, a.Angle));
+    r.S = r.S + a.S * a.Angle;
+    r.T = r.T + a.T * a.Angle;
     r.MagS += a.Angle * a.MagS;
     r.MagT += a.Angle * a.MagT;
     angleSum += a.Angle;
@@ -1161,7 +1039,7 @@ void Kernel::GeneralSubgroups(Scratch& s,
     {
       const Member& mt = s.Members[size_t(members[j])];
       if (((mf.Flags | mt.Flags) & kGWA) || SameFace(mf.Corner / 3, mt.Corner / 3) ||
-        (Dot(mf.S, mt.S) > -1.0f && Dot(mf.T, mt.T) > -1.0f))
+        (mf.S.Dot(mt.S) > -1.0f && mf.T.Dot(mt.T) > -1.0f))
       {
         s.List.push_back(members[j]);
       }
@@ -1211,42 +1089,39 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
 // group creation order (then triangle order); the sign is that of the last group.
 void Kernel::MergeMultiWriters()
 {
-  ForEachFaceChunk(
-    [&](long long c)
+  // {face corner, group seed, triangle corner} of each frame to merge, sorted in that order
+  vtkSMPThreadLocal<std::vector<std::array<Idx, 3>>> lists;
+  ForEachTriangulatedFace(
+    [&](long long b, long long e, Idx t)
     {
-      // {face corner, group seed, triangle corner} of each frame to merge, sorted in that order
-      std::vector<std::array<Idx, 3>> list;
-      ForEachTriangulatedFace(c,
-        [&](long long b, long long e, Idx t)
+      const Idx nTri = Idx(e - b - 2);
+      if (nTri == 1 || (Tris[size_t(t)].Flags & kDead))
+      {
+        return;
+      }
+      std::vector<std::array<Idx, 3>>& list = lists.Local();
+      list.clear();
+      for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
+      {
+        if ((Tris[size_t(corner / 3)].Flags & (kMulti0 << (corner % 3))) &&
+          Pending[size_t(corner)].Seed >= 0)
         {
-          const Idx nTri = Idx(e - b - 2);
-          if (nTri == 1 || (Tris[size_t(t)].Flags & kDead))
-          {
-            return;
-          }
-          list.clear();
-          for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
-          {
-            if ((Tris[size_t(corner / 3)].Flags & (kMulti0 << (corner % 3))) &&
-              Pending[size_t(corner)].Seed >= 0)
-            {
-              list.push_back({ SlotOf(corner), Pending[size_t(corner)].Seed, corner });
-            }
-          }
-          std::sort(list.begin(), list.end());
-          for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
-          {
-            const Idx slot = list[r0][0];
-            const PendingFrame* pf = &Pending[size_t(list[r0][2])];
-            Frame f = pf->F;
-            for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
-            {
-              pf = &Pending[size_t(list[r1][2])];
-              f = Average(f, pf->F);
-            }
-            Out[size_t(slot)] = ToCornerFrame(f.S, pf->Orient);
-          }
-        });
+          list.push_back({ SlotOf(corner), Pending[size_t(corner)].Seed, corner });
+        }
+      }
+      std::sort(list.begin(), list.end());
+      for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
+      {
+        const Idx slot = list[r0][0];
+        const PendingFrame* pf = &Pending[size_t(list[r0][2])];
+        Frame f = pf->F;
+        for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
+        {
+          pf = &Pending[size_t(list[r1][2])];
+          f = Average(f, pf->F);
+        }
+        Out[size_t(slot)] = ToCornerFrame(f.S, pf->Orient);
+      }
     });
 }
 
@@ -1264,7 +1139,7 @@ void Kernel::CopyToQuadCorner(Idx b, Idx t)
   }
   const V3 dst = Pos(Idx(Conn[missing]));
   const auto src =
-    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
+    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Pos(Idx(Conn[slot])) == dst; });
   if (src != gs.end())
   {
     Out[size_t(missing)] = Out[size_t(*src)];
@@ -1278,51 +1153,48 @@ void Kernel::CopyToQuadCorner(Idx b, Idx t)
 // triangles, which this pass never writes.
 void Kernel::CopyDegenerates()
 {
-  ForEachFaceChunk(
-    [&](long long c)
+  vtkSMPThreadLocal<std::vector<uint8_t>> coveredSlots;
+  ForEachTriangulatedFace(
+    [&](long long b, long long e, Idx t)
     {
-      std::vector<uint8_t> covered;
-      ForEachTriangulatedFace(c,
-        [&](long long b, long long e, Idx t)
+      const long long n = e - b;
+      const Idx nTri = Idx(n - 2);
+      const Triangle* tri = Tris.get() + t;
+      if ((tri[0].Flags & kDead) ||
+        std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
+      {
+        return;
+      }
+      if (n == 4 && !(tri[0].Flags & tri[1].Flags & kDegenerate))
+      {
+        // a quad of which exactly one triangle is degenerate
+        CopyToQuadCorner(Idx(b), t);
+        return;
+      }
+      // a degenerate fan triangle only fills face corners no good triangle covers
+      std::vector<uint8_t>& covered = coveredSlots.Local();
+      covered.assign(size_t(n), 0);
+      for (Idx u = t; u < t + nTri; ++u)
+      {
+        if (Tris[size_t(u)].Flags & kDegenerate)
         {
-          const long long n = e - b;
-          const Idx nTri = Idx(n - 2);
-          const Triangle* tri = Tris.get() + t;
-          if ((tri[0].Flags & kDead) ||
-            std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
-          {
-            return;
-          }
-          if (n == 4 && !(tri[0].Flags & tri[1].Flags & kDegenerate))
-          {
-            // a quad of which exactly one triangle is degenerate
-            CopyToQuadCorner(Idx(b), t);
-            return;
-          }
-          // a degenerate fan triangle only fills face corners no good triangle covers
-          covered.assign(size_t(n), 0);
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            if (Tris[size_t(u)].Flags & kDegenerate)
-            {
-              continue;
-            }
-            for (int i = 0; i < 3; ++i)
-            {
-              covered[size_t(SlotOf(3 * u + i) - b)] = 1;
-            }
-          }
-          for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
-          {
-            const Idx slot = SlotOf(corner);
-            const Idx w = WeldOf(corner);
-            if ((Tris[size_t(corner / 3)].Flags & kDegenerate) && !covered[size_t(slot - b)] &&
-              FanSize(w) > 0)
-            {
-              Out[size_t(slot)] = Out[size_t(SlotOf(Fan[size_t(FanStart[size_t(w)])]))];
-            }
-          }
-        });
+          continue;
+        }
+        for (int i = 0; i < 3; ++i)
+        {
+          covered[size_t(SlotOf(3 * u + i) - b)] = 1;
+        }
+      }
+      for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
+      {
+        const Idx slot = SlotOf(corner);
+        const Idx w = WeldOf(corner);
+        if ((Tris[size_t(corner / 3)].Flags & kDegenerate) && !covered[size_t(slot - b)] &&
+          FanSize(w) > 0)
+        {
+          Out[size_t(slot)] = Out[size_t(SlotOf(Fan[size_t(FanStart[size_t(w)])]))];
+        }
+      }
     });
 }
 
@@ -1349,7 +1221,7 @@ void Kernel::Finish(Result& res)
         for (CornerFrame* o = Out + c * kChunk; o != Out + e; ++o)
         {
           const bool unwritten = o->Sign == 0.0f;
-          if (unwritten || !Finite(V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }))
+          if (unwritten || !V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }.Finite())
           {
             *o = DefaultCornerFrame;
             ++n.Defaults;
