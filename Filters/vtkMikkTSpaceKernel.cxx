@@ -147,70 +147,28 @@ struct Member
 struct Scratch
 {
   std::vector<Member> Members; // the fan of the vertex at hand
-  std::vector<uint64_t> Edges; // index of PairEdges
+  std::vector<uint64_t> Edges; // half-edges of PairEdges
   std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
   std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart, Stack;
   std::vector<Frame> SubFrames;
 };
 
-// PairEdges for a small fan: each member scans the later ones. Side 0 is the edge vertex->Next,
-// which pairs with a later member's edge Prev->vertex; side 1 the reverse.
+// PairEdges for a small fan: each member's unpaired half-edges take the first later unpaired
+// half-edge of opposite direction.
 void PairEdgesByScan(std::vector<Member>& m)
 {
-  const Idx k = Idx(m.size());
-  for (Idx j = 0; j < k; ++j)
-  {
-    Member& a = m[size_t(j)];
-    for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
-    {
-      Member& b = m[size_t(q)];
-      if (b.Prev == a.Next && b.Link[1] < 0)
-      {
-        a.Link[0] = q;
-        b.Link[1] = j;
-      }
-    }
-    for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
-    {
-      Member& b = m[size_t(q)];
-      if (b.Next == a.Prev && b.Link[0] < 0)
-      {
-        a.Link[1] = q;
-        b.Link[0] = j;
-      }
-    }
-  }
-}
-
-// PairEdges for a large fan: the later members with the opposite half-edge are looked up in
-// `index`, the half-edges sorted by (other vertex, member).
-void PairEdgesByIndex(std::vector<Member>& m, std::vector<uint64_t>& index)
-{
-  const Idx k = Idx(m.size());
-  index.clear();
-  for (Idx j = 0; j < k; ++j)
-  {
-    index.push_back(uint64_t(m[size_t(j)].Next) << 32 | uint64_t(j) << 1);
-    index.push_back(uint64_t(m[size_t(j)].Prev) << 32 | uint64_t(j) << 1 | 1);
-  }
-  std::sort(index.begin(), index.end());
-  for (Idx j = 0; j < k; ++j)
+  for (size_t j = 0; j < m.size(); ++j)
   {
     for (int side = 0; side < 2; ++side)
     {
-      // the first later member with the opposite half-edge to x, not yet paired on that side
-      const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
-      const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
-      for (auto e = std::lower_bound(index.begin(), index.end(), key);
-           m[size_t(j)].Link[side] < 0 && e != index.end() && Idx(*e >> 32) == x;
-           ++e)
+      const Idx x = side == 0 ? m[j].Next : m[j].Prev;
+      for (size_t q = j + 1; q < m.size() && m[j].Link[side] < 0; ++q)
       {
-        const Idx q = Idx(uint32_t(*e) >> 1);
-        Member& b = m[size_t(q)];
+        Member& b = m[q];
         if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
         {
-          m[size_t(j)].Link[side] = q;
-          b.Link[1 - side] = j;
+          m[j].Link[side] = Idx(q);
+          b.Link[1 - side] = Idx(j);
         }
       }
     }
@@ -218,13 +176,13 @@ void PairEdgesByIndex(std::vector<Member>& m, std::vector<uint64_t>& index)
 }
 
 // Links the members' half-edges as the reference pairs them: the half-edges of one undirected
-// edge (vertex, x) in triangle order, each unpaired one with the first later unpaired one of
+// edge (vertex, x), in triangle order, each unpaired one with the first later unpaired one of
 // opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
-// evaluated locally, member by member in triangle order. A small fan scans the later members;
-// a large one (a polygon of thousands of corners fan-triangulated around its first) looks
-// them up in `index`, its half-edges sorted by (x, member), so that the pairing stays
-// O(k log k).
-void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
+// evaluated locally. A small fan scans the later members. A large one (a polygon of thousands
+// of corners fan-triangulated around its first) stays O(k log k): its half-edges are sorted by
+// (x, member), and each edge's are swept with a queue of the unpaired ones so far; those share
+// one direction, so a half-edge of the other direction pairs with the oldest of them.
+void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& halfEdges)
 {
   constexpr size_t kScanLimit = 32;
   for (Member& a : m)
@@ -234,10 +192,35 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
   if (m.size() <= kScanLimit)
   {
     PairEdgesByScan(m);
+    return;
   }
-  else
+  halfEdges.clear();
+  for (size_t j = 0; j < m.size(); ++j)
   {
-    PairEdgesByIndex(m, index);
+    // side 0: the half-edge vertex->Next; side 1: Prev->vertex
+    halfEdges.push_back(uint64_t(m[j].Next) << 32 | j << 1);
+    halfEdges.push_back(uint64_t(m[j].Prev) << 32 | j << 1 | 1);
+  }
+  std::sort(halfEdges.begin(), halfEdges.end());
+  uint64_t* h = halfEdges.data();
+  for (size_t b = 0, e; b < halfEdges.size(); b = e)
+  {
+    const uint64_t x = h[b] >> 32;
+    size_t head = b, tail = b; // the queue, kept in place of the half-edges swept
+    for (e = b; e < halfEdges.size() && h[e] >> 32 == x; ++e)
+    {
+      if (head < tail && ((h[head] ^ h[e]) & 1))
+      {
+        const Idx i = Idx(uint32_t(h[head]) >> 1), j = Idx(uint32_t(h[e]) >> 1);
+        const int side = int(h[head++] & 1);
+        m[size_t(i)].Link[side] = j;
+        m[size_t(j)].Link[1 - side] = i;
+      }
+      else
+      {
+        h[tail++] = h[e];
+      }
+    }
   }
 }
 
