@@ -7,8 +7,8 @@
 //     exact comparison within equal hashes (sequential) give every point the smallest point id
 //     with equal values (==, so -0 == +0). Points with a NaN never weld: each face corner using
 //     one gets its own welded id.
-//  2. Faces -> triangles (quad diagonal rule, fans), degeneracy, per-triangle frame, quad
-//     orientation forcing.
+//  2. Faces -> triangles: a count of the triangles per chunk of faces (sequential), then the
+//     quad diagonal rule, fans, degeneracy, per-triangle frame, quad orientation forcing.
 //  3. Counting sort (sequential) of the corners of non-degenerate triangles by welded id: the
 //     "fan" of every welded vertex, in ascending corner order.
 //  4. Only if zero-UV-area ("group with any", GWA) triangles exist: sequential replay of the
@@ -38,6 +38,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <tuple>
 
 // The reference rounds every float operation separately; a fused multiply-add changes results
 // in the last bits. The build adds -ffp-contract=off for GCC and Clang (GCC ignores the STDC
@@ -76,6 +77,7 @@ bool NotZero(float f)
 struct V3
 {
   float x, y, z;
+  static V3 At(const float* a, size_t i) { return { a[3 * i], a[3 * i + 1], a[3 * i + 2] }; }
   V3 operator+(const V3& b) const { return { x + b.x, y + b.y, z + b.z }; }
   V3 operator-(const V3& b) const { return { x - b.x, y - b.y, z - b.z }; }
   V3 operator*(float s) const { return { x * s, y * s, z * s }; }
@@ -149,7 +151,7 @@ struct Scratch
   std::vector<Member> Members; // the fan of the vertex at hand
   std::vector<uint64_t> Edges; // half-edges of PairEdges
   std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
-  std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart, Stack;
+  std::vector<Idx> Order, List, SubList, SubStart, Stack;
   std::vector<Frame> SubFrames;
 };
 
@@ -241,7 +243,6 @@ struct Kernel
 
   // triangles, in face order
   static constexpr long long kFaceChunk = 4096;
-  long long NumFaceChunks = 0;
   std::vector<Idx> ChunkTriBase; // first triangle of each chunk of faces
   Idx NumTris = 0;
   bool AnyMulti = false; // some face has more than 3 corners
@@ -276,16 +277,8 @@ struct Kernel
   {
   }
 
-  V3 Pos(Idx p) const
-  {
-    const float* q = In.Positions + 3 * size_t(p);
-    return { q[0], q[1], q[2] };
-  }
-  V3 Nrm(Idx p) const
-  {
-    const float* q = In.Normals + 3 * size_t(p);
-    return { q[0], q[1], q[2] };
-  }
+  V3 Pos(Idx p) const { return V3::At(In.Positions, p); }
+  V3 Nrm(Idx p) const { return V3::At(In.Normals, p); }
   // point holding the values of a welded vertex
   Idx PointOfWeld(Idx w) const { return w < NumPoints ? w : Idx(Conn[w - NumPoints]); }
   Idx FanSize(Idx v) const { return FanStart[size_t(v) + 1] - FanStart[size_t(v)]; }
@@ -312,7 +305,7 @@ struct Kernel
   void ForEachTriangulatedFace(Visit&& visit) const
   {
     vtkSMPTools::For(0,
-      vtkIdType(NumFaceChunks),
+      vtkIdType(ChunkTriBase.size() - 1),
       1,
       [&](vtkIdType cb, vtkIdType ce)
       {
@@ -354,6 +347,7 @@ struct Kernel
   void MergeMultiWriters();
   void CopyToQuadCorner(Idx b, Idx t);
   void CopyDegenerates();
+  void FinishFaces();
   void Finish(Result& res);
   template<typename Aborted>
   bool Run(const Aborted& aborted);
@@ -570,55 +564,31 @@ void Kernel::SetupQuad(Idx t, Idx base)
   fb |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
 }
 
-// Per chunk of faces, the number of its triangles (ChunkTriBase becomes their prefix sums), the
-// faces that give none, and whether any face has more than 3 corners (AnyMulti) or any is not
-// stored as corners (3f, 3f + 1, 3f + 2) (Slots needed); allocates the triangle records.
+// The first triangle of each chunk of faces (ChunkTriBase), the faces that give none, and whether
+// any face has more than 3 corners (AnyMulti) or any is not stored as corners (3f, 3f + 1,
+// 3f + 2) (Slots needed); allocates the triangle records.
 void Kernel::CountTriangles()
 {
-  const long long nf = In.NumberOfFaces;
-  NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
-  ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
-  struct Tally
-  {
-    long long Skipped = 0, Invalid = 0;
-    bool Multi = false, InOrder = true;
-  };
-  vtkSMPThreadLocal<Tally> tallies;
-  vtkSMPTools::For(0,
-    vtkIdType(NumFaceChunks),
-    1,
-    [&](vtkIdType cb, vtkIdType ce)
-    {
-      Tally& n = tallies.Local();
-      for (vtkIdType c = cb; c < ce; ++c)
-      {
-        const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-        for (long long f = c * kFaceChunk; f < fe; ++f)
-        {
-          const long long b = Off[f], e = Off[f + 1];
-          n.InOrder = n.InOrder && b == 3 * f && e == b + 3;
-          if (FaceHasTriangles(b, e))
-          {
-            ChunkTriBase[size_t(c) + 1] += Idx(e - b - 2);
-            n.Multi = n.Multi || e - b > 3;
-          }
-          else
-          {
-            ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
-          }
-        }
-      }
-    });
   bool inOrder = true;
-  for (const Tally& n : tallies)
+  for (long long f = 0; f < In.NumberOfFaces; ++f)
   {
-    NumSkipped += n.Skipped;
-    NumInvalid += n.Invalid;
-    AnyMulti = AnyMulti || n.Multi;
-    inOrder = inOrder && n.InOrder;
+    if (f % kFaceChunk == 0)
+    {
+      ChunkTriBase.push_back(NumTris);
+    }
+    const long long b = Off[f], e = Off[f + 1];
+    inOrder = inOrder && b == 3 * f && e == b + 3;
+    if (FaceHasTriangles(b, e))
+    {
+      NumTris += Idx(e - b - 2);
+      AnyMulti = AnyMulti || e - b > 3;
+    }
+    else
+    {
+      ++(FaceInRange(b, e) ? NumSkipped : NumInvalid);
+    }
   }
-  std::partial_sum(ChunkTriBase.begin(), ChunkTriBase.end(), ChunkTriBase.begin());
-  NumTris = ChunkTriBase.back();
+  ChunkTriBase.push_back(NumTris);
   Tris.reset(new Triangle[size_t(NumTris)]);
   if (!inOrder)
   {
@@ -911,32 +881,22 @@ void Kernel::ProcessVertex(Idx v, Scratch& s)
   PairEdges(m, s.Edges);
   CornerMath(v, s);
   const Idx numGroups = LabelGroups(m);
-  // members ordered by (group, triangle): a counting sort by group
+  // members ordered by (group, triangle)
   s.Order.resize(m.size());
+  std::iota(s.Order.begin(), s.Order.end(), 0);
   if (numGroups == 1)
   {
-    std::iota(s.Order.begin(), s.Order.end(), 0);
     ResolveGroup(s, s.Order.data(), m.size());
     return;
   }
-  s.GroupStart.assign(size_t(numGroups) + 1, 0);
-  for (const Member& a : m)
+  std::sort(s.Order.begin(),
+    s.Order.end(),
+    [&m](Idx a, Idx b)
+    { return std::tie(m[size_t(a)].Group, a) < std::tie(m[size_t(b)].Group, b); });
+  for (const Idx *b = s.Order.data(), *end = b + m.size(), *e; b != end; b = e)
   {
-    ++s.GroupStart[size_t(a.Group) + 1];
-  }
-  for (Idx g = 0; g < numGroups; ++g)
-  {
-    s.GroupStart[size_t(g) + 1] += s.GroupStart[size_t(g)];
-  }
-  s.Fill.assign(s.GroupStart.begin(), s.GroupStart.end() - 1);
-  for (size_t j = 0; j < m.size(); ++j)
-  {
-    s.Order[size_t(s.Fill[size_t(m[j].Group)]++)] = Idx(j);
-  }
-  for (Idx g = 0; g < numGroups; ++g)
-  {
-    const Idx b = s.GroupStart[size_t(g)], e = s.GroupStart[size_t(g) + 1];
-    ResolveGroup(s, s.Order.data() + b, size_t(e - b));
+    e = std::find_if(b, end, [&](Idx j) { return m[size_t(j)].Group != m[size_t(*b)].Group; });
+    ResolveGroup(s, b, size_t(e - b));
   }
 }
 
@@ -1068,6 +1028,19 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
 }
 
 //------------------------------------------------------------------------------
+// Phase 6: face corners with several writers, and those of degenerate triangles.
+void Kernel::FinishFaces()
+{
+  if (AnyMulti)
+  {
+    MergeMultiWriters();
+  }
+  if (NumDegenerate > 0)
+  {
+    CopyDegenerates();
+  }
+}
+
 // Face corners written by several triangles: the reference's pairwise average, applied in
 // group creation order (then triangle order); the sign is that of the last group.
 void Kernel::MergeMultiWriters()
@@ -1185,39 +1158,33 @@ void Kernel::CopyDegenerates()
 // Corners never written (Sign 0) or not finite get the default frame, and are counted.
 void Kernel::Finish(Result& res)
 {
-  constexpr vtkIdType kChunk = 65536;
-  const vtkIdType numChunks = (vtkIdType(NumSlots) + kChunk - 1) / kChunk;
-  struct CornerCounts
+  struct Counts
   {
     long long Defaults = 0, NonFinite = 0, Cancelled = 0;
   };
-  std::vector<CornerCounts> counts(static_cast<size_t>(numChunks));
+  vtkSMPThreadLocal<Counts> counts;
   vtkSMPTools::For(0,
-    numChunks,
-    1,
-    [&](vtkIdType cb, vtkIdType ce)
+    vtkIdType(NumSlots),
+    65536,
+    [&](vtkIdType b, vtkIdType e)
     {
-      for (vtkIdType c = cb; c < ce; ++c)
+      Counts& n = counts.Local();
+      for (CornerFrame* o = Out + b; o != Out + e; ++o)
       {
-        const vtkIdType e = std::min(vtkIdType(NumSlots), (c + 1) * kChunk);
-        CornerCounts& n = counts[size_t(c)];
-        for (CornerFrame* o = Out + c * kChunk; o != Out + e; ++o)
+        const bool unwritten = o->Sign == 0.0f;
+        if (unwritten || !V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }.Finite())
         {
-          const bool unwritten = o->Sign == 0.0f;
-          if (unwritten || !V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }.Finite())
-          {
-            *o = DefaultCornerFrame;
-            ++n.Defaults;
-            n.NonFinite += unwritten ? 0 : 1;
-          }
-          else
-          {
-            n.Cancelled += IsCancelled(*o) ? 1 : 0;
-          }
+          *o = DefaultCornerFrame;
+          ++n.Defaults;
+          n.NonFinite += unwritten ? 0 : 1;
+        }
+        else
+        {
+          n.Cancelled += IsCancelled(*o) ? 1 : 0;
         }
       }
     });
-  for (const CornerCounts& n : counts)
+  for (const Counts& n : counts)
   {
     res.NumberOfDefaultCorners += n.Defaults;
     res.NumberOfNonFiniteCorners += n.NonFinite;
@@ -1265,9 +1232,14 @@ bool CheckInput(const MeshInput& in, Result& res)
   return true;
 }
 
-// Phase 5 for every welded vertex with a fan, in parallel.
+// Phases 4 and 5: the orientation of GWA triangles, then every welded vertex with a fan, in
+// parallel.
 void Kernel::ProcessVertices()
 {
+  if (NumGWA > 0)
+  {
+    AdoptGroupWithAnyOrientation();
+  }
   if (AnyMulti)
   {
     Pending.assign(3 * size_t(NumTris), PendingFrame{ {}, -1, 0 });
@@ -1289,46 +1261,23 @@ void Kernel::ProcessVertices()
     });
 }
 
-// The phases in order, with `aborted(fraction done)` asked between them; false when it says to
+// The phases in order, with `aborted(fraction done)` asked before each; false when it says to
 // stop.
 template<typename Aborted>
 bool Kernel::Run(const Aborted& aborted)
 {
-  if (aborted(0.0))
+  const std::pair<double, void (Kernel::*)()> phases[] = { { 0.0, &Kernel::Weld },
+    { 0.15, &Kernel::BuildTriangles },
+    { 0.4, &Kernel::BuildFans },
+    { 0.5, &Kernel::ProcessVertices },
+    { 0.9, &Kernel::FinishFaces } };
+  for (const auto& phase : phases)
   {
-    return false;
-  }
-  Weld();
-  if (aborted(0.15))
-  {
-    return false;
-  }
-  BuildTriangles();
-  if (aborted(0.4))
-  {
-    return false;
-  }
-  BuildFans();
-  if (aborted(0.5))
-  {
-    return false;
-  }
-  if (NumGWA > 0)
-  {
-    AdoptGroupWithAnyOrientation();
-  }
-  ProcessVertices();
-  if (aborted(0.9))
-  {
-    return false;
-  }
-  if (AnyMulti)
-  {
-    MergeMultiWriters();
-  }
-  if (NumDegenerate > 0)
-  {
-    CopyDegenerates();
+    if (aborted(phase.first))
+    {
+      return false;
+    }
+    (this->*phase.second)();
   }
   return true;
 }
