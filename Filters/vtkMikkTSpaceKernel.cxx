@@ -150,9 +150,10 @@ struct Scratch
 {
   std::vector<Member> Members; // the fan of the vertex at hand
   std::vector<uint64_t> Edges; // half-edges of PairEdges
-  std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
-  std::vector<Idx> Order, List, SubList, SubStart, Stack;
-  std::vector<Frame> SubFrames;
+  std::vector<float> XYZ;      // vectors to project, see CornerMath
+  std::vector<Idx> Order, List, Stack;
+  std::vector<std::pair<std::vector<Idx>, Frame>>
+    Subgroups; // members and frame, see GeneralSubgroups
 };
 
 // PairEdges for a small fan: each member's unpaired half-edges take the first later unpaired
@@ -230,6 +231,7 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& halfEdges)
 struct Kernel
 {
   const MeshInput& In;
+  Result& Res;
   const Idx NumPoints;
   const Idx NumSlots; // face corners
   const long long* const Off;
@@ -269,6 +271,7 @@ struct Kernel
   // `res.Corners` holds one frame per face corner (CheckInput).
   Kernel(const MeshInput& in, Result& res)
     : In(in)
+    , Res(res)
     , NumPoints(Idx(std::max(0LL, in.NumberOfPoints)))
     , NumSlots(Idx(res.Corners.size()))
     , Off(in.FaceOffsets)
@@ -348,9 +351,8 @@ struct Kernel
   void CopyToQuadCorner(Idx b, Idx t);
   void CopyDegenerates();
   void FinishFaces();
-  void Finish(Result& res);
-  template<typename Aborted>
-  bool Run(const Aborted& aborted);
+  void SetDefaults();
+  void Run(const std::function<bool(double)>& progress);
 };
 
 //------------------------------------------------------------------------------
@@ -660,11 +662,8 @@ void Kernel::BuildFans()
       }
     }
   }
-  for (size_t v = 0; v < size_t(NumVerts); ++v)
-  {
-    FanStart[v + 1] += FanStart[v];
-  }
-  Fan.resize(size_t(FanStart[size_t(NumVerts)]));
+  std::partial_sum(FanStart.begin(), FanStart.end(), FanStart.begin());
+  Fan.resize(size_t(FanStart.back()));
   std::vector<Idx> pos(FanStart.begin(), FanStart.end() - 1);
   for (Idx t = 0; t < NumTris; ++t)
   {
@@ -774,19 +773,10 @@ void Kernel::FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s)
 }
 
 //------------------------------------------------------------------------------
-// Projects the vectors (x[j], y[j], z[j]), j < count, on the plane perpendicular to the unit
-// vector n (v - n (n.v)) and normalises them; a loop over separate arrays, so that compilers can
-// vectorise it.
-void ProjectNormalizeAll(float* x, float* y, float* z, size_t count, const V3& n)
+// v projected on the plane perpendicular to the unit vector n, v - n (n.v), and normalised.
+V3 Project(const V3& v, const V3& n)
 {
-  for (size_t j = 0; j < count; ++j)
-  {
-    const V3 v{ x[j], y[j], z[j] };
-    const V3 r = NormalizeNonZero(v - n * n.Dot(v));
-    x[j] = r.x;
-    y[j] = r.y;
-    z[j] = r.z;
-  }
+  return NormalizeNonZero(v - n * n.Dot(v));
 }
 
 // The reference's EvalTspace inputs at vertex v: the triangles' directions and the corners'
@@ -799,18 +789,18 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
   const Idx pv = PointOfWeld(v);
   const V3 n = Nrm(pv), p = Pos(pv);
   const size_t k = s.Members.size();
-  // rows [0, k): S of each member, [k, 2k): T, [2k, 3k): the edge to Next, then the edges to
-  // Prev of members whose in-edge is unpaired (a paired one is its partner's edge to Next)
-  s.X.resize(4 * k);
-  s.Y.resize(4 * k);
-  s.Z.resize(4 * k);
-  const auto set = [&s](size_t row, const V3& w)
+  // The vectors to project, in separate x, y, z arrays so that the projection loop vectorises:
+  // [0, k) S of each member, [k, 2k) T, [2k, 3k) the edge to Next, then the edges to Prev of
+  // members whose in-edge is unpaired (a paired one is its partner's edge to Next).
+  s.XYZ.resize(12 * k);
+  float *x = s.XYZ.data(), *y = x + 4 * k, *z = y + 4 * k;
+  const auto set = [=](size_t row, const V3& w)
   {
-    s.X[row] = w.x;
-    s.Y[row] = w.y;
-    s.Z[row] = w.z;
+    x[row] = w.x;
+    y[row] = w.y;
+    z[row] = w.z;
   };
-  const auto get = [&s](size_t row) { return V3{ s.X[row], s.Y[row], s.Z[row] }; };
+  const auto get = [=](size_t row) { return V3{ x[row], y[row], z[row] }; };
   size_t rows = 3 * k;
   for (size_t j = 0; j < k; ++j)
   {
@@ -824,15 +814,17 @@ void Kernel::CornerMath(Idx v, Scratch& s) const
       set(rows++, Pos(PointOfWeld(a.Prev)) - p);
     }
   }
-  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), rows, n);
+  for (size_t j = 0; j < rows; ++j)
+  {
+    set(j, Project(get(j), n));
+  }
   // the cosines of all members first, then the acos calls
   for (size_t j = 0, extra = 3 * k; j < k; ++j)
   {
     Member& a = s.Members[j];
     a.S = get(j);
     a.T = get(k + j);
-    const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
-    const float c = e1.Dot(get(2 * k + j));
+    const float c = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++).Dot(get(2 * k + j));
     a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
   }
   for (Member& a : s.Members)
@@ -971,9 +963,7 @@ void Kernel::GeneralSubgroups(Scratch& s,
   uint8_t orient,
   Idx seed)
 {
-  s.SubList.clear();
-  s.SubStart.assign(1, 0);
-  s.SubFrames.clear();
+  s.Subgroups.clear();
   for (size_t a = 0; a < count; ++a)
   {
     const Member& mf = s.Members[size_t(members[a])];
@@ -987,22 +977,14 @@ void Kernel::GeneralSubgroups(Scratch& s,
         s.List.push_back(members[j]);
       }
     }
-    size_t found = 0;
-    while (found < s.SubFrames.size() &&
-      !std::equal(s.List.begin(),
-        s.List.end(),
-        s.SubList.begin() + s.SubStart[found],
-        s.SubList.begin() + s.SubStart[found + 1]))
+    auto sub = std::find_if(s.Subgroups.begin(),
+      s.Subgroups.end(),
+      [&s](const std::pair<std::vector<Idx>, Frame>& g) { return g.first == s.List; });
+    if (sub == s.Subgroups.end())
     {
-      ++found;
+      sub = s.Subgroups.emplace(sub, s.List, Eval(s, s.List.data(), s.List.size()));
     }
-    if (found == s.SubFrames.size())
-    {
-      s.SubFrames.push_back(Eval(s, s.List.data(), s.List.size()));
-      s.SubList.insert(s.SubList.end(), s.List.begin(), s.List.end());
-      s.SubStart.push_back(Idx(s.SubList.size()));
-    }
-    Write(mf, s.SubFrames[found], orient, seed);
+    Write(mf, sub->second, orient, seed);
   }
 }
 
@@ -1028,7 +1010,8 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
 }
 
 //------------------------------------------------------------------------------
-// Phase 6: face corners with several writers, and those of degenerate triangles.
+// Phase 6: face corners with several writers, those of degenerate triangles, and the default
+// frames.
 void Kernel::FinishFaces()
 {
   if (AnyMulti)
@@ -1039,6 +1022,7 @@ void Kernel::FinishFaces()
   {
     CopyDegenerates();
   }
+  SetDefaults();
 }
 
 // Face corners written by several triangles: the reference's pairwise average, applied in
@@ -1156,7 +1140,7 @@ void Kernel::CopyDegenerates()
 
 //------------------------------------------------------------------------------
 // Corners never written (Sign 0) or not finite get the default frame, and are counted.
-void Kernel::Finish(Result& res)
+void Kernel::SetDefaults()
 {
   struct Counts
   {
@@ -1186,9 +1170,9 @@ void Kernel::Finish(Result& res)
     });
   for (const Counts& n : counts)
   {
-    res.NumberOfDefaultCorners += n.Defaults;
-    res.NumberOfNonFiniteCorners += n.NonFinite;
-    res.NumberOfCancelledCorners += n.Cancelled;
+    Res.NumberOfDefaultCorners += n.Defaults;
+    Res.NumberOfNonFiniteCorners += n.NonFinite;
+    Res.NumberOfCancelledCorners += n.Cancelled;
   }
 }
 
@@ -1208,7 +1192,7 @@ bool CheckInput(const MeshInput& in, Result& res)
     return false;
   }
   const long long numSlots = std::max(0LL, in.FaceOffsets[in.NumberOfFaces]);
-  res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see Finish)
+  res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see SetDefaults)
   const long long limit = std::numeric_limits<Idx>::max() - 16;
   const long long numPoints = std::max(0LL, in.NumberOfPoints);
   if (numSlots > limit / 3 || numPoints > limit - 3 * numSlots)
@@ -1261,10 +1245,9 @@ void Kernel::ProcessVertices()
     });
 }
 
-// The phases in order, with `aborted(fraction done)` asked before each; false when it says to
-// stop.
-template<typename Aborted>
-bool Kernel::Run(const Aborted& aborted)
+// The phases in order, with the progress (fraction done) reported before each; a request to stop
+// leaves every corner at the default frame.
+void Kernel::Run(const std::function<bool(double)>& progress)
 {
   const std::pair<double, void (Kernel::*)()> phases[] = { { 0.0, &Kernel::Weld },
     { 0.15, &Kernel::BuildTriangles },
@@ -1273,13 +1256,23 @@ bool Kernel::Run(const Aborted& aborted)
     { 0.9, &Kernel::FinishFaces } };
   for (const auto& phase : phases)
   {
-    if (aborted(phase.first))
+    Res.Aborted = progress && progress(phase.first);
+    if (Res.Aborted)
     {
-      return false;
+      SetAllDefault(Res);
+      return;
     }
     (this->*phase.second)();
   }
-  return true;
+  Res.NumberOfTriangles = NumTris;
+  Res.NumberOfDegenerateTriangles = NumDegenerate;
+  Res.NumberOfGroupWithAnyTriangles = NumGWA;
+  Res.NumberOfSkippedFaces = NumSkipped;
+  Res.NumberOfInvalidFaces = NumInvalid;
+  if (progress)
+  {
+    progress(1.0);
+  }
 }
 
 } // namespace
@@ -1288,30 +1281,9 @@ bool Kernel::Run(const Aborted& aborted)
 Result ComputeMikkTSpace(const MeshInput& in, const std::function<bool(double)>& progress)
 {
   Result res;
-  if (!CheckInput(in, res))
+  if (CheckInput(in, res))
   {
-    return res;
-  }
-  Kernel K(in, res);
-  const auto aborted = [&](double p)
-  {
-    res.Aborted = progress && progress(p);
-    return res.Aborted;
-  };
-  if (!K.Run(aborted))
-  {
-    SetAllDefault(res);
-    return res;
-  }
-  K.Finish(res);
-  res.NumberOfTriangles = K.NumTris;
-  res.NumberOfDegenerateTriangles = K.NumDegenerate;
-  res.NumberOfGroupWithAnyTriangles = K.NumGWA;
-  res.NumberOfSkippedFaces = K.NumSkipped;
-  res.NumberOfInvalidFaces = K.NumInvalid;
-  if (progress)
-  {
-    progress(1.0);
+    Kernel(in, res).Run(progress);
   }
   return res;
 }
