@@ -133,7 +133,6 @@ CornerFrame ToCornerFrame(const V3& tangent, uint8_t orient)
 struct Member
 {
   Idx Corner;     // 3 t + i
-  Idx Slot;       // its face corner
   Idx Next, Prev; // welded ids of the triangle's next and previous corner
   Idx Link[2];    // member across the edge vertex->Next, across Prev->vertex; -1: none
   Idx Group;      // same-orientation edge-connected component
@@ -152,8 +151,8 @@ struct Scratch
   std::vector<uint64_t> Edges; // half-edges of PairEdges
   std::vector<float> XYZ;      // vectors to project, see CornerMath
   std::vector<Idx> Order, List, Stack;
-  std::vector<std::pair<std::vector<Idx>, Frame>>
-    Subgroups; // members and frame, see GeneralSubgroups
+  // the members and frame of each sub-group, see GeneralSubgroups
+  std::vector<std::pair<std::vector<Idx>, Frame>> Subgroups;
 };
 
 // PairEdges for a small fan: each member's unpaired half-edges take the first later unpaired
@@ -280,8 +279,9 @@ struct Kernel
   {
   }
 
-  V3 Pos(Idx p) const { return V3::At(In.Positions, p); }
-  V3 Nrm(Idx p) const { return V3::At(In.Normals, p); }
+  V3 Pos(size_t p) const { return V3::At(In.Positions, p); }
+  V3 Nrm(size_t p) const { return V3::At(In.Normals, p); }
+  float UV(size_t p, int k) const { return In.TCoords[2 * p + size_t(k)]; } // k: 0 u, 1 v
   // point holding the values of a welded vertex
   Idx PointOfWeld(Idx w) const { return w < NumPoints ? w : Idx(Conn[w - NumPoints]); }
   Idx FanSize(Idx v) const { return FanStart[size_t(v) + 1] - FanStart[size_t(v)]; }
@@ -333,7 +333,7 @@ struct Kernel
   void CountTriangles();
   void BuildTriangles();
   bool SetupFace(long long b, long long e, Idx t);
-  float SetupTriangle(Idx t, Idx s0, Idx s1, Idx s2);
+  float SetupTriangle(Idx t, const std::array<Idx, 3>& slots);
   void SetupQuad(Idx t, Idx base);
   void BuildFans();
   void GatherFan(Idx v, std::vector<Member>& m) const;
@@ -476,25 +476,19 @@ float SignedUnit(const V3& v, float sign, V3& unit)
   return length;
 }
 
-// Triangle t with face corners s0, s1, s2 (reference: degenerate test, InitTriInfo): its
+// Triangle t with the face corners `slots` (reference: degenerate test, InitTriInfo): its
 // degeneracy, orientation and GWA flags, unit directions and magnitudes. Returns its UV
 // determinant.
-float Kernel::SetupTriangle(Idx t, Idx s0, Idx s1, Idx s2)
+float Kernel::SetupTriangle(Idx t, const std::array<Idx, 3>& slots)
 {
   if (Slots)
   {
-    Idx* slots = Slots.get() + 3 * size_t(t);
-    slots[0] = s0;
-    slots[1] = s1;
-    slots[2] = s2;
+    std::copy(slots.begin(), slots.end(), Slots.get() + 3 * size_t(t));
   }
-  const Idx a = Idx(Conn[s0]), b = Idx(Conn[s1]), c = Idx(Conn[s2]);
+  const long long a = Conn[slots[0]], b = Conn[slots[1]], c = Conn[slots[2]];
   const V3 p0 = Pos(a), p1 = Pos(b), p2 = Pos(c);
-  const float* U = In.TCoords;
-  const float t21x = U[2 * size_t(b)] - U[2 * size_t(a)];
-  const float t21y = U[2 * size_t(b) + 1] - U[2 * size_t(a) + 1];
-  const float t31x = U[2 * size_t(c)] - U[2 * size_t(a)];
-  const float t31y = U[2 * size_t(c) + 1] - U[2 * size_t(a) + 1];
+  const float t21x = UV(b, 0) - UV(a, 0), t21y = UV(b, 1) - UV(a, 1);
+  const float t31x = UV(c, 0) - UV(a, 0), t31y = UV(c, 1) - UV(a, 1);
   const float det = t21x * t31y - t21y * t31x;
   Triangle& tri = Tris[size_t(t)];
   tri = Triangle{ { 0, 0, 0 }, { 0, 0, 0 }, kDegenerate };
@@ -529,16 +523,10 @@ float Kernel::SetupTriangle(Idx t, Idx s0, Idx s1, Idx s2)
 // always takes the first's).
 void Kernel::SetupQuad(Idx t, Idx base)
 {
-  const float* U = In.TCoords;
-  Idx q[4];
-  for (int i = 0; i < 4; ++i)
+  const long long* q = Conn + base;
+  const auto uvLength2 = [this](long long a, long long b)
   {
-    q[i] = Idx(Conn[base + i]);
-  }
-  const auto uvLength2 = [U](Idx a, Idx b)
-  {
-    const float du = U[2 * size_t(b)] - U[2 * size_t(a)];
-    const float dv = U[2 * size_t(b) + 1] - U[2 * size_t(a) + 1];
+    const float du = UV(b, 0) - UV(a, 0), dv = UV(b, 1) - UV(a, 1);
     return du * du + dv * dv;
   };
   const float uv02 = uvLength2(q[0], q[2]), uv13 = uvLength2(q[1], q[3]);
@@ -548,8 +536,8 @@ void Kernel::SetupQuad(Idx t, Idx base)
     const V3 e02 = Pos(q[2]) - Pos(q[0]), e13 = Pos(q[3]) - Pos(q[1]);
     diag02 = !(e13.Dot(e13) < e02.Dot(e02));
   }
-  const float detA = SetupTriangle(t, base, base + 1, base + (diag02 ? 2 : 3));
-  const float detB = SetupTriangle(t + 1, base + (diag02 ? 0 : 1), base + 2, base + 3);
+  const float detA = SetupTriangle(t, { base, base + 1, base + (diag02 ? 2 : 3) });
+  const float detB = SetupTriangle(t + 1, { base + (diag02 ? 0 : 1), base + 2, base + 3 });
   uint8_t& fa = Tris[size_t(t)].Flags;
   uint8_t& fb = Tris[size_t(t) + 1].Flags;
   if (!((fa | fb) & kDegenerate) && ((fa ^ fb) & kOrient))
@@ -615,7 +603,7 @@ bool Kernel::SetupFace(long long b, long long e, Idx t)
   }
   else if (nTri == 1)
   {
-    SetupTriangle(t, base, base + 1, base + 2);
+    SetupTriangle(t, { base, base + 1, base + 2 });
   }
   else if (nTri == 2)
   {
@@ -626,7 +614,7 @@ bool Kernel::SetupFace(long long b, long long e, Idx t)
     // corner 0 is shared by all the fan's triangles, corners 1 and 2 by neighbours
     for (Idx k = 0; k < nTri; ++k)
     {
-      SetupTriangle(t + k, base, base + k + 1, base + k + 2);
+      SetupTriangle(t + k, { base, base + k + 1, base + k + 2 });
       Tris[size_t(t) + size_t(k)].Flags |=
         uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
     }
@@ -685,12 +673,10 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
   for (size_t j = 0; j < m.size(); ++j)
   {
     const Idx c = fan[j], i = c % 3;
-    const Triangle& tri = Tris[size_t(c / 3)];
     m[j].Corner = c;
-    m[j].Slot = SlotOf(c);
     m[j].Next = WeldOf(c - i + (i + 1) % 3);
     m[j].Prev = WeldOf(c - i + (i + 2) % 3);
-    m[j].Flags = tri.Flags;
+    m[j].Flags = Tris[size_t(c / 3)].Flags;
     m[j].MagS = Mags ? Mags[2 * size_t(c / 3)] : 0.0f;
     m[j].MagT = Mags ? Mags[2 * size_t(c / 3) + 1] : 0.0f;
   }
@@ -703,32 +689,22 @@ void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
 // are the same-orientation edge-connected components of each fan.
 void Kernel::AdoptGroupWithAnyOrientation()
 {
+  const auto flags = [this](Idx c) { return Tris[size_t(c / 3)].Flags & (kExcluded | kGWA); };
   std::vector<uint8_t> gwaVertex(size_t(NumVerts), 0);
-  for (Idx t = 0; t < NumTris; ++t)
+  for (Idx c = 0; c < 3 * NumTris; ++c)
   {
-    if ((Tris[size_t(t)].Flags & (kExcluded | kGWA)) == kGWA)
+    if (flags(c) == kGWA)
     {
-      for (int i = 0; i < 3; ++i)
-      {
-        gwaVertex[size_t(WeldOf(3 * t + i))] = 1;
-      }
+      gwaVertex[size_t(WeldOf(c))] = 1;
     }
   }
   std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
   Scratch scratch;
-  for (Idx t = 0; t < NumTris; ++t)
+  for (Idx c = 0; c < 3 * NumTris; ++c)
   {
-    if (Tris[size_t(t)].Flags & (kExcluded | kGWA))
+    if (!flags(c) && gwaVertex[size_t(WeldOf(c))] && !assigned[size_t(c)])
     {
-      continue;
-    }
-    for (Idx c = 3 * t; c < 3 * t + 3; ++c)
-    {
-      const Idx v = WeldOf(c);
-      if (gwaVertex[size_t(v)] && !assigned[size_t(c)])
-      {
-        FloodGroup(c, assigned, scratch);
-      }
+      FloodGroup(c, assigned, scratch);
     }
   }
 }
@@ -1005,7 +981,7 @@ void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
   }
   else
   {
-    Out[size_t(m.Slot)] = ToCornerFrame(f.S, orient);
+    Out[size_t(SlotOf(m.Corner))] = ToCornerFrame(f.S, orient);
   }
 }
 
@@ -1050,17 +1026,13 @@ void Kernel::MergeMultiWriters()
         }
       }
       std::sort(list.begin(), list.end());
-      for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
+      Frame f{};
+      for (size_t r = 0; r < list.size(); ++r)
       {
-        const Idx slot = list[r0][0];
-        const PendingFrame* pf = &Pending[size_t(list[r0][2])];
-        Frame f = pf->F;
-        for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
-        {
-          pf = &Pending[size_t(list[r1][2])];
-          f = Average(f, pf->F);
-        }
-        Out[size_t(slot)] = ToCornerFrame(f.S, pf->Orient);
+        // the frames merged so far; a face corner keeps its last, complete merge
+        const PendingFrame& pf = Pending[size_t(list[r][2])];
+        f = r > 0 && list[r - 1][0] == list[r][0] ? Average(f, pf.F) : pf.F;
+        Out[size_t(list[r][0])] = ToCornerFrame(f.S, pf.Orient);
       }
     });
 }
@@ -1077,9 +1049,9 @@ void Kernel::CopyToQuadCorner(Idx b, Idx t)
   {
     ++missing;
   }
-  const V3 dst = Pos(Idx(Conn[missing]));
+  const V3 dst = Pos(Conn[missing]);
   const auto src =
-    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Pos(Idx(Conn[slot])) == dst; });
+    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Pos(Conn[slot]) == dst; });
   if (src != gs.end())
   {
     Out[size_t(missing)] = Out[size_t(*src)];
@@ -1114,16 +1086,9 @@ void Kernel::CopyDegenerates()
       // a degenerate fan triangle only fills face corners no good triangle covers
       std::vector<uint8_t>& covered = coveredSlots.Local();
       covered.assign(size_t(n), 0);
-      for (Idx u = t; u < t + nTri; ++u)
+      for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
       {
-        if (Tris[size_t(u)].Flags & kDegenerate)
-        {
-          continue;
-        }
-        for (int i = 0; i < 3; ++i)
-        {
-          covered[size_t(SlotOf(3 * u + i) - b)] = 1;
-        }
+        covered[size_t(SlotOf(corner) - b)] |= !(Tris[size_t(corner / 3)].Flags & kDegenerate);
       }
       for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
       {
