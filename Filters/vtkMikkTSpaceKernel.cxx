@@ -272,6 +272,14 @@ void SortByUpperHalf(std::vector<uint64_t>& keys)
 }
 
 //------------------------------------------------------------------------------
+// f(b, e, local) for ranges [b, e) that cover [0, n), in parallel; local is the calling thread's
+// T of `locals`.
+template<typename T, typename F>
+void ForEachRange(vtkIdType n, vtkIdType grain, vtkSMPThreadLocal<T>& locals, F&& f)
+{
+  vtkSMPTools::For(0, n, grain, [&](vtkIdType b, vtkIdType e) { f(b, e, locals.Local()); });
+}
+
 // |v|, and unit = sign v / |v| unless |v| is numerically zero (reference: InitTriInfo).
 float SignedUnit(const V3& v, float sign, V3& unit)
 {
@@ -487,7 +495,7 @@ struct Kernel
     }
   }
 
-  // Phase 1. Points sorted by (hash, id); within a run of equal hashes the first point of every
+  // Phase 1: points sorted by (hash, id); within a run of equal hashes the first point of every
   // class of equal values (the smallest id) is the welded id of the class.
   void Weld()
   {
@@ -547,7 +555,7 @@ struct Kernel
     }
   }
 
-  // Phase 2. One sequential pass over the offsets gives the first triangle of each chunk of faces
+  // Phase 2: one sequential pass over the offsets gives the first triangle of each chunk of faces
   // (ChunkTriBase), the faces that give none, and whether any face has more than 3 corners
   // (AnyMulti) or any is not stored as corners (3f, 3f + 1, 3f + 2) (Slots needed); then the
   // triangles are set up in parallel.
@@ -757,12 +765,11 @@ struct Kernel
       Pending.assign(3 * size_t(NumTris), PendingFrame{ {}, -1, 0 });
     }
     vtkSMPThreadLocal<Scratch> scratch;
-    vtkSMPTools::For(0,
-      vtkIdType(NumVerts),
+    ForEachRange(NumVerts,
       1024,
-      [&](vtkIdType b, vtkIdType e)
+      scratch,
+      [this](vtkIdType b, vtkIdType e, Scratch& s)
       {
-        Scratch& s = scratch.Local();
         for (Idx v = Idx(b); v < Idx(e); ++v)
         {
           if (FanSize(v) > 0)
@@ -1156,12 +1163,11 @@ struct Kernel
       long long Defaults = 0, NonFinite = 0, Cancelled = 0;
     };
     vtkSMPThreadLocal<Counts> counts;
-    vtkSMPTools::For(0,
-      vtkIdType(NumSlots),
+    ForEachRange(NumSlots,
       65536,
-      [&](vtkIdType b, vtkIdType e)
+      counts,
+      [this](vtkIdType b, vtkIdType e, Counts& n)
       {
-        Counts& n = counts.Local();
         for (CornerFrame* o = Out + b; o != Out + e; ++o)
         {
           const bool unwritten = o->Sign == 0.0f;
