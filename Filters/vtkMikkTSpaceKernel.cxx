@@ -1024,8 +1024,7 @@ struct Kernel
   bool SameFace(Idx ta, Idx tb) const
   {
     const std::array<Idx, 3> a = SlotsOf(ta), b = SlotsOf(tb);
-    return ta == tb ||
-      std::any_of(a.begin(), a.end(), [&b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
+    return ta == tb || std::find_first_of(a.begin(), a.end(), b.begin(), b.end()) != a.end();
   }
 
   void Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
