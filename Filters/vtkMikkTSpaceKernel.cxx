@@ -7,8 +7,8 @@
 //     exact comparison within equal hashes (sequential) give every point the smallest point id
 //     with equal values (==, so -0 == +0). Points with a NaN never weld: each face corner using
 //     one gets its own welded id.
-//  2. Faces -> triangles (quad diagonal rule, fans), degeneracy, per-triangle frame, quad
-//     orientation forcing.
+//  2. Faces -> triangles: a count of the triangles per chunk of faces (sequential), then the
+//     quad diagonal rule, fans, degeneracy, per-triangle frame, quad orientation forcing.
 //  3. Counting sort (sequential) of the corners of non-degenerate triangles by welded id: the
 //     "fan" of every welded vertex, in ascending corner order.
 //  4. Only if zero-UV-area ("group with any", GWA) triangles exist: sequential replay of the
@@ -31,12 +31,14 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <tuple>
 
 // The reference rounds every float operation separately; a fused multiply-add changes results
 // in the last bits. The build adds -ffp-contract=off for GCC and Clang (GCC ignores the STDC
@@ -66,51 +68,26 @@ constexpr uint8_t kMulti0 = 32;    // (kMulti0 << i): corner i's face corner has
 constexpr uint8_t kExcluded = kDegenerate | kDead;
 
 //------------------------------------------------------------------------------
-// Float vector helpers, evaluated as the reference does (left-to-right sums).
-struct V3
-{
-  float x, y, z;
-};
-V3 Sub(const V3& a, const V3& b)
-{
-  return { a.x - b.x, a.y - b.y, a.z - b.z };
-}
-V3 Add(const V3& a, const V3& b)
-{
-  return { a.x + b.x, a.y + b.y, a.z + b.z };
-}
-V3 Scale(const V3& v, float s)
-{
-  return { v.x * s, v.y * s, v.z * s };
-}
-float Dot(const V3& a, const V3& b)
-{
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
 bool NotZero(float f)
 {
   return std::fabs(f) > kFltMin;
 }
-bool NotZero(const V3& v)
+
+// Float vector, evaluated as the reference does (left-to-right sums, every operation rounded).
+struct V3
 {
-  const bool x = NotZero(v.x), y = NotZero(v.y), z = NotZero(v.z);
-  return x | y | z; // no branches, see NormalizeNonZero
-}
-bool Equal(const V3& a, const V3& b)
-{
-  return a.x == b.x && a.y == b.y && a.z == b.z;
-}
-bool Finite(const V3& v)
-{
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-// v / |v| unless v is (numerically) zero. Written without branches (the square root and division
-// are evaluated either way) so that loops over it can be vectorised.
-V3 NormalizeNonZero(const V3& v)
-{
-  const float inv = 1.0f / std::sqrt(Dot(v, v));
-  return NotZero(v) ? Scale(v, inv) : v;
-}
+  float x, y, z;
+  static V3 At(const float* a, size_t i) { return { a[3 * i], a[3 * i + 1], a[3 * i + 2] }; }
+  V3 operator+(const V3& b) const { return { x + b.x, y + b.y, z + b.z }; }
+  V3 operator-(const V3& b) const { return { x - b.x, y - b.y, z - b.z }; }
+  V3 operator*(float s) const { return { x * s, y * s, z * s }; }
+  bool operator==(const V3& b) const { return x == b.x && y == b.y && z == b.z; }
+  float Dot(const V3& b) const { return x * b.x + y * b.y + z * b.z; }
+  bool NotZero() const { return mikk::NotZero(x) || mikk::NotZero(y) || mikk::NotZero(z); }
+  bool Finite() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+  // v / |v|, unless v is (numerically) zero
+  V3 Normalized() const { return NotZero() ? *this * (1.0f / std::sqrt(Dot(*this))) : *this; }
+};
 
 //------------------------------------------------------------------------------
 // Tangent and bitangent directions with their magnitudes: a triangle corner's contribution,
@@ -132,12 +109,12 @@ struct PendingFrame
 // The reference's average of two frames written to one face corner.
 Frame Average(const Frame& a, const Frame& b)
 {
-  if (a.MagS == b.MagS && a.MagT == b.MagT && Equal(a.S, b.S) && Equal(a.T, b.T))
+  if (a.MagS == b.MagS && a.MagT == b.MagT && a.S == b.S && a.T == b.T)
   {
     return a;
   }
-  return { NormalizeNonZero(Add(a.S, b.S)),
-    NormalizeNonZero(Add(a.T, b.T)),
+  return { (a.S + b.S).Normalized(),
+    (a.T + b.T).Normalized(),
     0.5f * (a.MagS + b.MagS),
     0.5f * (a.MagT + b.MagT) };
 }
@@ -152,7 +129,6 @@ CornerFrame ToCornerFrame(const V3& tangent, uint8_t orient)
 struct Member
 {
   Idx Corner;     // 3 t + i
-  Idx Slot;       // its face corner
   Idx Next, Prev; // welded ids of the triangle's next and previous corner
   Idx Link[2];    // member across the edge vertex->Next, across Prev->vertex; -1: none
   Idx Group;      // same-orientation edge-connected component
@@ -164,98 +140,33 @@ struct Member
   float MagS, MagT, Angle;
 };
 
-// Per-thread scratch of the triangle phase: the unnormalised directions (the reference's vOs,
-// vOt) and UV determinant of each triangle of a chunk, in separate arrays so that their
-// normalisation (Kernel::FinishDirections) vectorises.
-struct TriangleRows
-{
-  std::vector<float> Sx, Sy, Sz, Tx, Ty, Tz, Det, MagS, MagT;
-  void Resize(size_t n)
-  {
-    for (std::vector<float>* v : { &Sx, &Sy, &Sz, &Tx, &Ty, &Tz, &Det, &MagS, &MagT })
-    {
-      v->resize(n);
-    }
-  }
-  void SetDirections(size_t j, const V3& s, const V3& t)
-  {
-    Sx[j] = s.x;
-    Sy[j] = s.y;
-    Sz[j] = s.z;
-    Tx[j] = t.x;
-    Ty[j] = t.y;
-    Tz[j] = t.z;
-  }
-};
-
 // Per-thread scratch of the vertex phase (and of the sequential FloodGroup).
 struct Scratch
 {
   std::vector<Member> Members; // the fan of the vertex at hand
-  std::vector<uint64_t> Edges; // index of PairEdges
-  std::vector<float> X, Y, Z;  // vectors to project, see CornerMath
-  std::vector<Idx> Order, GroupStart, Fill, List, SubList, SubStart, Stack;
-  std::vector<Frame> SubFrames;
+  std::vector<uint64_t> Edges; // half-edges of PairEdges
+  std::vector<float> XYZ;      // vectors to project, see CornerMath
+  std::vector<Idx> Order, List, Stack;
+  // the members and frame of each sub-group, see GeneralSubgroups
+  std::vector<std::pair<std::vector<Idx>, Frame>> Subgroups;
 };
 
-// PairEdges for a small fan: each member scans the later ones. Side 0 is the edge vertex->Next,
-// which pairs with a later member's edge Prev->vertex; side 1 the reverse.
+// PairEdges for a small fan: each member's unpaired half-edges take the first later unpaired
+// half-edge of opposite direction.
 void PairEdgesByScan(std::vector<Member>& m)
 {
-  const Idx k = Idx(m.size());
-  for (Idx j = 0; j < k; ++j)
-  {
-    Member& a = m[size_t(j)];
-    for (Idx q = j + 1; q < k && a.Link[0] < 0; ++q)
-    {
-      Member& b = m[size_t(q)];
-      if (b.Prev == a.Next && b.Link[1] < 0)
-      {
-        a.Link[0] = q;
-        b.Link[1] = j;
-      }
-    }
-    for (Idx q = j + 1; q < k && a.Link[1] < 0; ++q)
-    {
-      Member& b = m[size_t(q)];
-      if (b.Next == a.Prev && b.Link[0] < 0)
-      {
-        a.Link[1] = q;
-        b.Link[0] = j;
-      }
-    }
-  }
-}
-
-// PairEdges for a large fan: the later members with the opposite half-edge are looked up in
-// `index`, the half-edges sorted by (other vertex, member).
-void PairEdgesByIndex(std::vector<Member>& m, std::vector<uint64_t>& index)
-{
-  const Idx k = Idx(m.size());
-  index.clear();
-  for (Idx j = 0; j < k; ++j)
-  {
-    index.push_back(uint64_t(m[size_t(j)].Next) << 32 | uint64_t(j) << 1);
-    index.push_back(uint64_t(m[size_t(j)].Prev) << 32 | uint64_t(j) << 1 | 1);
-  }
-  std::sort(index.begin(), index.end());
-  for (Idx j = 0; j < k; ++j)
+  for (size_t j = 0; j < m.size(); ++j)
   {
     for (int side = 0; side < 2; ++side)
     {
-      // the first later member with the opposite half-edge to x, not yet paired on that side
-      const Idx x = side == 0 ? m[size_t(j)].Next : m[size_t(j)].Prev;
-      const uint64_t key = uint64_t(x) << 32 | uint64_t(j + 1) << 1;
-      for (auto e = std::lower_bound(index.begin(), index.end(), key);
-           m[size_t(j)].Link[side] < 0 && e != index.end() && Idx(*e >> 32) == x;
-           ++e)
+      const Idx x = side == 0 ? m[j].Next : m[j].Prev;
+      for (size_t q = j + 1; q < m.size() && m[j].Link[side] < 0; ++q)
       {
-        const Idx q = Idx(uint32_t(*e) >> 1);
-        Member& b = m[size_t(q)];
+        Member& b = m[q];
         if ((side == 0 ? b.Prev : b.Next) == x && b.Link[1 - side] < 0)
         {
-          m[size_t(j)].Link[side] = q;
-          b.Link[1 - side] = j;
+          m[j].Link[side] = Idx(q);
+          b.Link[1 - side] = Idx(j);
         }
       }
     }
@@ -263,13 +174,13 @@ void PairEdgesByIndex(std::vector<Member>& m, std::vector<uint64_t>& index)
 }
 
 // Links the members' half-edges as the reference pairs them: the half-edges of one undirected
-// edge (vertex, x) in triangle order, each unpaired one with the first later unpaired one of
+// edge (vertex, x), in triangle order, each unpaired one with the first later unpaired one of
 // opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
-// evaluated locally, member by member in triangle order. A small fan scans the later members;
-// a large one (a polygon of thousands of corners fan-triangulated around its first) looks
-// them up in `index`, its half-edges sorted by (x, member), so that the pairing stays
-// O(k log k).
-void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
+// evaluated locally. A small fan scans the later members. A large one (a polygon of thousands
+// of corners fan-triangulated around its first) stays O(k log k): its half-edges are sorted by
+// (x, member), and each edge's are swept with a queue of the unpaired ones so far; those share
+// one direction, so a half-edge of the other direction pairs with the oldest of them.
+void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& halfEdges)
 {
   constexpr size_t kScanLimit = 32;
   for (Member& a : m)
@@ -279,162 +190,37 @@ void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& index)
   if (m.size() <= kScanLimit)
   {
     PairEdgesByScan(m);
+    return;
   }
-  else
+  halfEdges.clear();
+  for (size_t j = 0; j < m.size(); ++j)
   {
-    PairEdgesByIndex(m, index);
+    // side 0: the half-edge vertex->Next; side 1: Prev->vertex
+    halfEdges.push_back(uint64_t(m[j].Next) << 32 | j << 1);
+    halfEdges.push_back(uint64_t(m[j].Prev) << 32 | j << 1 | 1);
   }
-}
-
-//------------------------------------------------------------------------------
-struct Kernel
-{
-  const MeshInput& In;
-  const Idx NumPoints;
-  const Idx NumSlots; // face corners
-  const long long* const Off;
-  const long long* const Conn;
-  CornerFrame* const Out;
-
-  // welding
-  std::vector<Idx> Rep; // welded id of a point, -1 if it contains a NaN
-  bool AnyNaNPoint = false;
-  Idx NumVerts = 0;
-
-  // triangles, in face order
-  static constexpr long long kFaceChunk = 4096;
-  long long NumFaceChunks = 0;
-  std::vector<Idx> ChunkTriBase; // first triangle of each chunk of faces
-  Idx NumTris = 0;
-  bool AnyMulti = false; // some face has more than 3 corners
-  struct Triangle
+  std::sort(halfEdges.begin(), halfEdges.end());
+  uint64_t* h = halfEdges.data();
+  for (size_t b = 0, e; b < halfEdges.size(); b = e)
   {
-    V3 S, T; // sign(det) Os/|Os|, sign(det) Ot/|Ot|
-    uint8_t Flags;
-  };
-  // One record per triangle, all the vertex phase reads of it (welded ids come from the points'
-  // table, WeldOf). Not value-initialised: the triangle pass writes every record.
-  std::unique_ptr<Triangle[]> Tris;
-  // Face corner of each triangle corner (3 per triangle); null when every face is a triangle
-  // stored in order, whose triangle corner c is face corner c.
-  std::unique_ptr<Idx[]> Slots;
-  // |Os|/|det| and |Ot|/|det| of each triangle, only when some face has more than 3 corners:
-  // they only decide how the several frames written to one face corner merge (Average).
-  std::unique_ptr<float[]> Mags;
-  long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
-
-  // fans: corners of non-degenerate triangles grouped by welded id, ascending
-  std::vector<Idx> FanStart, Fan;
-  std::vector<PendingFrame> Pending; // 3 per triangle if AnyMulti
-
-  // `res.Corners` holds one frame per face corner (CheckInput).
-  Kernel(const MeshInput& in, Result& res)
-    : In(in)
-    , NumPoints(Idx(std::max(0LL, in.NumberOfPoints)))
-    , NumSlots(Idx(res.Corners.size()))
-    , Off(in.FaceOffsets)
-    , Conn(in.FaceConnectivity)
-    , Out(res.Corners.data())
-  {
-  }
-
-  V3 Pos(Idx p) const
-  {
-    const float* q = In.Positions + 3 * size_t(p);
-    return { q[0], q[1], q[2] };
-  }
-  V3 Nrm(Idx p) const
-  {
-    const float* q = In.Normals + 3 * size_t(p);
-    return { q[0], q[1], q[2] };
-  }
-  // point holding the values of a welded vertex
-  Idx PointOfWeld(Idx w) const { return w < NumPoints ? w : Idx(Conn[w - NumPoints]); }
-  Idx FanSize(Idx v) const { return FanStart[size_t(v) + 1] - FanStart[size_t(v)]; }
-  // face corner and welded vertex of triangle corner c = 3 t + i
-  Idx SlotOf(Idx c) const { return Slots ? Slots[size_t(c)] : c; }
-  std::array<Idx, 3> SlotsOf(Idx t) const
-  {
-    return { SlotOf(3 * t), SlotOf(3 * t + 1), SlotOf(3 * t + 2) };
-  }
-  // Welded id of corner c of a triangle that is not dead: its point's, or for a point with a NaN
-  // one of its own past the points.
-  Idx WeldOf(Idx c) const
-  {
-    const Idx slot = SlotOf(c);
-    const Idx w = Rep[size_t(Conn[slot])];
-    return w >= 0 ? w : NumPoints + slot;
-  }
-
-  bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
-  bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
-  /// Calls visit(b, e, t) for each face of chunk c that gives triangles, in order: [b, e) are
-  /// its offsets and t its first triangle.
-  template<typename Visit>
-  void ForEachTriangulatedFace(long long c, Visit&& visit) const
-  {
-    Idx t = ChunkTriBase[size_t(c)];
-    const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
-    for (long long f = c * kFaceChunk; f < fe; ++f)
+    const uint64_t x = h[b] >> 32;
+    size_t head = b, tail = b; // the queue, kept in place of the half-edges swept
+    for (e = b; e < halfEdges.size() && h[e] >> 32 == x; ++e)
     {
-      const long long b = Off[f], e = Off[f + 1];
-      if (FaceHasTriangles(b, e))
+      if (head < tail && ((h[head] ^ h[e]) & 1))
       {
-        visit(b, e, t);
-        t += Idx(e - b - 2);
+        const Idx i = Idx(uint32_t(h[head]) >> 1), j = Idx(uint32_t(h[e]) >> 1);
+        const int side = int(h[head++] & 1);
+        m[size_t(i)].Link[side] = j;
+        m[size_t(j)].Link[1 - side] = i;
+      }
+      else
+      {
+        h[tail++] = h[e];
       }
     }
   }
-  /// f(c) for every chunk of faces, in parallel.
-  template<typename F>
-  void ForEachFaceChunk(F&& f) const
-  {
-    vtkSMPTools::For(0,
-      vtkIdType(NumFaceChunks),
-      1,
-      [&](vtkIdType cb, vtkIdType ce)
-      {
-        for (vtkIdType c = cb; c < ce; ++c)
-        {
-          f(c);
-        }
-      });
-  }
-
-  // Faces of one chunk that give no triangles, and its triangles' classes.
-  struct Counts
-  {
-    long long Degenerate = 0, GWA = 0, Skipped = 0, Invalid = 0;
-  };
-
-  void Weld();
-  void CountTriangles();
-  void SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n);
-  void SetupChunk(long long c, TriangleRows& rows, Counts& n);
-  void BuildTriangles();
-  void SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row);
-  void SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row);
-  void FinishDirections(Idx t0, TriangleRows& rows);
-  void QuadOrientation(Idx t, const TriangleRows& rows, size_t row);
-  void BuildFans();
-  void GatherFan(Idx v, std::vector<Member>& m) const;
-  void AdoptGroupWithAnyOrientation();
-  void FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s);
-  void ProcessVertices();
-  void ProcessVertex(Idx v, Scratch& s);
-  void CornerMath(Idx v, Scratch& s) const;
-  void ResolveGroup(Scratch& s, const Idx* members, size_t count);
-  Frame Eval(const Scratch& s, const Idx* members, size_t count) const;
-  void GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx seed);
-  bool SameFace(Idx ta, Idx tb) const;
-  void Write(const Member& m, const Frame& f, uint8_t orient, Idx seed);
-  void MergeMultiWriters();
-  void CopyToQuadCorner(Idx b, Idx t);
-  void CopyDegenerates();
-  void Finish(Result& res);
-  template<typename Aborted>
-  bool Run(const Aborted& aborted);
-};
+}
 
 //------------------------------------------------------------------------------
 // The 8 values of point p, and whether one is a NaN.
@@ -485,529 +271,24 @@ void SortByUpperHalf(std::vector<uint64_t>& keys)
   }
 }
 
-// Points sorted by (hash, id); within a run of equal hashes the first point of every class of
-// equal values (the smallest id) is the welded id of the class.
-void Kernel::Weld()
-{
-  const Idx np = NumPoints;
-  Rep.resize(size_t(np));
-  std::vector<uint64_t> keys(static_cast<size_t>(np));
-  vtkSMPTools::For(0,
-    vtkIdType(np),
-    16384,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      float values[8];
-      for (Idx p = Idx(b); p < Idx(e); ++p)
-      {
-        Rep[size_t(p)] = LoadPoint(In, p, values) ? -1 : p;
-        keys[size_t(p)] = uint64_t(HashPoint(values)) << 32 | uint64_t(p);
-      }
-    });
-  AnyNaNPoint = std::find(Rep.begin(), Rep.end(), -1) != Rep.end();
-  SortByUpperHalf(keys);
-  std::vector<Idx> heads;
-  float values[8], other[8];
-  const auto equalValues = [&](Idx h)
-  {
-    LoadPoint(In, h, other);
-    return std::equal(values, values + 8, other);
-  };
-  for (size_t r0 = 0, r1; r0 < keys.size(); r0 = r1)
-  {
-    r1 = r0 + 1;
-    while (r1 < keys.size() && keys[r1] >> 32 == keys[r0] >> 32)
-    {
-      ++r1;
-    }
-    if (r1 - r0 == 1)
-    {
-      continue; // a hash of its own: nothing to weld
-    }
-    heads.clear();
-    for (size_t j = r0; j < r1; ++j)
-    {
-      const Idx p = Idx(uint32_t(keys[j]));
-      if (Rep[size_t(p)] >= 0)
-      {
-        LoadPoint(In, p, values);
-        const auto head = std::find_if(heads.begin(), heads.end(), equalValues);
-        if (head == heads.end())
-        {
-          heads.push_back(p);
-        }
-        else
-        {
-          Rep[size_t(p)] = *head;
-        }
-      }
-    }
-  }
-}
-
 //------------------------------------------------------------------------------
-// Triangle t with face corners slots[0..2] (reference: degenerate test, InitTriInfo): its
-// corners and degeneracy, and its unnormalised directions and UV determinant in `row` of `rows`
-// (FinishDirections completes them).
-void Kernel::SetupTriangle(Idx t, const Idx slots[3], TriangleRows& rows, size_t row)
+// f(b, e, local) for ranges [b, e) that cover [0, n), in parallel; local is the calling thread's
+// T of `locals`.
+template<typename T, typename F>
+void ForEachRange(vtkIdType n, vtkIdType grain, vtkSMPThreadLocal<T>& locals, F&& f)
 {
-  Triangle& tri = Tris[size_t(t)];
-  Idx pts[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    pts[i] = Idx(Conn[slots[i]]);
-    if (Slots)
-    {
-      Slots[3 * size_t(t) + size_t(i)] = slots[i];
-    }
-  }
-  const V3 p0 = Pos(pts[0]), p1 = Pos(pts[1]), p2 = Pos(pts[2]);
-  tri.Flags = Equal(p0, p1) || Equal(p0, p2) || Equal(p1, p2) ? kDegenerate : 0;
-  const float* U = In.TCoords;
-  const float u0 = U[2 * size_t(pts[0])], v0 = U[2 * size_t(pts[0]) + 1];
-  const float t21x = U[2 * size_t(pts[1])] - u0, t21y = U[2 * size_t(pts[1]) + 1] - v0;
-  const float t31x = U[2 * size_t(pts[2])] - u0, t31y = U[2 * size_t(pts[2]) + 1] - v0;
-  const V3 d1 = Sub(p1, p0), d2 = Sub(p2, p0);
-  rows.Det[row] = t21x * t31y - t21y * t31x;
-  rows.SetDirections(
-    row, Sub(Scale(d1, t31y), Scale(d2, t21y)), Add(Scale(d1, -t31x), Scale(d2, t21x)));
+  vtkSMPTools::For(0, n, grain, [&](vtkIdType b, vtkIdType e) { f(b, e, locals.Local()); });
 }
 
-// One direction of the reference's InitTriInfo for count triangles: (x[j], y[j], z[j]) made
-// unit and signed by the UV determinant det[j] (zero when its length is numerically zero), and
-// mag[j] = its length / |det[j]|. Branch-free over separate arrays, so that compilers vectorise
-// it; square root and division are correctly rounded either way.
-void SignedDirections(float* x, float* y, float* z, const float* det, float* mag, size_t count)
+// |v|, and unit = sign v / |v| unless |v| is numerically zero (reference: InitTriInfo).
+float SignedUnit(const V3& v, float sign, V3& unit)
 {
-  for (size_t j = 0; j < count; ++j)
+  const float length = std::sqrt(v.Dot(v));
+  if (NotZero(length))
   {
-    const V3 v{ x[j], y[j], z[j] };
-    const float len = std::sqrt(Dot(v, v));
-    const float sign = det[j] > 0 ? 1.0f : -1.0f;
-    const V3 r = NotZero(len) ? Scale(v, sign / len) : V3{ 0, 0, 0 };
-    x[j] = r.x;
-    y[j] = r.y;
-    z[j] = r.z;
-    mag[j] = len / std::fabs(det[j]);
+    unit = v * (sign / length);
   }
-}
-
-// Completes the directions of the triangles t0, t0 + 1, ... of `rows` with their magnitudes,
-// orientation and GWA flags (reference: InitTriInfo); degenerate and dead triangles get none.
-void Kernel::FinishDirections(Idx t0, TriangleRows& r)
-{
-  const size_t n = r.Det.size();
-  SignedDirections(r.Sx.data(), r.Sy.data(), r.Sz.data(), r.Det.data(), r.MagS.data(), n);
-  SignedDirections(r.Tx.data(), r.Ty.data(), r.Tz.data(), r.Det.data(), r.MagT.data(), n);
-  for (size_t j = 0; j < n; ++j)
-  {
-    Triangle& tri = Tris[size_t(t0) + j];
-    tri.S = tri.T = V3{ 0, 0, 0 };
-    float* mags = Mags ? Mags.get() + 2 * (size_t(t0) + j) : nullptr;
-    if (mags)
-    {
-      mags[0] = mags[1] = 0;
-    }
-    if (tri.Flags & kExcluded)
-    {
-      continue;
-    }
-    const float det = r.Det[j];
-    uint8_t flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
-    if (NotZero(det))
-    {
-      tri.S = V3{ r.Sx[j], r.Sy[j], r.Sz[j] };
-      tri.T = V3{ r.Tx[j], r.Ty[j], r.Tz[j] };
-      if (mags)
-      {
-        mags[0] = r.MagS[j];
-        mags[1] = r.MagT[j];
-      }
-      if (NotZero(r.MagS[j]) && NotZero(r.MagT[j]))
-      {
-        flags = uint8_t(flags & ~kGWA);
-      }
-    }
-    tri.Flags |= flags;
-  }
-}
-
-// The two triangles t, t+1 of the quad with face corners base..base+3: split on the shorter UV
-// diagonal (the position diagonal on an exact tie); QuadOrientation applies the reference's quad
-// rules once the directions are complete.
-void Kernel::SetupQuad(Idx t, Idx base, TriangleRows& rows, size_t row)
-{
-  const float* U = In.TCoords;
-  Idx q[4];
-  for (int i = 0; i < 4; ++i)
-  {
-    q[i] = Idx(Conn[base + i]);
-  }
-  const auto uvLength2 = [U](Idx a, Idx b)
-  {
-    const float du = U[2 * size_t(b)] - U[2 * size_t(a)];
-    const float dv = U[2 * size_t(b) + 1] - U[2 * size_t(a) + 1];
-    return du * du + dv * dv;
-  };
-  const float uv02 = uvLength2(q[0], q[2]), uv13 = uvLength2(q[1], q[3]);
-  bool diag02 = uv02 < uv13;
-  if (!(uv02 < uv13) && !(uv13 < uv02))
-  {
-    const V3 e02 = Sub(Pos(q[2]), Pos(q[0])), e13 = Sub(Pos(q[3]), Pos(q[1]));
-    diag02 = !(Dot(e13, e13) < Dot(e02, e02));
-  }
-  const Idx sa[3] = { base, base + 1, base + (diag02 ? 2 : 3) };
-  const Idx sb[3] = { base + (diag02 ? 0 : 1), base + 2, base + 3 };
-  SetupTriangle(t, sa, rows, row);
-  SetupTriangle(t + 1, sb, rows, row + 1);
-  // the diagonal's face corners are written by both triangles:
-  // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
-  const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
-  Tris[size_t(t)].Flags |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
-  Tris[size_t(t) + 1].Flags |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
-}
-
-// The reference's rule for the two triangles t, t+1 of a quad (rows `row`, `row` + 1), once
-// their directions are complete: two good triangles of different orientation take the one of
-// the larger UV area (a GWA second triangle always takes the first's).
-void Kernel::QuadOrientation(Idx t, const TriangleRows& rows, size_t row)
-{
-  uint8_t& fa = Tris[size_t(t)].Flags;
-  uint8_t& fb = Tris[size_t(t) + 1].Flags;
-  if (!((fa | fb) & kDegenerate) && ((fa ^ fb) & kOrient))
-  {
-    const bool firstWins = (fb & kGWA) || std::fabs(rows.Det[row]) >= std::fabs(rows.Det[row + 1]);
-    uint8_t& dst = firstWins ? fb : fa;
-    const uint8_t src = firstWins ? fa : fb;
-    dst = uint8_t((dst & ~kOrient) | (src & kOrient));
-  }
-}
-
-// Per chunk of faces, the number of its triangles (ChunkTriBase becomes their prefix sums), and
-// whether any face has more than 3 corners (AnyMulti) or any is not stored as corners
-// (3f, 3f + 1, 3f + 2) (Slots needed); allocates the triangle records.
-void Kernel::CountTriangles()
-{
-  const long long nf = In.NumberOfFaces;
-  NumFaceChunks = (nf + kFaceChunk - 1) / kFaceChunk;
-  ChunkTriBase.assign(size_t(NumFaceChunks) + 1, 0);
-  std::vector<uint8_t> chunkMulti(size_t(NumFaceChunks), 0);
-  std::vector<uint8_t> chunkInOrder(size_t(NumFaceChunks), 1);
-  ForEachFaceChunk(
-    [&](long long c)
-    {
-      Idx sum = 0;
-      const long long fe = std::min(nf, (c + 1) * kFaceChunk);
-      for (long long f = c * kFaceChunk; f < fe; ++f)
-      {
-        const long long b = Off[f], e = Off[f + 1];
-        chunkInOrder[size_t(c)] &= b == 3 * f && e == b + 3;
-        if (FaceHasTriangles(b, e))
-        {
-          sum += Idx(e - b - 2);
-          chunkMulti[size_t(c)] |= e - b > 3;
-        }
-      }
-      ChunkTriBase[size_t(c) + 1] = sum;
-    });
-  bool inOrder = true;
-  for (long long c = 0; c < NumFaceChunks; ++c)
-  {
-    ChunkTriBase[size_t(c) + 1] += ChunkTriBase[size_t(c)];
-    AnyMulti = AnyMulti || chunkMulti[size_t(c)];
-    inOrder = inOrder && chunkInOrder[size_t(c)];
-  }
-  NumTris = ChunkTriBase[size_t(NumFaceChunks)];
-  Tris.reset(new Triangle[size_t(NumTris)]);
-  if (!inOrder)
-  {
-    Slots.reset(new Idx[3 * size_t(NumTris)]);
-  }
-  if (AnyMulti)
-  {
-    Mags.reset(new float[2 * size_t(NumTris)]);
-  }
-}
-
-// The triangles of face [b, e) from triangle t on, in `rows` from `row` on: one triangle, a quad
-// split on a diagonal (SetupQuad), or a fan (0, k+1, k+2) of a larger polygon; a face with an id
-// outside the points gives dead triangles and counts as invalid.
-void Kernel::SetupFace(long long b, long long e, Idx t, TriangleRows& rows, size_t row, Counts& n)
-{
-  const Idx base = Idx(b), nTri = Idx(e - b - 2);
-  if (!std::all_of(Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; }))
-  {
-    ++n.Invalid;
-    std::fill(Tris.get() + t, Tris.get() + t + nTri, Triangle{ {}, {}, kDead }); // never in a fan
-  }
-  else if (nTri == 1)
-  {
-    const Idx slots[3] = { base, base + 1, base + 2 };
-    SetupTriangle(t, slots, rows, row);
-  }
-  else if (nTri == 2)
-  {
-    SetupQuad(t, base, rows, row);
-  }
-  else
-  {
-    // corner 0 is shared by all the fan's triangles, corners 1 and 2 by neighbours
-    for (Idx k = 0; k < nTri; ++k)
-    {
-      const Idx slots[3] = { base, base + k + 1, base + k + 2 };
-      SetupTriangle(t + k, slots, rows, row + size_t(k));
-      Tris[size_t(t) + size_t(k)].Flags |=
-        uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
-    }
-  }
-}
-
-// The triangles of chunk c of faces, complete (directions, flags, quad rules), and their counts.
-void Kernel::SetupChunk(long long c, TriangleRows& rows, Counts& n)
-{
-  const Idx t0 = ChunkTriBase[size_t(c)];
-  rows.Resize(size_t(ChunkTriBase[size_t(c) + 1] - t0));
-  const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
-  Idx t = t0;
-  for (long long f = c * kFaceChunk; f < fe; ++f)
-  {
-    const long long b = Off[f], e = Off[f + 1];
-    if (!FaceHasTriangles(b, e))
-    {
-      ++(FaceInRange(b, e) ? n.Skipped : n.Invalid);
-      continue;
-    }
-    SetupFace(b, e, t, rows, size_t(t - t0), n);
-    t += Idx(e - b - 2);
-  }
-  FinishDirections(t0, rows);
-  ForEachTriangulatedFace(c,
-    [&](long long b, long long e, Idx u)
-    {
-      if (e - b == 4 && !(Tris[size_t(u)].Flags & kDead))
-      {
-        QuadOrientation(u, rows, size_t(u - t0));
-      }
-    });
-  for (Idx u = t0; u < t; ++u)
-  {
-    const uint8_t fl = Tris[size_t(u)].Flags;
-    n.Degenerate += (fl & kDegenerate) ? 1 : 0;
-    n.GWA += (fl & (kExcluded | kGWA)) == kGWA ? 1 : 0;
-  }
-}
-
-void Kernel::BuildTriangles()
-{
-  CountTriangles();
-  std::vector<Counts> counts(static_cast<size_t>(NumFaceChunks));
-  vtkSMPThreadLocal<TriangleRows> scratch;
-  ForEachFaceChunk([&](long long c) { SetupChunk(c, scratch.Local(), counts[size_t(c)]); });
-  for (const Counts& n : counts)
-  {
-    NumDegenerate += n.Degenerate;
-    NumGWA += n.GWA;
-    NumSkipped += n.Skipped;
-    NumInvalid += n.Invalid;
-  }
-}
-
-//------------------------------------------------------------------------------
-// Counting sort of the corners of non-degenerate triangles by welded id; every fan lists its
-// corners in ascending order.
-void Kernel::BuildFans()
-{
-  NumVerts = NumPoints + (AnyNaNPoint ? NumSlots : 0);
-  FanStart.assign(size_t(NumVerts) + 1, 0);
-  for (Idx t = 0; t < NumTris; ++t)
-  {
-    if (!(Tris[size_t(t)].Flags & kExcluded))
-    {
-      for (int i = 0; i < 3; ++i)
-      {
-        ++FanStart[size_t(WeldOf(3 * t + i)) + 1];
-      }
-    }
-  }
-  for (size_t v = 0; v < size_t(NumVerts); ++v)
-  {
-    FanStart[v + 1] += FanStart[v];
-  }
-  Fan.resize(size_t(FanStart[size_t(NumVerts)]));
-  std::vector<Idx> pos(FanStart.begin(), FanStart.end() - 1);
-  for (Idx t = 0; t < NumTris; ++t)
-  {
-    if (!(Tris[size_t(t)].Flags & kExcluded))
-    {
-      for (int i = 0; i < 3; ++i)
-      {
-        Fan[size_t(pos[size_t(WeldOf(3 * t + i))]++)] = 3 * t + i;
-      }
-    }
-  }
-}
-
-// The members of vertex v's fan, linked across shared edges.
-void Kernel::GatherFan(Idx v, std::vector<Member>& m) const
-{
-  const Idx* fan = Fan.data() + FanStart[size_t(v)];
-  m.resize(size_t(FanSize(v)));
-  for (size_t j = 0; j < m.size(); ++j)
-  {
-    const Idx c = fan[j], i = c % 3;
-    const Triangle& tri = Tris[size_t(c / 3)];
-    m[j].Corner = c;
-    m[j].Slot = SlotOf(c);
-    m[j].Next = WeldOf(c - i + (i + 1) % 3);
-    m[j].Prev = WeldOf(c - i + (i + 2) % 3);
-    m[j].Flags = tri.Flags;
-    m[j].MagS = Mags ? Mags[2 * size_t(c / 3)] : 0.0f;
-    m[j].MagT = Mags ? Mags[2 * size_t(c / 3) + 1] : 0.0f;
-  }
-}
-
-//------------------------------------------------------------------------------
-// The reference builds groups sequentially; the first group reaching a GWA triangle that has
-// no group yet gives it its orientation. This replays that, restricted to vertices whose fan
-// contains a GWA triangle (only their floods can reach one). Afterwards the groups everywhere
-// are the same-orientation edge-connected components of each fan.
-void Kernel::AdoptGroupWithAnyOrientation()
-{
-  std::vector<uint8_t> gwaVertex(size_t(NumVerts), 0);
-  for (Idx t = 0; t < NumTris; ++t)
-  {
-    if ((Tris[size_t(t)].Flags & (kExcluded | kGWA)) == kGWA)
-    {
-      for (int i = 0; i < 3; ++i)
-      {
-        gwaVertex[size_t(WeldOf(3 * t + i))] = 1;
-      }
-    }
-  }
-  std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
-  Scratch scratch;
-  for (Idx t = 0; t < NumTris; ++t)
-  {
-    if (Tris[size_t(t)].Flags & (kExcluded | kGWA))
-    {
-      continue;
-    }
-    for (Idx c = 3 * t; c < 3 * t + 3; ++c)
-    {
-      const Idx v = WeldOf(c);
-      if (gwaVertex[size_t(v)] && !assigned[size_t(c)])
-      {
-        FloodGroup(c, assigned, scratch);
-      }
-    }
-  }
-}
-
-// The reference's group flood from corner c across the fan of its welded vertex's paired edges,
-// through corners not assigned to a group yet: a GWA triangle none of whose corners has a group
-// takes the seed's orientation, and the flood goes on through corners of that orientation.
-void Kernel::FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s)
-{
-  const Idx v = WeldOf(c);
-  std::vector<Member>& m = s.Members;
-  GatherFan(v, m);
-  PairEdges(m, s.Edges);
-  const Idx* fan = Fan.data() + FanStart[size_t(v)];
-  const uint8_t orient = Tris[size_t(c / 3)].Flags & kOrient;
-  assigned[size_t(c)] = 1;
-  s.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
-  while (!s.Stack.empty())
-  {
-    const Idx j = s.Stack.back();
-    s.Stack.pop_back();
-    for (const Idx q : m[size_t(j)].Link)
-    {
-      if (q < 0 || assigned[size_t(fan[q])])
-      {
-        continue;
-      }
-      const Idx tq = fan[q] / 3;
-      uint8_t& fq = Tris[size_t(tq)].Flags;
-      if ((fq & kGWA) && !assigned[3 * size_t(tq)] && !assigned[3 * size_t(tq) + 1] &&
-        !assigned[3 * size_t(tq) + 2])
-      {
-        fq = uint8_t((fq & ~kOrient) | orient);
-      }
-      if ((fq & kOrient) == orient)
-      {
-        assigned[size_t(fan[q])] = 1;
-        s.Stack.push_back(q);
-      }
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
-// Projects the vectors (x[j], y[j], z[j]), j < count, on the plane perpendicular to the unit
-// vector n (v - n (n.v)) and normalises them; a loop over separate arrays, so that compilers can
-// vectorise it.
-void ProjectNormalizeAll(float* x, float* y, float* z, size_t count, const V3& n)
-{
-  for (size_t j = 0; j < count; ++j)
-  {
-    const V3 v{ x[j], y[j], z[j] };
-    const V3 r = NormalizeNonZero(Sub(v, Scale(n, Dot(n, v))));
-    x[j] = r.x;
-    y[j] = r.y;
-    z[j] = r.z;
-  }
-}
-
-// The reference's EvalTspace inputs at vertex v: the triangles' directions and the corners'
-// edges projected on the plane perpendicular to the vertex normal and normalised, and the corner
-// angle acos(e1.e2) (in double, rounded to float, as the reference). The edge to a neighbour is
-// the same for the two members sharing it: a member's edge to Prev is its partner's (Link[1])
-// edge to Next, projected once.
-void Kernel::CornerMath(Idx v, Scratch& s) const
-{
-  const Idx pv = PointOfWeld(v);
-  const V3 n = Nrm(pv), p = Pos(pv);
-  const size_t k = s.Members.size();
-  // rows [0, k): S of each member, [k, 2k): T, [2k, 3k): the edge to Next, then the edges to
-  // Prev of members whose in-edge is unpaired (a paired one is its partner's edge to Next)
-  s.X.resize(4 * k);
-  s.Y.resize(4 * k);
-  s.Z.resize(4 * k);
-  const auto set = [&s](size_t row, const V3& w)
-  {
-    s.X[row] = w.x;
-    s.Y[row] = w.y;
-    s.Z[row] = w.z;
-  };
-  const auto get = [&s](size_t row) { return V3{ s.X[row], s.Y[row], s.Z[row] }; };
-  size_t rows = 3 * k;
-  for (size_t j = 0; j < k; ++j)
-  {
-    const Member& a = s.Members[j];
-    const Triangle& tri = Tris[size_t(a.Corner / 3)];
-    set(j, tri.S);
-    set(k + j, tri.T);
-    set(2 * k + j, Sub(Pos(PointOfWeld(a.Next)), p));
-    if (a.Link[1] < 0)
-    {
-      set(rows++, Sub(Pos(PointOfWeld(a.Prev)), p));
-    }
-  }
-  ProjectNormalizeAll(s.X.data(), s.Y.data(), s.Z.data(), rows, n);
-  // the cosines of all members first, then the acos calls
-  for (size_t j = 0, extra = 3 * k; j < k; ++j)
-  {
-    Member& a = s.Members[j];
-    a.S = get(j);
-    a.T = get(k + j);
-    const V3 e1 = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++);
-    const float c = Dot(e1, get(2 * k + j));
-    a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
-  }
-  for (Member& a : s.Members)
-  {
-    a.Angle = (a.Flags & kGWA) ? 0.0f : float(std::acos(double(a.Angle)));
-  }
+  return length;
 }
 
 // Labels the members of a fan with their groups and returns how many there are. A member has at
@@ -1041,335 +322,6 @@ Idx LabelGroups(std::vector<Member>& m)
   return numGroups;
 }
 
-// Groups of vertex v and their frames: each group's members, in triangle order, go to
-// ResolveGroup.
-void Kernel::ProcessVertex(Idx v, Scratch& s)
-{
-  std::vector<Member>& m = s.Members;
-  GatherFan(v, m);
-  PairEdges(m, s.Edges);
-  CornerMath(v, s);
-  const Idx numGroups = LabelGroups(m);
-  // members ordered by (group, triangle): a counting sort by group
-  s.Order.resize(m.size());
-  if (numGroups == 1)
-  {
-    std::iota(s.Order.begin(), s.Order.end(), 0);
-    ResolveGroup(s, s.Order.data(), m.size());
-    return;
-  }
-  s.GroupStart.assign(size_t(numGroups) + 1, 0);
-  for (const Member& a : m)
-  {
-    ++s.GroupStart[size_t(a.Group) + 1];
-  }
-  for (Idx g = 0; g < numGroups; ++g)
-  {
-    s.GroupStart[size_t(g) + 1] += s.GroupStart[size_t(g)];
-  }
-  s.Fill.assign(s.GroupStart.begin(), s.GroupStart.end() - 1);
-  for (size_t j = 0; j < m.size(); ++j)
-  {
-    s.Order[size_t(s.Fill[size_t(m[j].Group)]++)] = Idx(j);
-  }
-  for (Idx g = 0; g < numGroups; ++g)
-  {
-    const Idx b = s.GroupStart[size_t(g)], e = s.GroupStart[size_t(g) + 1];
-    ResolveGroup(s, s.Order.data() + b, size_t(e - b));
-  }
-}
-
-// Frames of one group (members in ascending triangle order). Its seed is the first non-GWA
-// member; a group of GWA triangles only is never seeded and its corners stay default.
-void Kernel::ResolveGroup(Scratch& s, const Idx* members, size_t count)
-{
-  const Idx* seed = std::find_if(
-    members, members + count, [&s](Idx j) { return !(s.Members[size_t(j)].Flags & kGWA); });
-  if (seed == members + count)
-  {
-    return;
-  }
-  const Member& first = s.Members[size_t(*seed)];
-  const uint8_t orient = first.Flags & kOrient;
-  // Sub-groups (threshold cos = -1) split two non-GWA triangles of different faces only if
-  // their projected directions have cos <= -1 (or NaN). A sufficient test that none split:
-  // every member within 89.4 degrees of the seed (cos > 0.01), so every pair is within 179
-  // degrees (cos > -0.9998, far from -1 even with float rounding).
-  const bool single = std::all_of(members,
-    members + count,
-    [&](Idx j)
-    {
-      const Member& a = s.Members[size_t(j)];
-      return (a.Flags & kGWA) || (Dot(first.S, a.S) > 0.01f && Dot(first.T, a.T) > 0.01f);
-    });
-  if (!single)
-  {
-    GeneralSubgroups(s, members, count, orient, first.Corner);
-    return;
-  }
-  const Frame f = Eval(s, members, count);
-  for (size_t j = 0; j < count; ++j)
-  {
-    Write(s.Members[size_t(members[j])], f, orient, first.Corner);
-  }
-}
-
-// Angle-weighted average of the non-GWA members listed, in list order.
-Frame Kernel::Eval(const Scratch& s, const Idx* members, size_t count) const
-{
-  Frame r{ { 0, 0, 0 }, { 0, 0, 0 }, 0, 0 };
-  float angleSum = 0;
-  for (size_t j = 0; j < count; ++j)
-  {
-    const Member& a = s.Members[size_t(members[j])];
-    if (a.Flags & kGWA)
-    {
-      continue;
-    }
-    r.S = Add(r.S, Scale(a.S, a.Angle));
-    r.T = Add(r.T, Scale(a.T, a.Angle));
-    r.MagS += a.Angle * a.MagS;
-    r.MagT += a.Angle * a.MagT;
-    angleSum += a.Angle;
-  }
-  r.S = NormalizeNonZero(r.S);
-  r.T = NormalizeNonZero(r.T);
-  if (angleSum > 0)
-  {
-    r.MagS /= angleSum;
-    r.MagT /= angleSum;
-  }
-  return r;
-}
-
-// The reference's sub-groups: the list of member f holds every member t with (either GWA) or
-// (same face) or (cosS > -1 and cosT > -1); equal lists share a frame.
-void Kernel::GeneralSubgroups(Scratch& s,
-  const Idx* members,
-  size_t count,
-  uint8_t orient,
-  Idx seed)
-{
-  s.SubList.clear();
-  s.SubStart.assign(1, 0);
-  s.SubFrames.clear();
-  for (size_t a = 0; a < count; ++a)
-  {
-    const Member& mf = s.Members[size_t(members[a])];
-    s.List.clear();
-    for (size_t j = 0; j < count; ++j)
-    {
-      const Member& mt = s.Members[size_t(members[j])];
-      if (((mf.Flags | mt.Flags) & kGWA) || SameFace(mf.Corner / 3, mt.Corner / 3) ||
-        (Dot(mf.S, mt.S) > -1.0f && Dot(mf.T, mt.T) > -1.0f))
-      {
-        s.List.push_back(members[j]);
-      }
-    }
-    size_t found = 0;
-    while (found < s.SubFrames.size() &&
-      !std::equal(s.List.begin(),
-        s.List.end(),
-        s.SubList.begin() + s.SubStart[found],
-        s.SubList.begin() + s.SubStart[found + 1]))
-    {
-      ++found;
-    }
-    if (found == s.SubFrames.size())
-    {
-      s.SubFrames.push_back(Eval(s, s.List.data(), s.List.size()));
-      s.SubList.insert(s.SubList.end(), s.List.begin(), s.List.end());
-      s.SubStart.push_back(Idx(s.SubList.size()));
-    }
-    Write(mf, s.SubFrames[found], orient, seed);
-  }
-}
-
-// Triangles of one face share a face corner; different faces never do.
-bool Kernel::SameFace(Idx ta, Idx tb) const
-{
-  const std::array<Idx, 3> a = SlotsOf(ta), b = SlotsOf(tb);
-  return ta == tb ||
-    std::any_of(a.begin(), a.end(), [&b](Idx x) { return x == b[0] || x == b[1] || x == b[2]; });
-}
-
-void Kernel::Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
-{
-  const Idx i = m.Corner % 3;
-  if (m.Flags & (kMulti0 << i))
-  {
-    Pending[size_t(m.Corner)] = PendingFrame{ f, seed, orient }; // merged in MergeMultiWriters
-  }
-  else
-  {
-    Out[size_t(m.Slot)] = ToCornerFrame(f.S, orient);
-  }
-}
-
-//------------------------------------------------------------------------------
-// Face corners written by several triangles: the reference's pairwise average, applied in
-// group creation order (then triangle order); the sign is that of the last group.
-void Kernel::MergeMultiWriters()
-{
-  ForEachFaceChunk(
-    [&](long long c)
-    {
-      // {face corner, group seed, triangle corner} of each frame to merge, sorted in that order
-      std::vector<std::array<Idx, 3>> list;
-      ForEachTriangulatedFace(c,
-        [&](long long b, long long e, Idx t)
-        {
-          const Idx nTri = Idx(e - b - 2);
-          if (nTri == 1 || (Tris[size_t(t)].Flags & kDead))
-          {
-            return;
-          }
-          list.clear();
-          for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
-          {
-            if ((Tris[size_t(corner / 3)].Flags & (kMulti0 << (corner % 3))) &&
-              Pending[size_t(corner)].Seed >= 0)
-            {
-              list.push_back({ SlotOf(corner), Pending[size_t(corner)].Seed, corner });
-            }
-          }
-          std::sort(list.begin(), list.end());
-          for (size_t r0 = 0, r1; r0 < list.size(); r0 = r1)
-          {
-            const Idx slot = list[r0][0];
-            const PendingFrame* pf = &Pending[size_t(list[r0][2])];
-            Frame f = pf->F;
-            for (r1 = r0 + 1; r1 < list.size() && list[r1][0] == slot; ++r1)
-            {
-              pf = &Pending[size_t(list[r1][2])];
-              f = Average(f, pf->F);
-            }
-            Out[size_t(slot)] = ToCornerFrame(f.S, pf->Orient);
-          }
-        });
-    });
-}
-
-//------------------------------------------------------------------------------
-// In the quad of face corners from b on, split into triangles t and t + 1 of which one is
-// degenerate: the face corner missing from the good triangle copies the frame of the good
-// triangle's corner at the same position, if it has one.
-void Kernel::CopyToQuadCorner(Idx b, Idx t)
-{
-  const std::array<Idx, 3> gs = SlotsOf(t + ((Tris[size_t(t)].Flags & kDegenerate) ? 1 : 0));
-  Idx missing = b;
-  while (missing == gs[0] || missing == gs[1] || missing == gs[2])
-  {
-    ++missing;
-  }
-  const V3 dst = Pos(Idx(Conn[missing]));
-  const auto src =
-    std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Equal(Pos(Idx(Conn[slot])), dst); });
-  if (src != gs.end())
-  {
-    Out[size_t(missing)] = Out[size_t(*src)];
-  }
-}
-
-//------------------------------------------------------------------------------
-// Degenerate triangles copy the frame of the first good corner with the same welded vertex;
-// in a quad with one degenerate triangle the corner missing from the good triangle copies the
-// good triangle's corner with the same position. Sources are always corners of good
-// triangles, which this pass never writes.
-void Kernel::CopyDegenerates()
-{
-  ForEachFaceChunk(
-    [&](long long c)
-    {
-      std::vector<uint8_t> covered;
-      ForEachTriangulatedFace(c,
-        [&](long long b, long long e, Idx t)
-        {
-          const long long n = e - b;
-          const Idx nTri = Idx(n - 2);
-          const Triangle* tri = Tris.get() + t;
-          if ((tri[0].Flags & kDead) ||
-            std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
-          {
-            return;
-          }
-          if (n == 4 && !(tri[0].Flags & tri[1].Flags & kDegenerate))
-          {
-            // a quad of which exactly one triangle is degenerate
-            CopyToQuadCorner(Idx(b), t);
-            return;
-          }
-          // a degenerate fan triangle only fills face corners no good triangle covers
-          covered.assign(size_t(n), 0);
-          for (Idx u = t; u < t + nTri; ++u)
-          {
-            if (Tris[size_t(u)].Flags & kDegenerate)
-            {
-              continue;
-            }
-            for (int i = 0; i < 3; ++i)
-            {
-              covered[size_t(SlotOf(3 * u + i) - b)] = 1;
-            }
-          }
-          for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
-          {
-            const Idx slot = SlotOf(corner);
-            const Idx w = WeldOf(corner);
-            if ((Tris[size_t(corner / 3)].Flags & kDegenerate) && !covered[size_t(slot - b)] &&
-              FanSize(w) > 0)
-            {
-              Out[size_t(slot)] = Out[size_t(SlotOf(Fan[size_t(FanStart[size_t(w)])]))];
-            }
-          }
-        });
-    });
-}
-
-//------------------------------------------------------------------------------
-// Corners never written (Sign 0) or not finite get the default frame, and are counted.
-void Kernel::Finish(Result& res)
-{
-  constexpr vtkIdType kChunk = 65536;
-  const vtkIdType numChunks = (vtkIdType(NumSlots) + kChunk - 1) / kChunk;
-  struct CornerCounts
-  {
-    long long Defaults = 0, NonFinite = 0, Cancelled = 0;
-  };
-  std::vector<CornerCounts> counts(static_cast<size_t>(numChunks));
-  vtkSMPTools::For(0,
-    numChunks,
-    1,
-    [&](vtkIdType cb, vtkIdType ce)
-    {
-      for (vtkIdType c = cb; c < ce; ++c)
-      {
-        const vtkIdType e = std::min(vtkIdType(NumSlots), (c + 1) * kChunk);
-        CornerCounts& n = counts[size_t(c)];
-        for (CornerFrame* o = Out + c * kChunk; o != Out + e; ++o)
-        {
-          const bool unwritten = o->Sign == 0.0f;
-          if (unwritten || !Finite(V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }))
-          {
-            *o = DefaultCornerFrame;
-            ++n.Defaults;
-            n.NonFinite += unwritten ? 0 : 1;
-          }
-          else
-          {
-            n.Cancelled += IsCancelled(*o) ? 1 : 0;
-          }
-        }
-      }
-    });
-  for (const CornerCounts& n : counts)
-  {
-    res.NumberOfDefaultCorners += n.Defaults;
-    res.NumberOfNonFiniteCorners += n.NonFinite;
-    res.NumberOfCancelledCorners += n.Cancelled;
-  }
-}
-
 //------------------------------------------------------------------------------
 void SetAllDefault(Result& res)
 {
@@ -1386,7 +338,7 @@ bool CheckInput(const MeshInput& in, Result& res)
     return false;
   }
   const long long numSlots = std::max(0LL, in.FaceOffsets[in.NumberOfFaces]);
-  res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see Finish)
+  res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see SetDefaults)
   const long long limit = std::numeric_limits<Idx>::max() - 16;
   const long long numPoints = std::max(0LL, in.NumberOfPoints);
   if (numSlots > limit / 3 || numPoints > limit - 3 * numSlots)
@@ -1410,73 +362,834 @@ bool CheckInput(const MeshInput& in, Result& res)
   return true;
 }
 
-// Phase 5 for every welded vertex with a fan, in parallel.
-void Kernel::ProcessVertices()
+//------------------------------------------------------------------------------
+struct Kernel
 {
-  if (AnyMulti)
+  const MeshInput& In;
+  Result& Res;
+  const Idx NumPoints;
+  const Idx NumSlots; // face corners
+  const long long* const Off;
+  const long long* const Conn;
+  CornerFrame* const Out;
+
+  // welding
+  std::vector<Idx> Rep; // welded id of a point, -1 if it contains a NaN
+  bool AnyNaNPoint = false;
+  Idx NumVerts = 0;
+
+  // triangles, in face order
+  static constexpr long long kFaceChunk = 4096;
+  std::vector<Idx> ChunkTriBase; // first triangle of each chunk of faces
+  Idx NumTris = 0;
+  bool AnyMulti = false; // some face has more than 3 corners
+  struct Triangle
   {
-    Pending.assign(3 * size_t(NumTris), PendingFrame{ {}, -1, 0 });
+    V3 S, T; // sign(det) Os/|Os|, sign(det) Ot/|Ot|
+    uint8_t Flags;
+  };
+  // One record per triangle, all the vertex phase reads of it (welded ids come from the points'
+  // table, WeldOf). Not value-initialised: the triangle pass writes every record.
+  std::unique_ptr<Triangle[]> Tris;
+  // Face corner of each triangle corner (3 per triangle); null when every face is a triangle
+  // stored in order, whose triangle corner c is face corner c.
+  std::unique_ptr<Idx[]> Slots;
+  // |Os|/|det| and |Ot|/|det| of each triangle, only when some face has more than 3 corners:
+  // they only decide how the several frames written to one face corner merge (Average).
+  std::unique_ptr<float[]> Mags;
+  long long NumDegenerate = 0, NumGWA = 0, NumSkipped = 0, NumInvalid = 0;
+
+  // fans: corners of non-degenerate triangles grouped by welded id, ascending
+  std::vector<Idx> FanStart, Fan;
+  std::vector<PendingFrame> Pending; // 3 per triangle if AnyMulti
+
+  // `res.Corners` holds one frame per face corner (CheckInput).
+  Kernel(const MeshInput& in, Result& res)
+    : In(in)
+    , Res(res)
+    , NumPoints(Idx(std::max(0LL, in.NumberOfPoints)))
+    , NumSlots(Idx(res.Corners.size()))
+    , Off(in.FaceOffsets)
+    , Conn(in.FaceConnectivity)
+    , Out(res.Corners.data())
+  {
   }
-  vtkSMPThreadLocal<Scratch> scratch;
-  vtkSMPTools::For(0,
-    vtkIdType(NumVerts),
-    1024,
-    [&](vtkIdType b, vtkIdType e)
-    {
-      Scratch& s = scratch.Local();
-      for (Idx v = Idx(b); v < Idx(e); ++v)
+
+  V3 Pos(size_t p) const { return V3::At(In.Positions, p); }
+  V3 Nrm(size_t p) const { return V3::At(In.Normals, p); }
+  float UV(size_t p, int k) const { return In.TCoords[2 * p + size_t(k)]; } // k: 0 u, 1 v
+  // point holding the values of a welded vertex
+  Idx PointOfWeld(Idx w) const { return w < NumPoints ? w : Idx(Conn[w - NumPoints]); }
+  Idx FanSize(Idx v) const { return FanStart[size_t(v) + 1] - FanStart[size_t(v)]; }
+  // face corner and welded vertex of triangle corner c = 3 t + i
+  Idx SlotOf(Idx c) const { return Slots ? Slots[size_t(c)] : c; }
+  std::array<Idx, 3> SlotsOf(Idx t) const
+  {
+    return { SlotOf(3 * t), SlotOf(3 * t + 1), SlotOf(3 * t + 2) };
+  }
+  // Welded id of corner c of a triangle that is not dead: its point's, or for a point with a NaN
+  // one of its own past the points.
+  Idx WeldOf(Idx c) const
+  {
+    const Idx slot = SlotOf(c);
+    const Idx w = Rep[size_t(Conn[slot])];
+    return w >= 0 ? w : NumPoints + slot;
+  }
+
+  bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
+  bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
+  /// visit(b, e, t) for every face that gives triangles, in parallel over chunks of faces:
+  /// [b, e) are its offsets and t its first triangle.
+  template<typename Visit>
+  void ForEachTriangulatedFace(Visit&& visit) const
+  {
+    vtkSMPTools::For(0,
+      vtkIdType(ChunkTriBase.size() - 1),
+      1,
+      [&](vtkIdType cb, vtkIdType ce)
       {
-        if (FanSize(v) > 0)
+        for (vtkIdType c = cb; c < ce; ++c)
         {
-          ProcessVertex(v, s);
+          Idx t = ChunkTriBase[size_t(c)];
+          const long long fe = std::min(In.NumberOfFaces, (c + 1) * kFaceChunk);
+          for (long long f = c * kFaceChunk; f < fe; ++f)
+          {
+            const long long b = Off[f], e = Off[f + 1];
+            if (FaceHasTriangles(b, e))
+            {
+              visit(b, e, t);
+              t += Idx(e - b - 2);
+            }
+          }
+        }
+      });
+  }
+
+  // The phases in order, with the progress (fraction done) reported before each; a request to stop
+  // leaves every corner at the default frame.
+  void Run(const std::function<bool(double)>& progress)
+  {
+    const std::pair<double, void (Kernel::*)()> phases[] = { { 0.0, &Kernel::Weld },
+      { 0.15, &Kernel::BuildTriangles },
+      { 0.4, &Kernel::BuildFans },
+      { 0.5, &Kernel::ProcessVertices },
+      { 0.9, &Kernel::FinishFaces } };
+    for (const auto& phase : phases)
+    {
+      Res.Aborted = progress && progress(phase.first);
+      if (Res.Aborted)
+      {
+        SetAllDefault(Res);
+        return;
+      }
+      (this->*phase.second)();
+    }
+    Res.NumberOfTriangles = NumTris;
+    Res.NumberOfDegenerateTriangles = NumDegenerate;
+    Res.NumberOfGroupWithAnyTriangles = NumGWA;
+    Res.NumberOfSkippedFaces = NumSkipped;
+    Res.NumberOfInvalidFaces = NumInvalid;
+    if (progress)
+    {
+      progress(1.0);
+    }
+  }
+
+  // Phase 1: points sorted by (hash, id); within a run of equal hashes the first point of every
+  // class of equal values (the smallest id) is the welded id of the class.
+  void Weld()
+  {
+    const Idx np = NumPoints;
+    Rep.resize(size_t(np));
+    std::vector<uint64_t> keys(static_cast<size_t>(np));
+    vtkSMPTools::For(0,
+      vtkIdType(np),
+      16384,
+      [&](vtkIdType b, vtkIdType e)
+      {
+        float values[8];
+        for (Idx p = Idx(b); p < Idx(e); ++p)
+        {
+          Rep[size_t(p)] = LoadPoint(In, p, values) ? -1 : p;
+          keys[size_t(p)] = uint64_t(HashPoint(values)) << 32 | uint64_t(p);
+        }
+      });
+    AnyNaNPoint = std::find(Rep.begin(), Rep.end(), -1) != Rep.end();
+    SortByUpperHalf(keys);
+    std::vector<Idx> heads;
+    float values[8], other[8];
+    const auto equalValues = [&](Idx h)
+    {
+      LoadPoint(In, h, other);
+      return std::equal(values, values + 8, other);
+    };
+    for (size_t r0 = 0, r1; r0 < keys.size(); r0 = r1)
+    {
+      r1 = r0 + 1;
+      while (r1 < keys.size() && keys[r1] >> 32 == keys[r0] >> 32)
+      {
+        ++r1;
+      }
+      if (r1 - r0 == 1)
+      {
+        continue; // a hash of its own: nothing to weld
+      }
+      heads.clear();
+      for (size_t j = r0; j < r1; ++j)
+      {
+        const Idx p = Idx(uint32_t(keys[j]));
+        if (Rep[size_t(p)] >= 0)
+        {
+          LoadPoint(In, p, values);
+          const auto head = std::find_if(heads.begin(), heads.end(), equalValues);
+          if (head == heads.end())
+          {
+            heads.push_back(p);
+          }
+          else
+          {
+            Rep[size_t(p)] = *head;
+          }
         }
       }
-    });
-}
+    }
+  }
 
-// The phases in order, with `aborted(fraction done)` asked between them; false when it says to
-// stop.
-template<typename Aborted>
-bool Kernel::Run(const Aborted& aborted)
-{
-  if (aborted(0.0))
+  // Phase 2: one sequential pass over the offsets gives the first triangle of each chunk of faces
+  // (ChunkTriBase), the faces that give none, and whether any face has more than 3 corners
+  // (AnyMulti) or any is not stored as corners (3f, 3f + 1, 3f + 2) (Slots needed); then the
+  // triangles are set up in parallel.
+  void BuildTriangles()
   {
+    bool inOrder = true;
+    for (long long f = 0; f < In.NumberOfFaces; ++f)
+    {
+      if (f % kFaceChunk == 0)
+      {
+        ChunkTriBase.push_back(NumTris);
+      }
+      const long long b = Off[f], e = Off[f + 1];
+      inOrder = inOrder && b == 3 * f && e == b + 3;
+      if (FaceHasTriangles(b, e))
+      {
+        NumTris += Idx(e - b - 2);
+        AnyMulti = AnyMulti || e - b > 3;
+      }
+      else
+      {
+        ++(FaceInRange(b, e) ? NumSkipped : NumInvalid);
+      }
+    }
+    ChunkTriBase.push_back(NumTris);
+    Tris.reset(new Triangle[size_t(NumTris)]);
+    Slots.reset(inOrder ? nullptr : new Idx[3 * size_t(NumTris)]);
+    Mags.reset(AnyMulti ? new float[2 * size_t(NumTris)] : nullptr);
+    std::atomic<long long> invalid(0);
+    ForEachTriangulatedFace(
+      [&](long long b, long long e, Idx t) { invalid += SetupFace(b, e, t); });
+    NumInvalid += invalid;
+  }
+
+  // The triangles of face [b, e) from triangle t on: one triangle, a quad split on a diagonal
+  // (SetupQuad), or a fan (0, k+1, k+2) of a larger polygon; a face with an id outside the points
+  // gives dead triangles; returns whether it does.
+  bool SetupFace(long long b, long long e, Idx t)
+  {
+    const Idx base = Idx(b), nTri = Idx(e - b - 2);
+    if (!std::all_of(
+          Conn + b, Conn + e, [this](long long id) { return id >= 0 && id < NumPoints; }))
+    {
+      std::fill(Tris.get() + t, Tris.get() + t + nTri, Triangle{ {}, {}, kDead }); // never in a fan
+      return true;
+    }
+    else if (nTri == 1)
+    {
+      SetupTriangle(t, { base, base + 1, base + 2 });
+    }
+    else if (nTri == 2)
+    {
+      SetupQuad(t, base);
+    }
+    else
+    {
+      // corner 0 is shared by all the fan's triangles, corners 1 and 2 by neighbours
+      for (Idx k = 0; k < nTri; ++k)
+      {
+        SetupTriangle(t + k, { base, base + k + 1, base + k + 2 });
+        Tris[size_t(t) + size_t(k)].Flags |=
+          uint8_t(kMulti0 | (k >= 1 ? kMulti0 << 1 : 0) | (k + 1 < nTri ? kMulti0 << 2 : 0));
+      }
+    }
     return false;
   }
-  Weld();
-  if (aborted(0.15))
+
+  // The two triangles t, t+1 of the quad with face corners base..base+3, split on the shorter UV
+  // diagonal (the position diagonal on an exact tie), and the reference's rule for them: two good
+  // triangles of different orientation take the one of the larger UV area (a GWA second triangle
+  // always takes the first's).
+  void SetupQuad(Idx t, Idx base)
   {
-    return false;
+    const long long* q = Conn + base;
+    const auto uvLength2 = [this](long long a, long long b)
+    {
+      const float du = UV(b, 0) - UV(a, 0), dv = UV(b, 1) - UV(a, 1);
+      return du * du + dv * dv;
+    };
+    const float uv02 = uvLength2(q[0], q[2]), uv13 = uvLength2(q[1], q[3]);
+    bool diag02 = uv02 < uv13;
+    if (!(uv02 < uv13) && !(uv13 < uv02))
+    {
+      const V3 e02 = Pos(q[2]) - Pos(q[0]), e13 = Pos(q[3]) - Pos(q[1]);
+      diag02 = !(e13.Dot(e13) < e02.Dot(e02));
+    }
+    const float detA = SetupTriangle(t, { base, base + 1, base + (diag02 ? 2 : 3) });
+    const float detB = SetupTriangle(t + 1, { base + (diag02 ? 0 : 1), base + 2, base + 3 });
+    uint8_t& fa = Tris[size_t(t)].Flags;
+    uint8_t& fb = Tris[size_t(t) + 1].Flags;
+    if (!((fa | fb) & kDegenerate) && ((fa ^ fb) & kOrient))
+    {
+      const bool firstWins = (fb & kGWA) || std::fabs(detA) >= std::fabs(detB);
+      uint8_t& dst = firstWins ? fb : fa;
+      const uint8_t src = firstWins ? fa : fb;
+      dst = uint8_t((dst & ~kOrient) | (src & kOrient));
+    }
+    // the diagonal's face corners are written by both triangles:
+    // 0-2: (0,1,2) corners 0,2 and (0,2,3) corners 0,1; 1-3: (0,1,3) corners 1,2 and (1,2,3) 0,2
+    const uint8_t m0 = kMulti0, m1 = uint8_t(kMulti0 << 1), m2 = uint8_t(kMulti0 << 2);
+    fa |= diag02 ? uint8_t(m0 | m2) : uint8_t(m1 | m2);
+    fb |= diag02 ? uint8_t(m0 | m1) : uint8_t(m0 | m2);
   }
-  BuildTriangles();
-  if (aborted(0.4))
+
+  // Triangle t with the face corners `slots` (reference: degenerate test, InitTriInfo): its
+  // degeneracy, orientation and GWA flags, unit directions and magnitudes. Returns its UV
+  // determinant.
+  float SetupTriangle(Idx t, const std::array<Idx, 3>& slots)
   {
-    return false;
+    if (Slots)
+    {
+      std::copy(slots.begin(), slots.end(), Slots.get() + 3 * size_t(t));
+    }
+    const long long a = Conn[slots[0]], b = Conn[slots[1]], c = Conn[slots[2]];
+    const V3 p0 = Pos(a), p1 = Pos(b), p2 = Pos(c);
+    const float t21x = UV(b, 0) - UV(a, 0), t21y = UV(b, 1) - UV(a, 1);
+    const float t31x = UV(c, 0) - UV(a, 0), t31y = UV(c, 1) - UV(a, 1);
+    const float det = t21x * t31y - t21y * t31x;
+    Triangle& tri = Tris[size_t(t)];
+    tri = Triangle{ { 0, 0, 0 }, { 0, 0, 0 }, kDegenerate };
+    if (p0 == p1 || p0 == p2 || p1 == p2)
+    {
+      return det;
+    }
+    tri.Flags = det > 0 ? uint8_t(kGWA | kOrient) : kGWA;
+    float magS = 0, magT = 0;
+    if (NotZero(det))
+    {
+      const V3 d1 = p1 - p0, d2 = p2 - p0;
+      const float sign = det > 0 ? 1.0f : -1.0f;
+      magS = SignedUnit(d1 * t31y - d2 * t21y, sign, tri.S) / std::fabs(det);
+      magT = SignedUnit(d1 * -t31x + d2 * t21x, sign, tri.T) / std::fabs(det);
+      if (NotZero(magS) && NotZero(magT))
+      {
+        tri.Flags = uint8_t(tri.Flags & ~kGWA);
+      }
+    }
+    if (Mags)
+    {
+      Mags[2 * size_t(t)] = magS;
+      Mags[2 * size_t(t) + 1] = magT;
+    }
+    return det;
   }
-  BuildFans();
-  if (aborted(0.5))
+
+  // Phase 3: counting sort of the corners of non-degenerate triangles by welded id; every fan lists
+  // its corners in ascending order. Counts the degenerate and GWA triangles.
+  void BuildFans()
   {
-    return false;
+    NumVerts = NumPoints + (AnyNaNPoint ? NumSlots : 0);
+    FanStart.assign(size_t(NumVerts) + 1, 0);
+    for (Idx t = 0; t < NumTris; ++t)
+    {
+      const uint8_t flags = Tris[size_t(t)].Flags;
+      NumDegenerate += (flags & kDegenerate) ? 1 : 0;
+      NumGWA += (flags & (kExcluded | kGWA)) == kGWA ? 1 : 0;
+      if (!(flags & kExcluded))
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          ++FanStart[size_t(WeldOf(3 * t + i)) + 1];
+        }
+      }
+    }
+    std::partial_sum(FanStart.begin(), FanStart.end(), FanStart.begin());
+    Fan.resize(size_t(FanStart.back()));
+    std::vector<Idx> pos(FanStart.begin(), FanStart.end() - 1);
+    for (Idx t = 0; t < NumTris; ++t)
+    {
+      if (!(Tris[size_t(t)].Flags & kExcluded))
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          Fan[size_t(pos[size_t(WeldOf(3 * t + i))]++)] = 3 * t + i;
+        }
+      }
+    }
   }
-  if (NumGWA > 0)
+
+  // The members of vertex v's fan, linked across shared edges.
+  void GatherFan(Idx v, std::vector<Member>& m) const
   {
-    AdoptGroupWithAnyOrientation();
+    const Idx* fan = Fan.data() + FanStart[size_t(v)];
+    m.resize(size_t(FanSize(v)));
+    for (size_t j = 0; j < m.size(); ++j)
+    {
+      const Idx c = fan[j], i = c % 3;
+      m[j].Corner = c;
+      m[j].Next = WeldOf(c - i + (i + 1) % 3);
+      m[j].Prev = WeldOf(c - i + (i + 2) % 3);
+      m[j].Flags = Tris[size_t(c / 3)].Flags;
+      m[j].MagS = Mags ? Mags[2 * size_t(c / 3)] : 0.0f;
+      m[j].MagT = Mags ? Mags[2 * size_t(c / 3) + 1] : 0.0f;
+    }
   }
-  ProcessVertices();
-  if (aborted(0.9))
+
+  // Phases 4 and 5: the orientation of GWA triangles, then every welded vertex with a fan, in
+  // parallel.
+  void ProcessVertices()
   {
-    return false;
+    if (NumGWA > 0)
+    {
+      AdoptGroupWithAnyOrientation();
+    }
+    if (AnyMulti)
+    {
+      Pending.assign(3 * size_t(NumTris), PendingFrame{ {}, -1, 0 });
+    }
+    vtkSMPThreadLocal<Scratch> scratch;
+    ForEachRange(NumVerts,
+      1024,
+      scratch,
+      [this](vtkIdType b, vtkIdType e, Scratch& s)
+      {
+        for (Idx v = Idx(b); v < Idx(e); ++v)
+        {
+          if (FanSize(v) > 0)
+          {
+            ProcessVertex(v, s);
+          }
+        }
+      });
   }
-  if (AnyMulti)
+
+  // The reference builds groups sequentially; the first group reaching a GWA triangle that has
+  // no group yet gives it its orientation. This replays that, restricted to vertices whose fan
+  // contains a GWA triangle (only their floods can reach one). Afterwards the groups everywhere
+  // are the same-orientation edge-connected components of each fan.
+  void AdoptGroupWithAnyOrientation()
   {
-    MergeMultiWriters();
+    const auto flags = [this](Idx c) { return Tris[size_t(c / 3)].Flags & (kExcluded | kGWA); };
+    std::vector<uint8_t> gwaVertex(size_t(NumVerts), 0);
+    for (Idx c = 0; c < 3 * NumTris; ++c)
+    {
+      if (flags(c) == kGWA)
+      {
+        gwaVertex[size_t(WeldOf(c))] = 1;
+      }
+    }
+    std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
+    Scratch scratch;
+    for (Idx c = 0; c < 3 * NumTris; ++c)
+    {
+      if (!flags(c) && gwaVertex[size_t(WeldOf(c))] && !assigned[size_t(c)])
+      {
+        FloodGroup(c, assigned, scratch);
+      }
+    }
   }
-  if (NumDegenerate > 0)
+
+  // The reference's group flood from corner c across the fan of its welded vertex's paired edges,
+  // through corners not assigned to a group yet: a GWA triangle none of whose corners has a group
+  // takes the seed's orientation, and the flood goes on through corners of that orientation.
+  void FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s)
   {
-    CopyDegenerates();
+    const Idx v = WeldOf(c);
+    std::vector<Member>& m = s.Members;
+    GatherFan(v, m);
+    PairEdges(m, s.Edges);
+    const Idx* fan = Fan.data() + FanStart[size_t(v)];
+    const uint8_t orient = Tris[size_t(c / 3)].Flags & kOrient;
+    assigned[size_t(c)] = 1;
+    s.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
+    while (!s.Stack.empty())
+    {
+      const Idx j = s.Stack.back();
+      s.Stack.pop_back();
+      for (const Idx q : m[size_t(j)].Link)
+      {
+        if (q < 0 || assigned[size_t(fan[q])])
+        {
+          continue;
+        }
+        const Idx tq = fan[q] / 3;
+        uint8_t& fq = Tris[size_t(tq)].Flags;
+        if ((fq & kGWA) && !assigned[3 * size_t(tq)] && !assigned[3 * size_t(tq) + 1] &&
+          !assigned[3 * size_t(tq) + 2])
+        {
+          fq = uint8_t((fq & ~kOrient) | orient);
+        }
+        if ((fq & kOrient) == orient)
+        {
+          assigned[size_t(fan[q])] = 1;
+          s.Stack.push_back(q);
+        }
+      }
+    }
   }
-  return true;
-}
+
+  // Groups of vertex v and their frames: each group's members, in triangle order, go to
+  // ResolveGroup.
+  void ProcessVertex(Idx v, Scratch& s)
+  {
+    std::vector<Member>& m = s.Members;
+    GatherFan(v, m);
+    PairEdges(m, s.Edges);
+    CornerMath(v, s);
+    const Idx numGroups = LabelGroups(m);
+    // members ordered by (group, triangle)
+    s.Order.resize(m.size());
+    std::iota(s.Order.begin(), s.Order.end(), 0);
+    if (numGroups == 1)
+    {
+      ResolveGroup(s, s.Order.data(), m.size());
+      return;
+    }
+    std::sort(s.Order.begin(),
+      s.Order.end(),
+      [&m](Idx a, Idx b)
+      { return std::tie(m[size_t(a)].Group, a) < std::tie(m[size_t(b)].Group, b); });
+    for (const Idx *b = s.Order.data(), *end = b + m.size(), *e; b != end; b = e)
+    {
+      e = std::find_if(b, end, [&](Idx j) { return m[size_t(j)].Group != m[size_t(*b)].Group; });
+      ResolveGroup(s, b, size_t(e - b));
+    }
+  }
+
+  // The reference's EvalTspace inputs at vertex v: the triangles' directions and the corners'
+  // edges projected on the plane perpendicular to the vertex normal and normalised, and the corner
+  // angle acos(e1.e2) (in double, rounded to float, as the reference). The edge to a neighbour is
+  // the same for the two members sharing it: a member's edge to Prev is its partner's (Link[1])
+  // edge to Next, projected once.
+  void CornerMath(Idx v, Scratch& s) const
+  {
+    const Idx pv = PointOfWeld(v);
+    const V3 n = Nrm(pv), p = Pos(pv);
+    const size_t k = s.Members.size();
+    // The vectors to project, in separate x, y, z arrays so that the projection loop vectorises:
+    // [0, k) S of each member, [k, 2k) T, [2k, 3k) the edge to Next, then the edges to Prev of
+    // members whose in-edge is unpaired (a paired one is its partner's edge to Next).
+    s.XYZ.resize(12 * k);
+    float *x = s.XYZ.data(), *y = x + 4 * k, *z = y + 4 * k;
+    const auto set = [=](size_t row, const V3& w)
+    {
+      x[row] = w.x;
+      y[row] = w.y;
+      z[row] = w.z;
+    };
+    const auto get = [=](size_t row) { return V3{ x[row], y[row], z[row] }; };
+    size_t rows = 3 * k;
+    for (size_t j = 0; j < k; ++j)
+    {
+      const Member& a = s.Members[j];
+      const Triangle& tri = Tris[size_t(a.Corner / 3)];
+      set(j, tri.S);
+      set(k + j, tri.T);
+      set(2 * k + j, Pos(PointOfWeld(a.Next)) - p);
+      if (a.Link[1] < 0)
+      {
+        set(rows++, Pos(PointOfWeld(a.Prev)) - p);
+      }
+    }
+    for (size_t j = 0; j < rows; ++j)
+    {
+      const V3 w = get(j);
+      set(j, (w - n * n.Dot(w)).Normalized()); // w projected on the tangent plane, normalised
+    }
+    // the cosines of all members first, then the acos calls
+    for (size_t j = 0, extra = 3 * k; j < k; ++j)
+    {
+      Member& a = s.Members[j];
+      a.S = get(j);
+      a.T = get(k + j);
+      const float c = get(a.Link[1] >= 0 ? 2 * k + size_t(a.Link[1]) : extra++).Dot(get(2 * k + j));
+      a.Angle = c > 1 ? 1 : (c < -1 ? -1 : c); // NaN stays NaN
+    }
+    for (Member& a : s.Members)
+    {
+      a.Angle = (a.Flags & kGWA) ? 0.0f : float(std::acos(double(a.Angle)));
+    }
+  }
+
+  // Frames of one group (members in ascending triangle order). Its seed is the first non-GWA
+  // member; a group of GWA triangles only is never seeded and its corners stay default.
+  void ResolveGroup(Scratch& s, const Idx* members, size_t count)
+  {
+    const Idx* seed = std::find_if(
+      members, members + count, [&s](Idx j) { return !(s.Members[size_t(j)].Flags & kGWA); });
+    if (seed == members + count)
+    {
+      return;
+    }
+    const Member& first = s.Members[size_t(*seed)];
+    const uint8_t orient = first.Flags & kOrient;
+    // Sub-groups (threshold cos = -1) split two non-GWA triangles of different faces only if
+    // their projected directions have cos <= -1 (or NaN). A sufficient test that none split:
+    // every member within 89.4 degrees of the seed (cos > 0.01), so every pair is within 179
+    // degrees (cos > -0.9998, far from -1 even with float rounding).
+    const bool single = std::all_of(members,
+      members + count,
+      [&](Idx j)
+      {
+        const Member& a = s.Members[size_t(j)];
+        return (a.Flags & kGWA) || (first.S.Dot(a.S) > 0.01f && first.T.Dot(a.T) > 0.01f);
+      });
+    if (!single)
+    {
+      GeneralSubgroups(s, members, count, orient, first.Corner);
+      return;
+    }
+    const Frame f = Eval(s, members, count);
+    for (size_t j = 0; j < count; ++j)
+    {
+      Write(s.Members[size_t(members[j])], f, orient, first.Corner);
+    }
+  }
+
+  // Angle-weighted average of the non-GWA members listed, in list order.
+  Frame Eval(const Scratch& s, const Idx* members, size_t count) const
+  {
+    Frame r{};
+    float angleSum = 0;
+    for (size_t j = 0; j < count; ++j)
+    {
+      const Member& a = s.Members[size_t(members[j])];
+      if (a.Flags & kGWA)
+      {
+        continue;
+      }
+      r.S = r.S + a.S * a.Angle;
+      r.T = r.T + a.T * a.Angle;
+      r.MagS += a.Angle * a.MagS;
+      r.MagT += a.Angle * a.MagT;
+      angleSum += a.Angle;
+    }
+    r.S = r.S.Normalized();
+    r.T = r.T.Normalized();
+    if (angleSum > 0)
+    {
+      r.MagS /= angleSum;
+      r.MagT /= angleSum;
+    }
+    return r;
+  }
+
+  // The reference's sub-groups: the list of member f holds every member t with (either GWA) or
+  // (same face) or (cosS > -1 and cosT > -1); equal lists share a frame.
+  void GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx seed)
+  {
+    s.Subgroups.clear();
+    for (size_t a = 0; a < count; ++a)
+    {
+      const Member& mf = s.Members[size_t(members[a])];
+      s.List.clear();
+      for (size_t j = 0; j < count; ++j)
+      {
+        const Member& mt = s.Members[size_t(members[j])];
+        if (((mf.Flags | mt.Flags) & kGWA) || SameFace(mf.Corner / 3, mt.Corner / 3) ||
+          (mf.S.Dot(mt.S) > -1.0f && mf.T.Dot(mt.T) > -1.0f))
+        {
+          s.List.push_back(members[j]);
+        }
+      }
+      auto sub = std::find_if(s.Subgroups.begin(),
+        s.Subgroups.end(),
+        [&s](const std::pair<std::vector<Idx>, Frame>& g) { return g.first == s.List; });
+      if (sub == s.Subgroups.end())
+      {
+        sub = s.Subgroups.emplace(sub, s.List, Eval(s, s.List.data(), s.List.size()));
+      }
+      Write(mf, sub->second, orient, seed);
+    }
+  }
+
+  // Triangles of one face share a face corner; different faces never do.
+  bool SameFace(Idx ta, Idx tb) const
+  {
+    const std::array<Idx, 3> a = SlotsOf(ta), b = SlotsOf(tb);
+    return ta == tb || std::find_first_of(a.begin(), a.end(), b.begin(), b.end()) != a.end();
+  }
+
+  void Write(const Member& m, const Frame& f, uint8_t orient, Idx seed)
+  {
+    if (m.Flags & (kMulti0 << (m.Corner % 3)))
+    {
+      Pending[size_t(m.Corner)] = PendingFrame{ f, seed, orient }; // merged in MergeMultiWriters
+    }
+    else
+    {
+      Out[size_t(SlotOf(m.Corner))] = ToCornerFrame(f.S, orient);
+    }
+  }
+
+  // Phase 6: face corners with several writers, those of degenerate triangles, and the default
+  // frames.
+  void FinishFaces()
+  {
+    if (AnyMulti)
+    {
+      MergeMultiWriters();
+    }
+    if (NumDegenerate > 0)
+    {
+      CopyDegenerates();
+    }
+    SetDefaults();
+  }
+
+  // Face corners written by several triangles: the reference's pairwise average, applied in
+  // group creation order (then triangle order); the sign is that of the last group.
+  void MergeMultiWriters()
+  {
+    // {face corner, group seed, triangle corner} of each frame to merge, sorted in that order
+    vtkSMPThreadLocal<std::vector<std::array<Idx, 3>>> lists;
+    ForEachTriangulatedFace(
+      [&](long long b, long long e, Idx t)
+      {
+        const Idx nTri = Idx(e - b - 2);
+        if (nTri == 1 || (Tris[size_t(t)].Flags & kDead))
+        {
+          return;
+        }
+        std::vector<std::array<Idx, 3>>& list = lists.Local();
+        list.clear();
+        for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
+        {
+          if ((Tris[size_t(corner / 3)].Flags & (kMulti0 << (corner % 3))) &&
+            Pending[size_t(corner)].Seed >= 0)
+          {
+            list.push_back({ SlotOf(corner), Pending[size_t(corner)].Seed, corner });
+          }
+        }
+        std::sort(list.begin(), list.end());
+        Frame f{};
+        for (size_t r = 0; r < list.size(); ++r)
+        {
+          // the frames merged so far; a face corner keeps its last, complete merge
+          const PendingFrame& pf = Pending[size_t(list[r][2])];
+          f = r > 0 && list[r - 1][0] == list[r][0] ? Average(f, pf.F) : pf.F;
+          Out[size_t(list[r][0])] = ToCornerFrame(f.S, pf.Orient);
+        }
+      });
+  }
+
+  // Degenerate triangles copy the frame of the first good corner with the same welded vertex;
+  // in a quad with one degenerate triangle the corner missing from the good triangle copies the
+  // good triangle's corner with the same position. Sources are always corners of good
+  // triangles, which this pass never writes.
+  void CopyDegenerates()
+  {
+    vtkSMPThreadLocal<std::vector<uint8_t>> coveredSlots;
+    ForEachTriangulatedFace(
+      [&](long long b, long long e, Idx t)
+      {
+        const long long n = e - b;
+        const Idx nTri = Idx(n - 2);
+        const Triangle* tri = Tris.get() + t;
+        if ((tri[0].Flags & kDead) ||
+          std::none_of(tri, tri + nTri, [](const Triangle& u) { return u.Flags & kDegenerate; }))
+        {
+          return;
+        }
+        if (n == 4 && !(tri[0].Flags & tri[1].Flags & kDegenerate))
+        {
+          // a quad of which exactly one triangle is degenerate
+          CopyToQuadCorner(Idx(b), t);
+          return;
+        }
+        // a degenerate fan triangle only fills face corners no good triangle covers
+        std::vector<uint8_t>& covered = coveredSlots.Local();
+        covered.assign(size_t(n), 0);
+        for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
+        {
+          covered[size_t(SlotOf(corner) - b)] |= !(Tris[size_t(corner / 3)].Flags & kDegenerate);
+        }
+        for (Idx corner = 3 * t; corner < 3 * (t + nTri); ++corner)
+        {
+          const Idx slot = SlotOf(corner);
+          const Idx w = WeldOf(corner);
+          if ((Tris[size_t(corner / 3)].Flags & kDegenerate) && !covered[size_t(slot - b)] &&
+            FanSize(w) > 0)
+          {
+            Out[size_t(slot)] = Out[size_t(SlotOf(Fan[size_t(FanStart[size_t(w)])]))];
+          }
+        }
+      });
+  }
+
+  // In the quad of face corners from b on, split into triangles t and t + 1 of which one is
+  // degenerate: the face corner missing from the good triangle copies the frame of the good
+  // triangle's corner at the same position, if it has one.
+  void CopyToQuadCorner(Idx b, Idx t)
+  {
+    const std::array<Idx, 3> gs = SlotsOf(t + ((Tris[size_t(t)].Flags & kDegenerate) ? 1 : 0));
+    Idx missing = b;
+    while (missing == gs[0] || missing == gs[1] || missing == gs[2])
+    {
+      ++missing;
+    }
+    const V3 dst = Pos(Conn[missing]);
+    const auto src =
+      std::find_if(gs.begin(), gs.end(), [&](Idx slot) { return Pos(Conn[slot]) == dst; });
+    if (src != gs.end())
+    {
+      Out[size_t(missing)] = Out[size_t(*src)];
+    }
+  }
+
+  // Corners never written (Sign 0) or not finite get the default frame, and are counted.
+  void SetDefaults()
+  {
+    struct Counts
+    {
+      long long Defaults = 0, NonFinite = 0, Cancelled = 0;
+    };
+    vtkSMPThreadLocal<Counts> counts;
+    ForEachRange(NumSlots,
+      65536,
+      counts,
+      [this](vtkIdType b, vtkIdType e, Counts& n)
+      {
+        for (CornerFrame* o = Out + b; o != Out + e; ++o)
+        {
+          const bool unwritten = o->Sign == 0.0f;
+          if (unwritten || !V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }.Finite())
+          {
+            *o = DefaultCornerFrame;
+            ++n.Defaults;
+            n.NonFinite += unwritten ? 0 : 1;
+          }
+          else
+          {
+            n.Cancelled += IsCancelled(*o) ? 1 : 0;
+          }
+        }
+      });
+    for (const Counts& n : counts)
+    {
+      Res.NumberOfDefaultCorners += n.Defaults;
+      Res.NumberOfNonFiniteCorners += n.NonFinite;
+      Res.NumberOfCancelledCorners += n.Cancelled;
+    }
+  }
+};
 
 } // namespace
 
@@ -1484,30 +1197,9 @@ bool Kernel::Run(const Aborted& aborted)
 Result ComputeMikkTSpace(const MeshInput& in, const std::function<bool(double)>& progress)
 {
   Result res;
-  if (!CheckInput(in, res))
+  if (CheckInput(in, res))
   {
-    return res;
-  }
-  Kernel K(in, res);
-  const auto aborted = [&](double p)
-  {
-    res.Aborted = progress && progress(p);
-    return res.Aborted;
-  };
-  if (!K.Run(aborted))
-  {
-    SetAllDefault(res);
-    return res;
-  }
-  K.Finish(res);
-  res.NumberOfTriangles = K.NumTris;
-  res.NumberOfDegenerateTriangles = K.NumDegenerate;
-  res.NumberOfGroupWithAnyTriangles = K.NumGWA;
-  res.NumberOfSkippedFaces = K.NumSkipped;
-  res.NumberOfInvalidFaces = K.NumInvalid;
-  if (progress)
-  {
-    progress(1.0);
+    Kernel(in, res).Run(progress);
   }
   return res;
 }
