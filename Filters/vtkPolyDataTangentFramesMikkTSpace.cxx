@@ -52,7 +52,7 @@ bool SameFrame(const CornerFrame& a, const CornerFrame& b)
   return x[0] == y[0] && x[1] == y[1];
 }
 
-/// Whether a kernel frame is a fallback: the default, or a cancelled tangent (mikk::IsCancelled).
+/// Whether a kernel frame has the default's bits or a cancelled tangent (mikk::IsCancelled).
 bool IsFallback(const CornerFrame& f)
 {
   return SameFrame(f, mikk::DefaultCornerFrame) || IsCancelled(f);
@@ -554,20 +554,6 @@ void CellSums(const Surface& s,
   }
 }
 
-/// The kernel corners of kept points (non-zero in `kept`; null: none) whose frame is a fallback:
-/// those points keep their supplied frames, so these corners are not counted.
-long long KeptFallbackCorners(const Surface& s,
-  const std::vector<CornerFrame>& frames,
-  const unsigned char* kept)
-{
-  long long count = 0;
-  for (size_t c = 0; kept && c < frames.size(); ++c)
-  {
-    count += kept[s.FaceConnectivity[c]] && IsFallback(frames[c]) ? 1 : 0;
-  }
-  return count;
-}
-
 /**
  * Every output point's frame: the kernel frame Assignment gives it (the default for points no
  * corner with a frame reaches), made to meet the contract with the normal of the input point it
@@ -694,8 +680,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
   this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
-  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners -
-    KeptFallbackCorners(surface, result.Corners, block.KeptPoints);
+  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
