@@ -757,6 +757,63 @@ TEST(MikkTSpaceKernel, LargeAndSmallFansPairTheirEdges)
   }
 }
 
+// Copies [first, first + count) of a star around one apex (point 0): copy i has three triangles
+// on one edge (apex, x_i), two along apex->x_i and the third, on the other side, along x_i->apex,
+// at different heights, so that each triangle has its own tangent. The reference pairs the third
+// with the first (the first later half-edge of opposite direction still unpaired), which groups
+// them apart from the second at the apex. The copies share only the apex.
+Mesh NonManifoldStar(int first, int count)
+{
+  // Texture coordinates that follow the height too, so that the triangles' tangents differ on
+  // the apex's tangent plane.
+  Mesh m;
+  m.AddPoint({ 0, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  const auto add = [&](float x, float y, float z)
+  {
+    return m.AddPoint(
+      { x, y, z }, { 0, 0, 1 }, { 0.5f + 0.2f * x + 0.15f * z, 0.5f + 0.2f * y - 0.1f * z });
+  };
+  for (int i = first; i < first + count; ++i)
+  {
+    const float a = 6.2831853f * static_cast<float>(i) / 40.0f;
+    const float c = std::cos(a), s = std::sin(a);
+    const long long x = add(c, s, 0.1f);
+    // left of apex->x at two heights, and right of it
+    const long long left1 = add(0.6f * c - 0.3f * s, 0.6f * s + 0.3f * c, 0.3f);
+    const long long left2 = add(0.4f * c - 0.5f * s, 0.4f * s + 0.5f * c, -0.2f);
+    const long long right = add(0.5f * c + 0.4f * s, 0.5f * s - 0.4f * c, 0.4f);
+    m.AddFace({ 0, x, left1 });
+    m.AddFace({ 0, x, left2 });
+    m.AddFace({ x, 0, right });
+  }
+  return m;
+}
+
+// The apex of 12 copies has 36 corners, past the 32 up to which the kernel pairs a fan's edges by
+// scanning: it pairs them through a sorted sweep. Each copy alone is paired by scanning. Groups
+// of different copies cannot join (they share no edge), so every corner must come out the same,
+// bit for bit, either way.
+TEST(MikkTSpaceKernel, NonManifoldEdgesPairAlikeInLargeAndSmallFans)
+{
+  constexpr int copies = 12;
+  const mikk::Result all = RunKernel(NonManifoldStar(0, copies));
+  ASSERT_EQ(all.Corners.size(), static_cast<size_t>(9 * copies));
+  int differing = 0;
+  for (int i = 0; i < copies; ++i)
+  {
+    const mikk::Result one = RunKernel(NonManifoldStar(i, 1));
+    ASSERT_EQ(one.Corners.size(), 9u);
+    for (size_t c = 0; c < 9; ++c)
+    {
+      differing += BitEqual(all.Corners[9 * static_cast<size_t>(i) + c], one.Corners[c]) ? 0 : 1;
+    }
+    // The apex's first and third corners share a group, the second is alone.
+    EXPECT_TRUE(BitEqual(one.Corners[0], one.Corners[7])) << "copy " << i;
+    EXPECT_FALSE(BitEqual(one.Corners[0], one.Corners[3])) << "copy " << i;
+  }
+  EXPECT_EQ(differing, 0);
+}
+
 // Point ids outside [0, NumberOfPoints) skip the face (default corners), leaving the rest of
 // the mesh as if the face were absent.
 TEST(MikkTSpaceKernel, OutOfRangeIds)
