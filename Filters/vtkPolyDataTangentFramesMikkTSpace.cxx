@@ -52,12 +52,6 @@ bool SameFrame(const CornerFrame& a, const CornerFrame& b)
   return x[0] == y[0] && x[1] == y[1];
 }
 
-/// Whether a kernel frame has the default's bits or a cancelled tangent (mikk::IsCancelled).
-bool IsFallback(const CornerFrame& f)
-{
-  return SameFrame(f, mikk::DefaultCornerFrame) || IsCancelled(f);
-}
-
 /// |T.N| (unit N) allowed before a kernel tangent is made perpendicular: it keeps the
 /// reference's tangents where real files' normals are off unit length by more than float rounding,
 /// and corrects the default (1,0,0) and clearly non-unit normals (docs/mikktspace.md).
@@ -541,7 +535,7 @@ void CellSums(const Surface& s,
     for (long long c = cb; c < ce; ++c)
     {
       const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!IsFallback(cf))
+      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
       {
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
