@@ -98,12 +98,12 @@ KeptFrameWriter NewKeptFrameWriter(vtkPointData* pd, bool bitangents, vtkIdType 
 }
 
 /**
- * The frame arrays ComputeBlock wrote to `output` from `input` (WithSourceIds), and the input
- * point of every output point in `sourceIds`, which leaves the output. False when there are none
- * to write into: after an error ComputeBlock passes the input through (its arrays, shared: never
- * written) and after an abort the output is empty.
+ * Points `out` at the frame arrays ComputeBlock wrote to `output` from `input` (WithSourceIds),
+ * and puts the input point of every output point in `sourceIds`, which leaves the output. False
+ * when there are none to write into: after an error ComputeBlock passes the input through (its
+ * arrays, shared: never written) and after an abort the output is empty.
  */
-bool ComputedFrameWriter(vtkPolyData* input,
+bool FindComputedFrames(vtkPolyData* input,
   vtkPolyData* output,
   bool bitangents,
   KeptFrameWriter& out,
@@ -222,7 +222,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
       kept.begin(),
       [replaced](unsigned char defects) { return (defects & replaced) == 0; });
     compute(WithSourceIds(input), kept.data());
-    if (!ComputedFrameWriter(input, output, this->ComputeBitangents, out, sourceIds))
+    if (!FindComputedFrames(input, output, this->ComputeBitangents, out, sourceIds))
     {
       return;
     }
