@@ -73,14 +73,15 @@ void vtkNormalMappedSurfaceRepresentation::SetTangentSignsArray(const char* name
   this->Modified();
 }
 
-void vtkNormalMappedSurfaceRepresentation::SetTangentArray(const char* name)
+void vtkNormalMappedSurfaceRepresentation::SetTangentsArray(const char* name)
 {
-  // Not the superclass's: it would make the array the active tangents at every update, which VTK
-  // refuses for 4 components with a warning. RequestData decides, seeing the data.
-  this->TangentArrayName = name ? name : "";
+  // Not the superclass's SetTangentArray: it would make the array the active tangents at every
+  // update, which VTK refuses for 4 components with a warning. RequestData decides, seeing the
+  // data.
+  this->TangentsArrayName = name ? name : "";
   for (int which : { 0, 1 })
   {
-    this->NormalMapper(which)->SetTangentsArrayName(this->TangentArrayName);
+    this->NormalMapper(which)->SetTangentsArrayName(this->TangentsArrayName);
   }
   this->MarkModified();
 }
@@ -123,12 +124,12 @@ int vtkNormalMappedSurfaceRepresentation::RequestData(vtkInformation* request,
   // itself); "" withdraws a name where null would be ignored. The mappers read the array by name
   // in any case.
   const bool refused = inputVector[0]->GetNumberOfInformationObjects() == 1 &&
-    RefusedAsTangents(vtkDataObject::GetData(inputVector[0], 0), this->TangentArrayName);
+    RefusedAsTangents(vtkDataObject::GetData(inputVector[0], 0), this->TangentsArrayName);
   this->MultiBlockMaker->SetInputArrayToProcess(2,
     0,
     0,
     vtkDataObject::FIELD_ASSOCIATION_POINTS,
-    refused ? "" : this->TangentArrayName.c_str());
+    refused ? "" : this->TangentsArrayName.c_str());
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 

@@ -16,8 +16,9 @@
  * The normal texture is ParaView's own NormalTexture (SetNormalTexture), whose panel widget is
  * enabled only for data with tangents, or this representation's SetNormalMapTexture, offered for
  * any data with texture coordinates. When both are set, SetNormalMapTexture's wins. The tangent
- * array is ParaView's SetTangentArray, which the mappers read by name: 3 components, or 4 with
- * the sign in w (glTF's TANGENT), which ParaView cannot make the active tangents.
+ * array is SetTangentsArray's, which the mappers read by name: 3 components, or 4 with the sign
+ * in w (glTF's TANGENT), which ParaView cannot make the active tangents. ParaView's own
+ * SetTangentArray is not read: the plugin's proxy copies its value into SetTangentsArray.
  * Each texture has its strength: ParaView's NormalScale, and SetNormalMapScale.
  *
  * The LOD mapper (interactive rendering of large data) is ours too. The back-face mappers
@@ -48,10 +49,13 @@ public:
   void SetFrameSource(int source);
   /// Point array with the handedness signs (empty or null: none, the tangents are unsigned).
   void SetTangentSignsArray(const char* name);
-  /// ParaView's TangentArray: the mappers' TangentsArrayName (null or empty: the active
-  /// tangents), so that 4-component tangents are read too; ParaView makes it the active
-  /// tangents of the rendered data only when it has 3 components (RequestData).
-  void SetTangentArray(const char* name) override;
+  /// The point tangents: the mappers' TangentsArrayName (null or empty: the active tangents),
+  /// 3 or 4 components; ParaView makes the array the active tangents of the rendered data only
+  /// when it has 3 components (RequestData).
+  void SetTangentsArray(const char* name);
+  /// ParaView's TangentArray, ignored: the proxy copies it into SetTangentsArray, and the
+  /// superclass would make a 4-component array the active tangents, which VTK refuses.
+  void SetTangentArray(const char*) override {}
 
   /// ParaView's NormalTexture property.
   void SetNormalTexture(vtkTexture* texture) override;
@@ -80,7 +84,7 @@ private:
   /// Gives the actor's property the strength of the texture in effect.
   void ApplyNormalScale();
 
-  std::string TangentArrayName;
+  std::string TangentsArrayName;
   vtkSmartPointer<vtkTexture> ParaViewNormalTexture;
   vtkSmartPointer<vtkTexture> NormalMapTexture;
   double ParaViewNormalScale = 1.0;
