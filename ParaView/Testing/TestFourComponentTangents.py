@@ -51,17 +51,8 @@ def tangents_list(display, name="TangentsArray"):
     return list(prop.Available) if prop is not None else None
 
 
-def show(source):
-    """`source` as Normal Mapped Surface with the rivets, its frame from point tangents (the
-    derivative frame would shade these flat quads right by itself)."""
-    display = nm.show_mirrored(source, view, REPRESENTATION, texture, "NormalMapTexture")
-    display.NormalMapFrameSource = "Point tangents"
-    Render(view)
-    return display
-
-
 # Data without tangents: the list's default is None, not another 3-component array (Normals).
-plain = show(reader)
+plain = nm.show_mirrored(reader, view, REPRESENTATION, texture, "NormalMapTexture")
 offered = tangents_list(plain)
 check(offered is not None, "the representation has a Tangents list (TangentsArray)")
 if offered is None:
@@ -72,8 +63,11 @@ check(plain.TangentsArray == "None", "without tangents the default is None (%r)"
 Hide(reader, view)
 
 # 3 components + signs (the filter's output): the default is the active tangents, and they give
-# the reference image.
-three = show(frames)
+# the reference image. The frame is the point tangents' throughout: the derivative frame would
+# shade these flat quads right by itself.
+three = nm.show_mirrored(frames, view, REPRESENTATION, texture, "NormalMapTexture")
+three.NormalMapFrameSource = "Point tangents"
+Render(view)
 check(three.TangentsArray == "Tangents", "with the filter's tangents the default is Tangents (%r)"
       % three.TangentsArray)
 reference, _, _ = nm.measure_symmetry(view, "Tangents + TangentSigns", check, True, "reference")
@@ -87,7 +81,7 @@ Hide(frames, view)
 
 # 4 components: offered in this list, not in ParaView's Tangent Array list (which stays the
 # Surface's, 3 components); arrays of other sizes are not offered; the default is None.
-four = show(packed)
+four = nm.show_mirrored(packed, view, REPRESENTATION, texture, "NormalMapTexture")
 offered = tangents_list(four)
 print("4-component data: Tangents offers %s, ParaView's Tangent Array offers %s, %r chosen"
       % (offered, tangents_list(four, "SelectTangentArray"), four.TangentsArray))
@@ -102,6 +96,7 @@ check(four.TangentsArray == "None", "with 4-component tangents only, the default
 # Chosen in the list, as the panel chooses: the mapper reads it, and it shades as the reference.
 before = four.SelectTangentArray
 four.TangentsArray = "TANGENT"
+four.NormalMapFrameSource = "Point tangents"
 Render(view)
 chosen, _, _ = nm.measure_symmetry(view, "TANGENT chosen", check, True, "tangent")
 fraction, largest = nm.difference(chosen, reference, BOUND)
@@ -126,9 +121,11 @@ fraction, _ = nm.difference(by_script, chosen, 1)
 check(fraction >= SAME_FRACTION, "and draws the same image (%.3f%%)" % (100 * fraction))
 
 # A saved state keeps the choice made in the list while ParaView's Tangent Array names another
-# array (same process and renderer: within 1 level).
+# array. ReversedTANGENT, whose image no other frame gives (TANGENT's is also the derivative
+# frame's, which the mapper falls back to without tangents). Same process and renderer: within
+# 1 level.
 four.SelectTangentArray = "None"
-four.TangentsArray = "TANGENT"
+four.TangentsArray = "ReversedTANGENT"
 Render(view)
 before, _, _ = nm.capture(view, "before-state")
 state = os.path.join(nm.WORK, "four-component-tangents.pvsm")
@@ -137,7 +134,7 @@ ResetSession()
 LoadState(state)
 reloaded_view = GetActiveViewOrCreate("RenderView")
 reloaded = GetDisplayProperties(FindSource("ProgrammableFilter1"), reloaded_view)
-check(reloaded.TangentsArray == "TANGENT" and reloaded.SelectTangentArray == "None",
+check(reloaded.TangentsArray == "ReversedTANGENT" and reloaded.SelectTangentArray == "None",
       "the state keeps Tangents and Tangent Array (%r, %r)"
       % (reloaded.TangentsArray, reloaded.SelectTangentArray))
 Render(reloaded_view)
