@@ -502,11 +502,12 @@ void Assign(const Surface& s,
 
 /**
  * Cell c's sums for NewCellTangents (polygons, then strips) from the kernel's corner frames: the
- * tangents of its faces' corners (default and cancelled ones left out), and its faces' area
- * vectors (the cross products of their fan triangles).
+ * tangents of its faces' corners of CornerKind::Computed (neither left at the default nor
+ * cancelled, whatever their bits), and its faces' area vectors (the cross products of their fan
+ * triangles).
  */
 void CellSums(const Surface& s,
-  const std::vector<CornerFrame>& frames,
+  const mikk::Result& kernel,
   const float* positions,
   vtkIdType cell,
   glm::dvec3& t,
@@ -534,9 +535,9 @@ void CellSums(const Surface& s,
     }
     for (long long c = cb; c < ce; ++c)
     {
-      const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
+      if (kernel.CornerKinds[static_cast<size_t>(c)] == mikk::CornerKind::Computed)
       {
+        const CornerFrame& cf = kernel.Corners[static_cast<size_t>(c)];
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
     }
@@ -596,7 +597,7 @@ void WritePointFrames(float signFactor,
 /**
  * The output, with the filter's settings: the input with the split points appended (their point
  * data copied, the computed normals too) and the corners of their frames re-pointed, the point
- * frames, and the cell tangents when asked for. The corner frames are freed once the cell
+ * frames, and the cell tangents when asked for. The kernel's corners are freed once the cell
  * tangents are made, before the point data is copied, so that their memory can hold the copies.
  */
 template<typename OutArray>
@@ -605,7 +606,7 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   vtkPolyData* output,
   vtkDataArray* computedNormals,
   const Surface& s,
-  std::vector<CornerFrame>& frames,
+  mikk::Result& kernel,
   const float* positions,
   const ContractNormals& contractNormals,
   const Assignment& a)
@@ -616,9 +617,10 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   if (filter->GetComputeCellTangents())
   {
     cellTangents = NewCellTangents<OutArray>(input,
-      [&](vtkIdType c, glm::dvec3& t, glm::dvec3& n) { CellSums(s, frames, positions, c, t, n); });
+      [&](vtkIdType c, glm::dvec3& t, glm::dvec3& n) { CellSums(s, kernel, positions, c, t, n); });
   }
-  std::vector<CornerFrame>().swap(frames);
+  std::vector<CornerFrame>().swap(kernel.Corners);
+  std::vector<mikk::CornerKind>().swap(kernel.CornerKinds);
   const OutputFrames<OutArray> arrays(numIn + numSplits, filter->GetComputeBitangents());
   WritePointFrames(
     filter->GetGLTFSignConvention() ? -1.0f : 1.0f, contractNormals, a, numIn, arrays);
@@ -692,7 +694,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     block.Output,
     computedNormals ? normalArray : nullptr,
     surface,
-    result.Corners,
+    result,
     positions,
     contractNormals,
     assignment);
