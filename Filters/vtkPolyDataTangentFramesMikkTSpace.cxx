@@ -550,6 +550,26 @@ void CellSums(const Surface& s,
 }
 
 /**
+ * The kernel corners that get the fallback frame, those the kernel leaves at its default or
+ * whose tangents cancel, but for the corners of kept points (non-zero in `kept`; null: none),
+ * which keep their supplied frames.
+ */
+vtkIdType FallbackCorners(const Surface& s,
+  const std::vector<mikk::CornerKind>& kinds,
+  const unsigned char* kept)
+{
+  vtkIdType count = 0;
+  for (size_t c = 0; c < kinds.size(); ++c)
+  {
+    if (kinds[c] != mikk::CornerKind::Computed && !(kept && kept[s.FaceConnectivity[c]]))
+    {
+      ++count;
+    }
+  }
+  return count;
+}
+
+/**
  * Every output point's frame: the kernel frame Assignment gives it (the default for points no
  * corner with a frame reaches), made to meet the contract with the normal of the input point it
  * comes from (ContractFrame), its sign times `signFactor` (-1 for glTF's convention), and its
@@ -676,7 +696,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
   this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
-  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
+  this->NumberOfFallbackPoints += FallbackCorners(surface, result.CornerKinds, block.KeptPoints);
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);

@@ -1301,6 +1301,58 @@ TEST(PolyDataTangentFramesMikkTSpace, CellTangentsIncludeComputedCornersWithTheD
   }
 }
 
+// With supplied tangents kept (KEEP, KEEP_VALID), the fallback count leaves out the face corners
+// of the kept points, as the weighted methods leave out kept points. A point whose frame is
+// computed counts by what its corners are, not by their bits: here computed corners with the
+// default's bits (not counted) beside a piece of zero texture-coordinate area, whose corners the
+// kernel leaves at the default (counted where their point is not kept).
+TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutKeptPointsWhateverTheFrameBits)
+{
+  TestMesh m = DefaultBitsGrid();
+  const vtkIdType centre = 4; // of the grid: one corner in each of its 4 quads
+  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  vtkSmartPointer<vtkPolyData> input = m.Build();
+  // Valid supplied frames (unit, perpendicular to +z, the texture's sign -1), but for a NaN at
+  // the grid's centre and at one corner of the flat quad: only those two are computed.
+  vtkNew<vtkFloatArray> supplied;
+  supplied->SetName("TANGENT");
+  supplied->SetNumberOfComponents(4);
+  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    const bool computed = p == centre || p == flat;
+    supplied->SetTuple4(p, computed ? std::nan("") : 0.0, 1.0, 0.0, -1.0);
+  }
+  input->GetPointData()->AddArray(supplied);
+
+  const ExpectedFrames e = ComputeExpected(input);
+  ASSERT_EQ(e.Kernel.Corners.size(), 20u);
+  ASSERT_TRUE(ComputedWithTheDefaultBits(e.Kernel, 16)); // the grid's
+  ASSERT_EQ(e.Kernel.NumberOfDefaultCorners, 4);         // the flat quad's
+
+  EXPECT_EQ(RunFilter(input).DefaultCorners, 4);
+  for (int mode : { vtkPolyDataTangentFrames::KEEP, vtkPolyDataTangentFrames::KEEP_VALID })
+  {
+    SCOPED_TRACE(mode == vtkPolyDataTangentFrames::KEEP ? "KEEP" : "KEEP_VALID");
+    const FilterRun run = RunFilter(input,
+      [&](vtkPolyDataTangentFrames* f)
+      {
+        f->SetSuppliedTangents(mode);
+        f->SetSuppliedTangentsArrayName("TANGENT");
+      });
+    ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
+    // The flat quad's corner at its computed point; none of the grid's centre.
+    EXPECT_EQ(run.DefaultCorners, 1);
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, centre), mikk::DefaultCornerFrame));
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, flat), mikk::DefaultCornerFrame));
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, flat + 1), mikk::CornerFrame{ { 0, 1, 0 }, -1 }));
+  }
+}
+
 TEST(PolyDataTangentFramesMikkTSpace, FrameContractWhereTheReferenceBreaksIt)
 {
   TestMesh m;
