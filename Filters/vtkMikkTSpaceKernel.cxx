@@ -326,6 +326,7 @@ Idx LabelGroups(std::vector<Member>& m)
 void SetAllDefault(Result& res)
 {
   std::fill(res.Corners.begin(), res.Corners.end(), DefaultCornerFrame);
+  res.CornerKinds.assign(res.Corners.size(), CornerKind::Default);
   res.NumberOfDefaultCorners = static_cast<long long>(res.Corners.size());
 }
 
@@ -339,6 +340,7 @@ bool CheckInput(const MeshInput& in, Result& res)
   }
   const long long numSlots = std::max(0LL, in.FaceOffsets[in.NumberOfFaces]);
   res.Corners.resize(size_t(numSlots)); // Sign 0 marks a corner not written yet (see SetDefaults)
+  res.CornerKinds.resize(size_t(numSlots)); // Computed until SetDefaults says otherwise
   const long long limit = std::numeric_limits<Idx>::max() - 16;
   const long long numPoints = std::max(0LL, in.NumberOfPoints);
   if (numSlots > limit / 3 || numPoints > limit - 3 * numSlots)
@@ -1154,7 +1156,8 @@ struct Kernel
     }
   }
 
-  // Corners never written (Sign 0) or not finite get the default frame, and are counted.
+  // Corners never written (Sign 0) or not finite get the default frame; they and the cancelled
+  // corners are marked in Res.CornerKinds and counted.
   void SetDefaults()
   {
     struct Counts
@@ -1162,23 +1165,27 @@ struct Kernel
       long long Defaults = 0, NonFinite = 0, Cancelled = 0;
     };
     vtkSMPThreadLocal<Counts> counts;
+    CornerKind* const kinds = Res.CornerKinds.data();
     ForEachRange(NumSlots,
       65536,
       counts,
-      [this](vtkIdType b, vtkIdType e, Counts& n)
+      [this, kinds](vtkIdType b, vtkIdType e, Counts& n)
       {
-        for (CornerFrame* o = Out + b; o != Out + e; ++o)
+        for (vtkIdType c = b; c < e; ++c)
         {
-          const bool unwritten = o->Sign == 0.0f;
-          if (unwritten || !V3{ o->Tangent[0], o->Tangent[1], o->Tangent[2] }.Finite())
+          CornerFrame& o = Out[c];
+          const bool unwritten = o.Sign == 0.0f;
+          if (unwritten || !V3{ o.Tangent[0], o.Tangent[1], o.Tangent[2] }.Finite())
           {
-            *o = DefaultCornerFrame;
+            o = DefaultCornerFrame;
+            kinds[c] = CornerKind::Default;
             ++n.Defaults;
             n.NonFinite += unwritten ? 0 : 1;
           }
-          else
+          else if (IsCancelled(o))
           {
-            n.Cancelled += IsCancelled(*o) ? 1 : 0;
+            kinds[c] = CornerKind::Cancelled;
+            ++n.Cancelled;
           }
         }
       });

@@ -23,7 +23,8 @@
  *   offsets outside the connectivity, are skipped: their corners get the default frame.
  * - Corners never reached by a tangent group get the reference default: tangent (1,0,0),
  *   sign -1 (note: not perpendicular to the normal). Any non-finite result (for example from
- *   NaN or Inf input) is replaced by that default and counted.
+ *   NaN or Inf input) is replaced by that default and counted. Result::CornerKinds marks these
+ *   corners (CornerKind::Default), since a computed frame can have the same bits.
  *
  * Differences from the reference are limited to float rounding in the sign of zero components
  * (the reference reads a welded vertex's representative, whose zeros may carry the other sign)
@@ -74,15 +75,26 @@ struct CornerFrame
   float Sign;
 };
 
+/// What a corner's frame in Result::Corners is. A computed frame can have the default's bits
+/// (tangent exactly (1,0,0), sign -1, on an axis-aligned mesh), so only this tells them apart.
+enum class CornerKind : unsigned char
+{
+  Computed,  ///< a tangent group's frame, with a unit tangent
+  Default,   ///< DefaultCornerFrame: no group reached the corner, or its result was not finite
+  Cancelled, ///< a tangent group's frame whose tangent is not unit (IsCancelled)
+};
+
 struct Result
 {
   /// One per face corner, same layout as FaceConnectivity (size FaceOffsets[NumberOfFaces]).
   std::vector<CornerFrame> Corners;
+  /// One per face corner, as Corners: what each corner's frame is.
+  std::vector<CornerKind> CornerKinds;
   long long NumberOfTriangles = 0;             ///< after splitting quads and fanning larger faces
   long long NumberOfDegenerateTriangles = 0;   ///< triangles with two equal corner positions
-  long long NumberOfDefaultCorners = 0;        ///< corners left at the default (1,0,0), -1
+  long long NumberOfDefaultCorners = 0;        ///< corners of CornerKind::Default
   long long NumberOfNonFiniteCorners = 0;      ///< of those, corners whose result was not finite
-  long long NumberOfCancelledCorners = 0;      ///< corners whose tangent is not unit (IsCancelled)
+  long long NumberOfCancelledCorners = 0;      ///< corners of CornerKind::Cancelled
   long long NumberOfGroupWithAnyTriangles = 0; ///< zero UV area / zero derivative triangles
   long long NumberOfSkippedFaces = 0;          ///< faces with fewer than 3 corners
   long long NumberOfInvalidFaces = 0;          ///< faces with bad point ids or offsets

@@ -210,6 +210,8 @@ public:
   /// Points with no usable triangle, given a frame from their neighbours or the fixed rule.
   /// For MIKKTSPACE: face corners MikkTSpace leaves at its default ((1, 0, 0), sign -1) or whose
   /// summed tangents cancel (sign kept); they get (1, 0, 0) made perpendicular to the normal.
+  /// Points that keep their supplied frames (KEEP, KEEP_VALID), and their corners, are not
+  /// counted.
   vtkGetMacro(NumberOfFallbackPoints, vtkIdType);
   /// Points whose triangles disagree on handedness (mirror seams); for MIKKTSPACE, points whose
   /// corners have different frames.

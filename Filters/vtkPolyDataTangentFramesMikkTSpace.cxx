@@ -502,11 +502,12 @@ void Assign(const Surface& s,
 
 /**
  * Cell c's sums for NewCellTangents (polygons, then strips) from the kernel's corner frames: the
- * tangents of its faces' corners (default and cancelled ones left out), and its faces' area
- * vectors (the cross products of their fan triangles).
+ * tangents of its faces' corners of CornerKind::Computed (neither left at the default nor
+ * cancelled, whatever their bits), and its faces' area vectors (the cross products of their fan
+ * triangles).
  */
 void CellSums(const Surface& s,
-  const std::vector<CornerFrame>& frames,
+  const mikk::Result& kernel,
   const float* positions,
   vtkIdType cell,
   glm::dvec3& t,
@@ -534,9 +535,9 @@ void CellSums(const Surface& s,
     }
     for (long long c = cb; c < ce; ++c)
     {
-      const CornerFrame& cf = frames[static_cast<size_t>(c)];
-      if (!SameFrame(cf, mikk::DefaultCornerFrame) && !IsCancelled(cf))
+      if (kernel.CornerKinds[static_cast<size_t>(c)] == mikk::CornerKind::Computed)
       {
+        const CornerFrame& cf = kernel.Corners[static_cast<size_t>(c)];
         t += glm::dvec3(cf.Tangent[0], cf.Tangent[1], cf.Tangent[2]);
       }
     }
@@ -546,6 +547,26 @@ void CellSums(const Surface& s,
       n += glm::cross(position(c) - o, position(c + 1) - o);
     }
   }
+}
+
+/**
+ * The kernel corners that get the fallback frame, those the kernel leaves at its default or
+ * whose tangents cancel, but for the corners of kept points (non-zero in `kept`; null: none),
+ * which keep their supplied frames.
+ */
+vtkIdType FallbackCorners(const Surface& s,
+  const std::vector<mikk::CornerKind>& kinds,
+  const unsigned char* kept)
+{
+  vtkIdType count = 0;
+  for (size_t c = 0; c < kinds.size(); ++c)
+  {
+    if (kinds[c] != mikk::CornerKind::Computed && !(kept && kept[s.FaceConnectivity[c]]))
+    {
+      ++count;
+    }
+  }
+  return count;
 }
 
 /**
@@ -596,7 +617,7 @@ void WritePointFrames(float signFactor,
 /**
  * The output, with the filter's settings: the input with the split points appended (their point
  * data copied, the computed normals too) and the corners of their frames re-pointed, the point
- * frames, and the cell tangents when asked for. The corner frames are freed once the cell
+ * frames, and the cell tangents when asked for. The kernel's corners are freed once the cell
  * tangents are made, before the point data is copied, so that their memory can hold the copies.
  */
 template<typename OutArray>
@@ -605,7 +626,7 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   vtkPolyData* output,
   vtkDataArray* computedNormals,
   const Surface& s,
-  std::vector<CornerFrame>& frames,
+  mikk::Result& kernel,
   const float* positions,
   const ContractNormals& contractNormals,
   const Assignment& a)
@@ -616,9 +637,10 @@ void WriteOutput(vtkPolyDataTangentFrames* filter,
   if (filter->GetComputeCellTangents())
   {
     cellTangents = NewCellTangents<OutArray>(input,
-      [&](vtkIdType c, glm::dvec3& t, glm::dvec3& n) { CellSums(s, frames, positions, c, t, n); });
+      [&](vtkIdType c, glm::dvec3& t, glm::dvec3& n) { CellSums(s, kernel, positions, c, t, n); });
   }
-  std::vector<CornerFrame>().swap(frames);
+  std::vector<CornerFrame>().swap(kernel.Corners);
+  std::vector<mikk::CornerKind>().swap(kernel.CornerKinds);
   const OutputFrames<OutArray> arrays(numIn + numSplits, filter->GetComputeBitangents());
   WritePointFrames(
     filter->GetGLTFSignConvention() ? -1.0f : 1.0f, contractNormals, a, numIn, arrays);
@@ -674,7 +696,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
   this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
-  this->NumberOfFallbackPoints += result.NumberOfDefaultCorners + result.NumberOfCancelledCorners;
+  this->NumberOfFallbackPoints += FallbackCorners(surface, result.CornerKinds, block.KeptPoints);
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
@@ -692,7 +714,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     block.Output,
     computedNormals ? normalArray : nullptr,
     surface,
-    result.Corners,
+    result,
     positions,
     contractNormals,
     assignment);

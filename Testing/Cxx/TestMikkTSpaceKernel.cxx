@@ -1098,5 +1098,73 @@ TEST(MikkTSpaceKernel, EmptyInput)
   Mesh m;
   const mikk::Result res = RunKernel(m);
   EXPECT_TRUE(res.Corners.empty());
+  EXPECT_TRUE(res.CornerKinds.empty());
   EXPECT_FALSE(res.Aborted);
+}
+
+// CornerKinds tells the corners left at the default, and the cancelled ones, from the computed
+// frames, also where a computed frame has the default's bits: on the plane z = x/2 + y/4 with
+// normals +z and texture coordinates (x, -y), dP/du projected on the tangent plane is exactly +x
+// and the texture is mirrored (sign -1).
+TEST(MikkTSpaceKernel, CornerKindsTellDefaultsFromComputedFramesWithTheDefaultBits)
+{
+  using Kind = mikk::CornerKind;
+  Mesh m;
+  for (int j = 0; j < 2; ++j)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      m.AddPoint({ float(i), float(j), 0.5f * i + 0.25f * j }, kUp, { float(i), -float(j) });
+    }
+  }
+  m.AddFace({ 0, 1, 3, 2 });
+  // Zero texture-coordinate area: no group reaches these corners.
+  const long long flat = m.AddPoint({ 5, 0, 0 }, kUp, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 0, 0 }, kUp, { 0.5f, 0.5f });
+  m.AddPoint({ 5, 1, 0 }, kUp, { 0.5f, 0.5f });
+  m.AddFace({ flat, flat + 1, flat + 2 });
+  // Normals along dP/du = +x: the projected tangents, and so their sum, are zero.
+  const std::array<float, 3> x = { 1, 0, 0 };
+  const long long along = m.AddPoint({ 10, 0, 0 }, x, { 0, 0 });
+  m.AddPoint({ 11, 0, 0 }, x, { 1, 0 });
+  m.AddPoint({ 10, 1, 0 }, x, { 0, 1 });
+  m.AddFace({ along, along + 1, along + 2 });
+  m.AddFace({ 0, 1 }); // skipped
+  const mikk::Result res = RunKernel(m);
+  const std::vector<Kind> expected = { Kind::Computed,
+    Kind::Computed,
+    Kind::Computed,
+    Kind::Computed,
+    Kind::Default,
+    Kind::Default,
+    Kind::Default,
+    Kind::Cancelled,
+    Kind::Cancelled,
+    Kind::Cancelled,
+    Kind::Default,
+    Kind::Default };
+  ASSERT_EQ(res.Corners.size(), expected.size());
+  ASSERT_EQ(res.CornerKinds.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+  {
+    EXPECT_EQ(int(res.CornerKinds[k]), int(expected[k])) << "corner " << k;
+  }
+  for (size_t k = 0; k < 4; ++k)
+  {
+    EXPECT_TRUE(BitEqual(res.Corners[k], mikk::DefaultCornerFrame)) << "corner " << k;
+  }
+  EXPECT_EQ(res.NumberOfDefaultCorners, 5);
+  EXPECT_EQ(res.NumberOfCancelledCorners, 3);
+
+  // The results that leave every corner at the default say so too.
+  const mikk::Result stopped = mikk::ComputeMikkTSpace(m.Input(), [](double) { return true; });
+  mikk::MeshInput noNormals = m.Input();
+  noNormals.Normals = nullptr;
+  for (const mikk::Result& all : { stopped, mikk::ComputeMikkTSpace(noNormals) })
+  {
+    ASSERT_EQ(all.CornerKinds.size(), expected.size());
+    EXPECT_TRUE(std::all_of(
+      all.CornerKinds.begin(), all.CornerKinds.end(), [](Kind k) { return k == Kind::Default; }));
+  }
+  EXPECT_TRUE(stopped.Aborted);
 }

@@ -583,6 +583,49 @@ bool SameBits(const std::vector<double>& a, const std::vector<double>& b)
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
+// A grid of quads on the plane z = x/2 + y/4, normals +z, texture coordinates (x, -y): dP/du
+// projected on the tangent plane is exactly +x and the texture is mirrored, so every corner's
+// computed frame has the bits of the kernel's default, (1,0,0) with sign -1.
+TestMesh DefaultBitsGrid()
+{
+  TestMesh m;
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      m.AddPoint({ float(i), float(j), 0.5f * float(i) + 0.25f * float(j) },
+        { 0, 0, 1 },
+        { float(i), -float(j) });
+    }
+  }
+  for (vtkIdType j = 0; j < 2; ++j)
+  {
+    for (vtkIdType i = 0; i < 2; ++i)
+    {
+      const vtkIdType p = 3 * j + i;
+      m.Polys.push_back({ p, p + 1, p + 4, p + 3 });
+    }
+  }
+  return m;
+}
+
+/// Whether the first `count` corners of `r` are computed (not left at the default) and have the
+/// default's bits.
+::testing::AssertionResult ComputedWithTheDefaultBits(const mikk::Result& r, size_t count)
+{
+  for (size_t c = 0; c < count; ++c)
+  {
+    const mikk::CornerFrame& f = r.Corners[c];
+    if (r.CornerKinds[c] != mikk::CornerKind::Computed || !IsDefault(f))
+    {
+      return ::testing::AssertionFailure()
+        << "corner " << c << ": kind " << int(r.CornerKinds[c]) << ", (" << f.Tangent[0] << ", "
+        << f.Tangent[1] << ", " << f.Tangent[2] << "), sign " << f.Sign;
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1140,9 +1183,9 @@ TEST(PolyDataTangentFramesMikkTSpace, SlightlyNonUnitNormalsKeepOrCorrectTheKern
 
 //------------------------------------------------------------------------------
 // Cell tangents (docs/filter.md): per polygon or strip, the sum of the kernel frames of its
-// faces' corners, leaving out the corners MikkTSpace leaves at its default, made perpendicular to
-// the sum of its faces' cross products (fanned from each face's first corner) and normalised;
-// with nothing left to sum, the fixed perpendicular FallbackTangent of that normal.
+// faces' computed corners (mikk::CornerKind), made perpendicular to the sum of its faces' cross
+// products (fanned from each face's first corner) and normalised; with nothing left to sum, the
+// fixed perpendicular FallbackTangent of that normal.
 TEST(PolyDataTangentFramesMikkTSpace, CellTangentsSumTheCornerFramesOfEachCell)
 {
   TestMesh m;
@@ -1202,7 +1245,7 @@ TEST(PolyDataTangentFramesMikkTSpace, CellTangentsSumTheCornerFramesOfEachCell)
       for (size_t i = 0; i < ids.size(); ++i, ++corner)
       {
         const mikk::CornerFrame& k = e.Kernel.Corners[corner];
-        if (!IsDefault(k))
+        if (e.Kernel.CornerKinds[corner] == mikk::CornerKind::Computed)
         {
           t += glm::dvec3(k.Tangent[0], k.Tangent[1], k.Tangent[2]);
         }
@@ -1222,6 +1265,91 @@ TEST(PolyDataTangentFramesMikkTSpace, CellTangentsSumTheCornerFramesOfEachCell)
       // in the same order as the filter's.
       EXPECT_NEAR(actual[k], expected[k], 1e-6) << "cell " << c << ", component " << k;
     }
+  }
+}
+
+// The cell tangents sum the computed corners, those whose frames have the default's bits too.
+// The plane is tilted, so that the cell normal n has x and y components: then the fallback
+// (Duff et al.'s basis of n) differs from +x made perpendicular to n, which the computed corners
+// give. On a plane perpendicular to the normals both would be (1,0,0).
+TEST(PolyDataTangentFramesMikkTSpace, CellTangentsIncludeComputedCornersWithTheDefaultBits)
+{
+  vtkSmartPointer<vtkPolyData> input = DefaultBitsGrid().Build();
+  ASSERT_TRUE(ComputedWithTheDefaultBits(ComputeExpected(input).Kernel, 16));
+  const glm::dvec3 n = glm::normalize(glm::dvec3(-0.5, -0.25, 1.0));
+  const glm::dvec3 x(1.0, 0.0, 0.0);
+  const glm::dvec3 expected = glm::normalize(x - glm::dot(x, n) * n);
+  // The fallback is 3.2 degrees (0.057) away: far outside the bound below.
+  ASSERT_GT(glm::length(vtkNormalMapping::FallbackTangent(n) - expected), 0.05);
+
+  const FilterRun run =
+    RunFilter(input, [](vtkPolyDataTangentFrames* f) { f->ComputeCellTangentsOn(); });
+  ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
+  EXPECT_EQ(run.DefaultCorners, 0);
+  vtkDataArray* cellTangents = run.Output->GetCellData()->GetTangents();
+  ASSERT_NE(cellTangents, nullptr);
+  ASSERT_EQ(cellTangents->GetNumberOfTuples(), 4);
+  for (vtkIdType c = 0; c < 4; ++c)
+  {
+    double actual[3];
+    cellTangents->GetTuple(c, actual);
+    for (int k = 0; k < 3; ++k)
+    {
+      // Float output of a double result: rounded once (6e-8).
+      EXPECT_NEAR(actual[k], expected[k], 1e-6) << "cell " << c << ", component " << k;
+    }
+  }
+}
+
+// With supplied tangents kept (KEEP, KEEP_VALID), the fallback count leaves out the face corners
+// of the kept points, as the weighted methods leave out kept points. A point whose frame is
+// computed counts by what its corners are, not by their bits: here computed corners with the
+// default's bits (not counted) beside a piece of zero texture-coordinate area, whose corners the
+// kernel leaves at the default (counted where their point is not kept).
+TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutKeptPointsWhateverTheFrameBits)
+{
+  TestMesh m = DefaultBitsGrid();
+  const vtkIdType centre = 4; // of the grid: one corner in each of its 4 quads
+  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  vtkSmartPointer<vtkPolyData> input = m.Build();
+  // Valid supplied frames (unit, perpendicular to +z, the texture's sign -1), but for a NaN at
+  // the grid's centre and at one corner of the flat quad: only those two are computed.
+  vtkNew<vtkFloatArray> supplied;
+  supplied->SetName("TANGENT");
+  supplied->SetNumberOfComponents(4);
+  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    const bool computed = p == centre || p == flat;
+    supplied->SetTuple4(p, computed ? std::nan("") : 0.0, 1.0, 0.0, -1.0);
+  }
+  input->GetPointData()->AddArray(supplied);
+
+  const ExpectedFrames e = ComputeExpected(input);
+  ASSERT_EQ(e.Kernel.Corners.size(), 20u);
+  ASSERT_TRUE(ComputedWithTheDefaultBits(e.Kernel, 16)); // the grid's
+  ASSERT_EQ(e.Kernel.NumberOfDefaultCorners, 4);         // the flat quad's
+
+  EXPECT_EQ(RunFilter(input).DefaultCorners, 4);
+  for (int mode : { vtkPolyDataTangentFrames::KEEP, vtkPolyDataTangentFrames::KEEP_VALID })
+  {
+    SCOPED_TRACE(mode == vtkPolyDataTangentFrames::KEEP ? "KEEP" : "KEEP_VALID");
+    const FilterRun run = RunFilter(input,
+      [&](vtkPolyDataTangentFrames* f)
+      {
+        f->SetSuppliedTangents(mode);
+        f->SetSuppliedTangentsArrayName("TANGENT");
+      });
+    ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
+    // The flat quad's corner at its computed point; none of the grid's centre.
+    EXPECT_EQ(run.DefaultCorners, 1);
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, centre), mikk::DefaultCornerFrame));
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, flat), mikk::DefaultCornerFrame));
+    EXPECT_TRUE(BitEqual(PointFrame(run.Output, flat + 1), mikk::CornerFrame{ { 0, 1, 0 }, -1 }));
   }
 }
 
