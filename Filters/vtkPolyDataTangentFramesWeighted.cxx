@@ -599,29 +599,42 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
 }
 
 /**
- * What point p's sums make of it, the handedness (+1 or -1) whose frame it takes, and that
- * handedness' tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it
- * takes its neighbours' frames later), or on a mirror seam (Conflict) +1 with splitting, else the
- * heavier side (+1 on a tie).
+ * KindOf for a point on a mirror seam (Conflict): +1 with splitting, else the heavier side (+1
+ * on a tie). Kept out of KindOf, so that KindOf is small enough for any compiler to inline in
+ * the loop over the points.
  */
-PointKind KindOf(const ScatteredSums& sums,
+PointKind SeamKindOf(const ScatteredSums& sums,
   vtkIdType p,
   bool splitting,
   double& sign,
   dvec3& tangent)
 {
-  if (!sums.HasOther[p])
-  {
-    const ScatteredSums::Sum& first = sums.First[p];
-    sign = first.Weight > 0.0 ? 1.0 : -1.0;
-    tangent = first.Tangent;
-    return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
-  }
   const ScatteredSums::Sum& positive = sums.SeamSum(p, false);
   const ScatteredSums::Sum& negative = sums.SeamSum(p, true);
   sign = splitting || !(std::abs(negative.Weight) > std::abs(positive.Weight)) ? 1.0 : -1.0;
   tangent = (sign > 0.0 ? positive : negative).Tangent;
   return PointKind::Conflict;
+}
+
+/**
+ * What point p's sums make of it, the handedness (+1 or -1) whose frame it takes, and that
+ * handedness' tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it
+ * takes its neighbours' frames later), or both, on a mirror seam (SeamKindOf).
+ */
+inline PointKind KindOf(const ScatteredSums& sums,
+  vtkIdType p,
+  bool splitting,
+  double& sign,
+  dvec3& tangent)
+{
+  if (sums.HasOther[p])
+  {
+    return SeamKindOf(sums, p, splitting, sign, tangent);
+  }
+  const ScatteredSums::Sum& first = sums.First[p];
+  sign = first.Weight > 0.0 ? 1.0 : -1.0;
+  tangent = first.Tangent;
+  return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
 }
 
 /// ComputePointBlock, multiversioned (VTK_NORMALMAPPING_TARGET_CLONES).
