@@ -230,6 +230,20 @@ bool CheckView(const tinygltf::Model& model,
   return true;
 }
 
+/// The bytes of all the file's buffers: an accessor without a buffer view (zeros) may have no
+/// more elements than that, so that a small file cannot ask for memory out of proportion to its
+/// own size. Real files stay far below: such accessors (sparse morph targets, mostly) have as
+/// many elements as the buffer-backed attributes they go with.
+uint64_t BufferBytes(const tinygltf::Model& model)
+{
+  uint64_t bytes = 0;
+  for (const tinygltf::Buffer& buffer : model.buffers)
+  {
+    bytes += buffer.data.size();
+  }
+  return bytes;
+}
+
 bool LoadAccessor(const tinygltf::Model& model, int index, AccessorData& out, std::string& error)
 {
   if (index < 0 || static_cast<size_t>(index) >= model.accessors.size())
@@ -261,6 +275,12 @@ bool LoadAccessor(const tinygltf::Model& model, int index, AccessorData& out, st
   if (acc.count > kMaxAccessorBytes / elementSize)
   {
     error = name + " has an implausible count (" + std::to_string(acc.count) + ")";
+    return false;
+  }
+  if (acc.bufferView < 0 && acc.count > BufferBytes(model))
+  {
+    error = name + " has no buffer view and more elements (" + std::to_string(acc.count) +
+      ") than the file's buffers have bytes (" + std::to_string(BufferBytes(model)) + ")";
     return false;
   }
   out.Bytes.assign(acc.count * elementSize, 0); // no buffer view: zeros (glTF 3.6.2.3)

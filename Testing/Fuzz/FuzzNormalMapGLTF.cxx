@@ -18,12 +18,10 @@
 // The seed corpus (Testing/Fuzz/gltf-corpus, written by make_gltf_corpus.py) holds small valid
 // and nearly valid files; gltf.dict is a dictionary of glTF's keys and values for -dict=.
 //
-// Harness limits (not findings, documented in the README): the first read resolves external
-// URIs against a folder that does not exist, and external image URIs are replaced by a missing
-// file name before writing, so that no file outside the harness's own temporary folder is
-// read; inputs declaring an accessor of more than kMaxElements elements are skipped (glTF lets
-// an accessor without a buffer view stand for that many zeros, which the tool then
-// materializes, up to 2 GB, as it would a real mesh of that size).
+// Harness limits (not findings): the first read resolves external URIs against a folder that
+// does not exist, and external image URIs are replaced by a missing file name before writing, so
+// that no file outside the harness's own temporary folder is read; inputs declaring an accessor
+// of more than kMaxElements elements are skipped, so that each run stays short.
 #include "NormalMapGLTF.h"
 #include "NormalMapTangents.h"
 #include "vtkPolyDataTangentFrames.h"

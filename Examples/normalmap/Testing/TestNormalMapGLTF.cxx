@@ -853,6 +853,57 @@ TEST(NormalMapGLTF, CorruptFilesGiveOneLineErrors)
   EXPECT_EQ(failures, static_cast<int>(std::size(cases)) - 1);
 }
 
+// An accessor without a buffer view stands for zeros (glTF 3.6.2.3). Within the size of the
+// file's buffers it reads as zeros; beyond, it is an error of one line, found before any memory
+// is asked for: the quad's 140 bytes of buffer cannot stand for 200 million texture coordinates
+// (1.6 GB, which the accessor size limit alone allows).
+TEST(NormalMapGLTF, ZeroAccessorsStayWithinTheFilesBuffers)
+{
+  const std::string text = ReadText(DataDir + "/quad.gltf");
+  const std::string uvs = "{ \"bufferView\": 3, \"componentType\": 5126, \"count\": 4,";
+  ASSERT_NE(text.find(uvs), std::string::npos);
+  const auto read = [&](const std::string& count, std::string& error)
+  {
+    std::string changed = text;
+    changed.replace(
+      changed.find(uvs), uvs.size(), "{ \"componentType\": 5126, \"count\": " + count + ",");
+    Document doc;
+    vtkSmartPointer<vtkPolyData> mesh;
+    if (NormalMapGLTF::ReadDocumentFromMemory(
+          reinterpret_cast<const unsigned char*>(changed.data()),
+          changed.size(),
+          DataDir,
+          doc,
+          error))
+    {
+      mesh =
+        NormalMapGLTF::PrimitiveToPolyData(doc, NormalMapGLTF::TrianglePrimitives(doc)[0], error);
+    }
+    return mesh;
+  };
+  std::string error;
+  const vtkSmartPointer<vtkPolyData> zeros = read("4", error);
+  ASSERT_TRUE(zeros) << error;
+  vtkDataArray* tcoords = zeros->GetPointData()->GetTCoords();
+  ASSERT_TRUE(tcoords);
+  ASSERT_EQ(tcoords->GetNumberOfTuples(), 4);
+  for (vtkIdType i = 0; i < 4; ++i)
+  {
+    EXPECT_EQ(tcoords->GetComponent(i, 0), 0.0);
+    EXPECT_EQ(tcoords->GetComponent(i, 1), 0.0);
+  }
+  for (const char* count : { "141", "200000000" })
+  {
+    error.clear();
+    EXPECT_FALSE(read(count, error)) << count;
+    EXPECT_TRUE(OneLine(error)) << error;
+    EXPECT_NE(error.find("has no buffer view and more elements (" + std::string(count) +
+                ") than the file's buffers have bytes (140)"),
+      std::string::npos)
+      << error;
+  }
+}
+
 // Every prefix of a .glb, and random byte changes of the .gltf: read, convert and write back
 // without crashing (errors are fine). A cheap stand-in for the fuzzer.
 TEST(NormalMapGLTF, SurvivesTruncatedAndMutatedInput)
