@@ -528,7 +528,9 @@ int WriteBuildVariant(const std::string& out, bool smoke)
           "once, for the compiler's default target (on x86-64: SSE2), as compilers without "
           "function multiversioning (MSVC, Apple Clang) and other CPUs compile them. VTK's "
           "filter is the same library in every row. Each cell: the median over the pairs of "
-          "`vtkPolyDataTangents`' time / AngleWeighted's [first and third quartiles]. Output "
+          "`vtkPolyDataTangents`' time / AngleWeighted's [first and third quartiles], then the "
+          "two medians: each process times both filters, so a row whose VTK time differs from the "
+          "other rows' shows that the process, not the build, changed the ratio. Output "
           "bits: FNV-1a (64 bits) of the bytes of AngleWeighted's point tangents and signs on "
           "the meshes in turn, the same in every row when every build gives the same output, bit "
           "for bit.\n\n"
@@ -551,8 +553,10 @@ int WriteBuildVariant(const std::string& out, bool smoke)
   for (const PairingMesh& m : meshes)
   {
     const Paired p = MeasurePaired(angleWeighted, m.Mesh, 1, pairs);
-    md << " " << p.MedianCell() << " |";
-    std::cout << m.Name << ": x VTK " << p.Cells() << std::endl;
+    const std::string times = "VTK " + Bench::Format(p.MedianMilliseconds(0), 3) + " ms, ours " +
+      Bench::Format(p.MedianMilliseconds(1), 3) + " ms";
+    md << " " << p.MedianCell() << " (" << times << ") |";
+    std::cout << m.Name << ": x VTK " << p.Cells() << " (" << times << ")" << std::endl;
   }
   md << " `" << OutputBitsHash(meshes) << "` |\n";
   return md ? 0 : 1;
