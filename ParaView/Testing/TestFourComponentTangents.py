@@ -127,20 +127,11 @@ check(fraction >= SAME_FRACTION, "and draws the same image (%.3f%%)" % (100 * fr
 four.SelectTangentArray = "None"
 four.TangentsArray = "ReversedTANGENT"
 Render(view)
-before, _, _ = nm.capture(view, "before-state")
-state = os.path.join(nm.WORK, "four-component-tangents.pvsm")
-SaveState(state)
-ResetSession()
-LoadState(state)
-reloaded_view = GetActiveViewOrCreate("RenderView")
-reloaded = GetDisplayProperties(FindSource("ProgrammableFilter1"), reloaded_view)
+before, reloaded_view, reloaded = nm.save_and_reload(view, "four-component-tangents",
+                                                     "ProgrammableFilter1")
 check(reloaded.TangentsArray == "ReversedTANGENT" and reloaded.SelectTangentArray == "None",
       "the state keeps Tangents and Tangent Array (%r, %r)"
       % (reloaded.TangentsArray, reloaded.SelectTangentArray))
-Render(reloaded_view)
-after, _, _ = nm.capture(reloaded_view, "after-state")
-fraction, largest = nm.difference(after, before, 1)
-print("reloaded state: %.3f%% within 1 level, max difference %d" % (100 * fraction, largest))
-check(fraction >= SAME_FRACTION, "the reloaded state renders the same image")
+nm.check_reloaded_image(reloaded_view, before, check, SAME_FRACTION)
 
 check.finish()

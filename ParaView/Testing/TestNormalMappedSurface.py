@@ -199,18 +199,9 @@ Show(frames, view)
 Render(view)
 
 # A saved state reloads to the same image (same process and renderer: within 1 level).
-state = os.path.join(nm.WORK, "normal-mapped-surface.pvsm")
-before, _, _ = nm.capture(view, "before-state")
-SaveState(state)
-ResetSession()
-LoadState(state)
-reloaded_view = GetActiveViewOrCreate("RenderView")
-reloaded_display = GetDisplayProperties(FindSource("TangentFrames1"), reloaded_view)
+before, reloaded_view, reloaded_display = nm.save_and_reload(view, "normal-mapped-surface",
+                                                             "TangentFrames1")
 check(reloaded_display.Representation == REPRESENTATION, "the state keeps the representation")
-Render(reloaded_view)
-after, _, _ = nm.capture(reloaded_view, "after-state")
-fraction, largest = nm.difference(after, before, 1)
-print("reloaded state: %.3f%% within 1 level, max difference %d" % (100 * fraction, largest))
-check(fraction >= BASELINE_FRACTION, "the reloaded state renders the same image")
+nm.check_reloaded_image(reloaded_view, before, check, BASELINE_FRACTION)
 
 check.finish()

@@ -299,3 +299,32 @@ def measure_symmetry(view, name, check, symmetric, image):
     else:
         check(fraction < ASYMMETRIC_FRACTION, name + ": is not mirror-symmetric")
     return pixels, width, height
+
+
+# ---------------------------------------------------------------- saved states
+def save_and_reload(view, name, source_name):
+    """Captures the view, saves the session's state as <work dir>/<name>.pvsm, resets the session
+    and loads the state back. Returns the image before, the reloaded render view, and the
+    display of the source registered as `source_name` in it."""
+    from paraview import simple
+
+    before, _, _ = capture(view, "before-state")
+    state = os.path.join(WORK, name + ".pvsm")
+    simple.SaveState(state)
+    simple.ResetSession()
+    simple.LoadState(state)
+    reloaded_view = simple.GetActiveViewOrCreate("RenderView")
+    return before, reloaded_view, simple.GetDisplayProperties(simple.FindSource(source_name),
+                                                              reloaded_view)
+
+
+def check_reloaded_image(view, before, check, same_fraction):
+    """Checks that the reloaded view renders the image saved before (save_and_reload): the same
+    process and renderer, so within 1 level on at least `same_fraction` of the pixels."""
+    from paraview.simple import Render
+
+    Render(view)
+    after, _, _ = capture(view, "after-state")
+    fraction, largest = difference(after, before, 1)
+    print("reloaded state: %.3f%% within 1 level, max difference %d" % (100 * fraction, largest))
+    check(fraction >= same_fraction, "the reloaded state renders the same image")
