@@ -26,6 +26,7 @@ set(_nm_sources
 # Not installed. vtkTangentFrameKernels.h (the math, over GLM vectors) is reachable from the
 # build tree, so that the tests call its functions directly.
 set(_nm_private_headers
+  Filters/vtkNormalMappingMultiversioning.h
   Filters/vtkNormalMappingPrivate.h
   Filters/vtkTangentFrameKernels.h
   Rendering/vtkNormalMapShading.h)
@@ -68,11 +69,12 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     APPEND PROPERTY COMPILE_OPTIONS -ffp-contract=off -fno-math-errno -fno-trapping-math)
 endif()
 
-# The weighted methods' block loops are compiled also for AVX2 and AVX-512 where the compiler can
-# (VTK_NORMALMAPPING_TARGET_CLONES in Filters/vtkNormalMappingPrivate.h). OFF compiles them once,
-# for the default target, as other compilers and CPUs do; the benchmark measures such a build.
+# The filter's vector loops are compiled also for AVX2 and AVX-512 where the compiler can
+# (VTK_NORMALMAPPING_TARGET_CLONES in Filters/vtkNormalMappingMultiversioning.h). OFF compiles
+# them once, for the default target, as other compilers and CPUs do; the benchmark measures such
+# a build.
 option(NORMALMAPPING_MULTIVERSIONING
-  "Compile the filter's block loops also for AVX2 and AVX-512 (GCC, Clang 14+; x86-64 Linux)" ON)
+  "Compile the filter's vector loops also for AVX2 and AVX-512 (GCC, Clang 14+; x86-64 Linux)" ON)
 mark_as_advanced(NORMALMAPPING_MULTIVERSIONING)
 
 vtk_module_add_module(VTK::NormalMapping
