@@ -13,7 +13,8 @@
 // (Bench::RunRounds). Per mesh: the median and quartiles of the original's time / ours, the ratio
 // of the fastest runs, and the face corners whose kernel frame differs from the original's.
 // Then the original and the kernel on 100,000 small random meshes (1,000 with --smoke), face
-// corner by face corner (RandomMeshes).
+// corner by face corner (RandomMeshes). Last, the paired runs again with glibc keeping freed
+// memory, which shows what the page faults cost (ComparePairedKeepingMemory).
 // Printed, and written to DIR/mikktspace.md (a section of docs/benchmarks.md) with --out;
 // scripts/bench.sh runs it. The original is compiled in only when the CMake variable
 // NORMALMAPPING_MIKKTSPACE_REFERENCE_DIR names its source (it is not part of this repository);
@@ -38,10 +39,14 @@
 #ifdef NORMALMAPPING_MIKKTSPACE_REFERENCE
 #include "mikktspace.h"
 #endif
+#if defined(__GLIBC__)
+#include <malloc.h> // mallopt
+#endif
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -319,9 +324,9 @@ bool CompareRandomMeshes(long long count, std::ostringstream& md)
 }
 
 /// The paired runs on every mesh; the section's text in `md`. False when a run failed.
-bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
+/// Compare() on every mesh of the paired runs, each printed; `note` says why a mesh is missing.
+std::vector<Comparison> CompareMeshes(bool smoke, int rounds, std::string& note)
 {
-  std::string note;
   std::vector<Comparison> comparisons;
   for (const Bench::PairingMesh& mesh : Bench::PairingMeshes(smoke, note))
   {
@@ -341,22 +346,14 @@ bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
   {
     std::cout << note << std::endl;
   }
-  md << "The original `genTangSpaceDefault` (https://github.com/mmikk/MikkTSpace, compiled as C: "
-    // The compiler, build type and flags, as CMake gave them.
-    NORMALMAPPING_MIKKTSPACE_REFERENCE_BUILD
-        "), our kernel (`vtkNormalMapping::mikk::ComputeMikkTSpace`, one thread) and "
-        "`vtkPolyDataTangentFrames` with `SetMethodToMikkTSpace()` (one thread: the kernel, "
-        "plus reading the polydata, writing and splitting points) on the meshes of the paired "
-        "runs above, the same input for all three (points, normals and texture coordinates as "
-        "floats). The three run in turn, "
-     << rounds << " round" << (rounds > 1 ? "s" : "")
-     << " after one warm-up run each, the first of a round rotating (wall-clock time, the "
-        "original's output and ours reused). Times: medians. Each ratio: the median over the "
-        "rounds of `mikktspace.c`'s time / ours (above 1: faster than the original), with the "
-        "first and third quartiles, and the ratio of the fastest runs. Differing corners: face "
-        "corners whose kernel frame (tangent and sign) differs from the original's in any bit, "
-        "then in value (where -0 equals +0), of all face corners.\n\n"
-     << "| mesh | triangles | `mikktspace.c` | kernel | kernel x `mikktspace.c`: median "
+  return comparisons;
+}
+
+/// The comparisons' table of times, ratios and differing corners, then their page faults; false
+/// when a run failed.
+bool WriteComparisons(const std::vector<Comparison>& comparisons, std::ostringstream& md)
+{
+  md << "| mesh | triangles | `mikktspace.c` | kernel | kernel x `mikktspace.c`: median "
         "[quartiles] | fastest runs | filter | filter x `mikktspace.c`: median [quartiles] | "
         "fastest runs | differing corners: bits / value / all |\n"
      << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -381,11 +378,67 @@ bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
        << Bench::FaultCount(c.Kernel.MedianFaults(1)) << " | "
        << Bench::FaultCount(c.Filter.MedianFaults(1)) << " |\n";
   }
+  return ok;
+}
+
+bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
+{
+  std::string note;
+  const std::vector<Comparison> comparisons = CompareMeshes(smoke, rounds, note);
+  md << "The original `genTangSpaceDefault` (https://github.com/mmikk/MikkTSpace, compiled as C: "
+    // The compiler, build type and flags, as CMake gave them.
+    NORMALMAPPING_MIKKTSPACE_REFERENCE_BUILD
+        "), our kernel (`vtkNormalMapping::mikk::ComputeMikkTSpace`, one thread) and "
+        "`vtkPolyDataTangentFrames` with `SetMethodToMikkTSpace()` (one thread: the kernel, "
+        "plus reading the polydata, writing and splitting points) on the meshes of the paired "
+        "runs above, the same input for all three (points, normals and texture coordinates as "
+        "floats). The three run in turn, "
+     << rounds << " round" << (rounds > 1 ? "s" : "")
+     << " after one warm-up run each, the first of a round rotating (wall-clock time, the "
+        "original's output and ours reused). Times: medians. Each ratio: the median over the "
+        "rounds of `mikktspace.c`'s time / ours (above 1: faster than the original), with the "
+        "first and third quartiles, and the ratio of the fastest runs. Differing corners: face "
+        "corners whose kernel frame (tangent and sign) differs from the original's in any bit, "
+        "then in value (where -0 equals +0), of all face corners.\n\n";
+  const bool ok = WriteComparisons(comparisons, md);
   if (!note.empty())
   {
     md << "\n" << note << "\n";
   }
   return ok;
+}
+
+/**
+ * The paired runs again with glibc keeping the memory the process frees (no mmap of large
+ * blocks, no trimming of the heap), so that no run faults in pages an earlier one gave back:
+ * how much of the times above the page faults are. Changes the allocator for the rest of the
+ * process, so it runs last. Without glibc: a note.
+ */
+bool ComparePairedKeepingMemory(bool smoke, int rounds, std::ostringstream& md)
+{
+  md << "### The same with glibc keeping freed memory\n\n";
+#if defined(__GLIBC__)
+  if (mallopt(M_MMAP_MAX, 0) == 0 || mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0)
+  {
+    md << "Not run: glibc refused the settings.\n";
+    return true;
+  }
+  std::string note;
+  const std::vector<Comparison> comparisons = CompareMeshes(smoke, rounds, note);
+  md << "The paired runs above, repeated in the same process after `mallopt(M_MMAP_MAX, 0)` "
+        "and `mallopt(M_TRIM_THRESHOLD, INT_MAX)`: glibc then serves every block from its heap "
+        "and never gives freed memory back to the system, so that a run reuses the pages an "
+        "earlier one touched instead of faulting in new ones. The difference from the times "
+        "above is what the page faults cost. A program gets the same from the environment "
+        "(`GLIBC_TUNABLES=glibc.malloc.mmap_max=0:glibc.malloc.trim_threshold=<bytes>`), at the "
+        "cost of keeping its largest footprint.\n\n";
+  return WriteComparisons(comparisons, md);
+#else
+  (void)smoke;
+  (void)rounds;
+  md << "Not run: the C library is not glibc.\n";
+  return true;
+#endif
 }
 #endif
 
@@ -402,6 +455,8 @@ int RunPaired(const std::string& out, bool smoke, int rounds)
   md << "\n";
   NormalMappingTesting::WithThreads(
     1, [&]() { ok = CompareRandomMeshes(smoke ? 1000 : 100000, md) && ok; });
+  md << "\n";
+  ok = ComparePairedKeepingMemory(smoke, rounds, md) && ok;
 #else
   (void)smoke;
   (void)rounds;
