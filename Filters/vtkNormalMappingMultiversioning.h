@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   vtkNormalMappingMultiversioning.h
- * @brief  VTK_NORMALMAPPING_TARGET_CLONES, for the filter's loops over blocks (not installed).
+ * @brief  VTK_NORMALMAPPING_TARGET_CLONES, for the filter's vector loops (not installed).
  */
 #ifndef vtkNormalMappingMultiversioning_h
 #define vtkNormalMappingMultiversioning_h

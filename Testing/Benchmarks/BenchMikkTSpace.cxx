@@ -323,7 +323,6 @@ bool CompareRandomMeshes(long long count, std::ostringstream& md)
   return ok;
 }
 
-/// The paired runs on every mesh; the section's text in `md`. False when a run failed.
 /// Compare() on every mesh of the paired runs, each printed; `note` says why a mesh is missing.
 std::vector<Comparison> CompareMeshes(bool smoke, int rounds, std::string& note)
 {
@@ -381,6 +380,7 @@ bool WriteComparisons(const std::vector<Comparison>& comparisons, std::ostringst
   return ok;
 }
 
+/// The paired runs on every mesh; the section's text in `md`. False when a run failed.
 bool ComparePaired(bool smoke, int rounds, std::ostringstream& md)
 {
   std::string note;
