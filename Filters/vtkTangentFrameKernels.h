@@ -672,9 +672,10 @@ inline glm::dvec3 SafeNormalize(const glm::dvec3& n)
 
 /**
  * Whether SafeNormalize(n) is non-zero, i.e. n is finite and not the zero vector, for a normal of
- * floats or doubles as stored (without the scaling and square root). Read from the bits: the
- * largest component magnitude, as an integer, is above zero (not the zero vector) and below that
- * of infinity (finite, not NaN); integer comparisons have no NaN cases and vectorize.
+ * floats or doubles as stored (without the scaling and square root). Read from the bits: of the
+ * component magnitudes, as integers, one is above zero (not the zero vector) and each is below
+ * that of infinity (finite, not NaN). Integer comparisons have no NaN cases, and the test has no
+ * branch, so its cost does not depend on the data.
  */
 template<typename T>
 inline bool IsUsableNormal(const glm::vec<3, T>& n)
@@ -686,8 +687,9 @@ inline bool IsUsableNormal(const glm::vec<3, T>& n)
     std::memcpy(&bits, &x, sizeof(bits));
     return static_cast<Bits>(bits & std::numeric_limits<Bits>::max());
   };
-  const Bits largest = std::max(magnitude(n.x), std::max(magnitude(n.y), magnitude(n.z)));
-  return (largest > 0) & (largest < magnitude(std::numeric_limits<T>::infinity()));
+  const Bits infinity = magnitude(std::numeric_limits<T>::infinity());
+  const Bits x = magnitude(n.x), y = magnitude(n.y), z = magnitude(n.z);
+  return ((x | y | z) != 0) & (x < infinity) & (y < infinity) & (z < infinity);
 }
 
 /**
