@@ -550,21 +550,18 @@ void CellSums(const Surface& s,
 }
 
 /**
- * The kernel corners that get the fallback frame, those the kernel leaves at its default or
- * whose tangents cancel, but for the corners of kept points (non-zero in `kept`; null: none),
- * which keep their supplied frames.
+ * The kernel corners that get the fallback frame: those the kernel counts as left at its default
+ * or cancelled, less those of kept points (non-zero in `kept`; null: none), which keep their
+ * supplied frames.
  */
-vtkIdType FallbackCorners(const Surface& s,
-  const std::vector<mikk::CornerKind>& kinds,
-  const unsigned char* kept)
+vtkIdType FallbackCorners(const Surface& s, const mikk::Result& kernel, const unsigned char* kept)
 {
-  vtkIdType count = 0;
-  for (size_t c = 0; c < kinds.size(); ++c)
+  vtkIdType count = kernel.NumberOfDefaultCorners + kernel.NumberOfCancelledCorners;
+  for (size_t c = 0; kept && c < kernel.CornerKinds.size(); ++c)
   {
-    if (kinds[c] != mikk::CornerKind::Computed && !(kept && kept[s.FaceConnectivity[c]]))
-    {
-      ++count;
-    }
+    const bool keptFallback =
+      kernel.CornerKinds[c] != mikk::CornerKind::Computed && kept[s.FaceConnectivity[c]];
+    count -= keptFallback ? 1 : 0;
   }
   return count;
 }
@@ -696,7 +693,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     return 0;
   }
   this->NumberOfDegenerateTriangles += result.NumberOfDegenerateTriangles;
-  this->NumberOfFallbackPoints += FallbackCorners(surface, result.CornerKinds, block.KeptPoints);
+  this->NumberOfFallbackPoints += FallbackCorners(surface, result, block.KeptPoints);
   const ContractNormals contractNormals(normalArray, numPoints, normals);
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
