@@ -83,24 +83,30 @@ std::string CellArrayProblem(vtkCellArray* cells, vtkIdType& shortCells, bool& t
         problem = "its first offset is " + std::to_string(offsets[0]) + ", not 0";
         return;
       }
-      // One pass of top-bit tests that vectorizes with any instruction set (as IdsInRange), then
-      // a search only when something is wrong: a cell size n is negative when its top bit is set
-      // and, when no size is negative, below 3 when n - 3 has its top bit set.
+      // One pass of unsigned tests that vectorizes with any instruction set (as IdsInRange), then
+      // a search only when something is wrong. An offset outside [0, size] (a negative one is
+      // huge as unsigned) means a decrease or a wrong last offset, found below; with every offset
+      // inside, no size n overflows, n is negative when its top bit is set and, when no size is
+      // negative, below 3 when n - 3 has its top bit set.
       using Bits = std::uint64_t;
+      const auto bits = [](auto offset)
+      { return static_cast<Bits>(static_cast<vtkIdType>(offset)); };
+      bool outside = false;
       Bits negative = 0;
       Bits notThree = 0;
       Bits below3 = 0;
       for (vtkIdType c = 0; c < numCells; ++c)
       {
-        const Bits n = static_cast<Bits>(static_cast<vtkIdType>(offsets[c + 1] - offsets[c]));
+        const Bits n = bits(offsets[c + 1]) - bits(offsets[c]); // wraps, defined for unsigned
+        outside |= bits(offsets[c + 1]) > static_cast<Bits>(size);
         negative |= n;
         notThree |= n ^ 3;
         below3 += (n - 3) >> 63;
       }
-      const bool decreasing = (negative >> 63) != 0;
+      const bool wrong = outside || (negative >> 63) != 0;
       shortCells += static_cast<vtkIdType>(below3);
       trianglesOnly = trianglesOnly && notThree == 0;
-      for (vtkIdType c = 0; decreasing && c < numCells; ++c)
+      for (vtkIdType c = 0; wrong && c < numCells; ++c)
       {
         if (offsets[c + 1] < offsets[c])
         {

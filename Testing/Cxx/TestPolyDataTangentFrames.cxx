@@ -2531,15 +2531,16 @@ void ExpectErrorAndPassThrough(vtkPolyDataTangentFrames* filter,
 TEST(PolyDataTangentFrames, MalformedCellArraysAreAnErrorForEveryMethod)
 {
   // Offsets that do not start at 0, end before or past the connectivity (6 ids), decrease (a
-  // cell of negative size), are negative, lie far past the connectivity, or are missing
-  // altogether, in each of the four cell arrays, 32- and 64-bit: one error naming the array and
-  // the input passed through, from every method with and without splitting. Before, the
-  // weighted methods read (and MikkTSpace's cell tangents wrote) outside the arrays.
+  // cell of negative size, also where the sizes wrap around), are negative, lie far past the
+  // connectivity, or are missing altogether, in each of the four cell arrays, 32- and 64-bit: one
+  // error naming the array and the input passed through, from every method with and without
+  // splitting, instead of reads and writes outside the arrays.
   auto mesh = EveryCellKind();
   const char* names[4] = { "vertex", "line", "polygon", "triangle strip" };
   for (bool storage64 : { false, true })
   {
     const long long far = storage64 ? (1LL << 40) : VTK_TYPE_INT32_MAX;
+    const long long top = storage64 ? VTK_TYPE_INT64_MAX : VTK_TYPE_INT32_MAX;
     const std::vector<std::pair<std::vector<long long>, std::string>> cases = {
       { { 1, 3, 6 }, "its first offset is 1, not 0" },
       { { 0, 3, 5 }, "its last offset is 5 but the connectivity holds 6 ids" },
@@ -2547,6 +2548,8 @@ TEST(PolyDataTangentFrames, MalformedCellArraysAreAnErrorForEveryMethod)
       { { 0, 4, 2, 6 }, "the offsets decrease at cell 1 (4, then 2)" },
       { { 0, -3, 6 }, "the offsets decrease at cell 0 (0, then -3)" },
       { { 0, far, 6 }, "the offsets decrease at cell 1" },
+      // Differences that wrap around in the offsets' type are all positive here.
+      { { 0, top, -2, 6 }, "the offsets decrease at cell 1" },
       { { 0, 3, far }, "its last offset is " + std::to_string(far) },
       { {}, "it has no offsets" },
     };
