@@ -122,6 +122,23 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   return copy;
 }
 
+vtkIdType vtkNormalMapping::detail::CountUnusableNormals(vtkDataArray* array, vtkIdType n)
+{
+  std::atomic<vtkIdType> count{ 0 };
+  ForEachNormalRange(array,
+    n,
+    [&](vtkIdType begin, vtkIdType end, const auto& normal)
+    {
+      vtkIdType here = 0;
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        here += vtkNormalMapping::IsUsableNormal(normal(p)) ? 0 : 1;
+      }
+      count += here;
+    });
+  return count;
+}
+
 bool vtkNormalMapping::detail::PointIdsInRange(vtkPolyDataTangentFrames* filter,
   vtkPolyData* input,
   vtkPolyData* output)

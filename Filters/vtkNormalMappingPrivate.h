@@ -11,6 +11,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkNew.h"
 #include "vtkNormalMappingMultiversioning.h"
 #include "vtkPointData.h"
@@ -137,6 +138,31 @@ void DispatchArray(vtkDataArray* array, Worker&& worker, Args&&... args)
     worker(array, args...);
   }
 }
+
+/**
+ * Calls f(begin, end, normal) on ranges of [0, n) in parallel, where normal(p) is point p's
+ * normal from a 3-component array, as a glm vector of the floats or doubles it stores (read
+ * through its concrete type), or of doubles for arrays of any other type.
+ */
+template<typename F>
+void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
+{
+  DispatchArray<vtkArrayDispatch::Reals>(array,
+    [&](auto* typed)
+    {
+      const auto normals = vtk::DataArrayTupleRange<3>(typed, 0, n);
+      using T = typename decltype(normals)::ComponentType;
+      const auto normal = [&](vtkIdType p)
+      {
+        const auto v = normals[p];
+        return glm::vec<3, T>(v[0], v[1], v[2]);
+      };
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) { f(begin, end, normal); });
+    });
+}
+
+/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
+vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n);
 
 /**
  * `input` itself when each of its cell arrays stores 32- or 64-bit offsets and connectivity

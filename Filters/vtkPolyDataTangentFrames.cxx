@@ -495,9 +495,21 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   {
     return;
   }
-  const BlockInput block{
-    input, output, uvs, normals, cellNormals, polysAreTriangles, nullptr, progressBegin, progressEnd
-  };
+  // Counted once here, whether the frames are computed or kept.
+  const vtkIdType unusable = normals
+    ? vtkNormalMapping::detail::CountUnusableNormals(normals, input->GetNumberOfPoints())
+    : 0;
+  this->NumberOfInvalidNormals += unusable;
+  const BlockInput block{ input,
+    output,
+    uvs,
+    normals,
+    unusable,
+    cellNormals,
+    polysAreTriangles,
+    nullptr,
+    progressBegin,
+    progressEnd };
   if (this->SuppliedTangents != RECOMPUTE)
   {
     this->ExecuteSupplied(block);

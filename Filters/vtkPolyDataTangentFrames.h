@@ -300,6 +300,7 @@ private:
     vtkPolyData* Output = nullptr;
     vtkDataArray* UVs = nullptr;
     vtkDataArray* Normals = nullptr;     ///< usable point normals, or null
+    vtkIdType UnusableNormals = 0;       ///< of those, the zero or non-finite ones
     vtkDataArray* CellNormals = nullptr; ///< averaged to points when Normals is null, or null
     bool PolysAreTriangles = false;
     /// Per point, non-zero where the caller keeps the point's supplied frame (KEEP,

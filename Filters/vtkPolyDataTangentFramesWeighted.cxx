@@ -61,6 +61,7 @@ using vtkNormalMapping::TangentMethod;
 using vtkNormalMapping::TriangleBlock;
 using vtkNormalMapping::TriangleFrame;
 using vtkNormalMapping::detail::DispatchArray;
+using vtkNormalMapping::detail::ForEachNormalRange;
 using vtkNormalMapping::detail::FrameStorage;
 using vtkNormalMapping::detail::OutputFrames;
 using vtkNormalMapping::detail::WithCellStorage;
@@ -267,46 +268,6 @@ void ComputeFrameBlock(TriangleBlock& block,
   {
     vtkNormalMapping::SignCornerWeights(block, count, method);
   }
-}
-
-/**
- * Calls f(begin, end, normal) on ranges of [0, n) in parallel, where normal(p) is point p's
- * normal from a 3-component array, as a glm vector of the floats or doubles it stores (read
- * through its concrete type), or of doubles for arrays of any other type.
- */
-template<typename F>
-void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
-{
-  DispatchArray<vtkArrayDispatch::Reals>(array,
-    [&](auto* typed)
-    {
-      const auto normals = vtk::DataArrayTupleRange<3>(typed, 0, n);
-      using T = typename decltype(normals)::ComponentType;
-      const auto normal = [&](vtkIdType p)
-      {
-        const auto v = normals[p];
-        return glm::vec<3, T>(v[0], v[1], v[2]);
-      };
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) { f(begin, end, normal); });
-    });
-}
-
-/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
-vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
-{
-  std::atomic<vtkIdType> count{ 0 };
-  ForEachNormalRange(array,
-    n,
-    [&](vtkIdType begin, vtkIdType end, const auto& normal)
-    {
-      vtkIdType here = 0;
-      for (vtkIdType p = begin; p < end; ++p)
-      {
-        here += IsUsableNormal(normal(p)) ? 0 : 1;
-      }
-      count += here;
-    });
-  return count;
 }
 
 /**
@@ -1131,12 +1092,7 @@ void vtkPolyDataTangentFrames::Internals::Run()
 
   // Normals: the input's, or computed when it has none; how the frames read them follows below.
   vtkSmartPointer<OutArray<OutT>> computedNormals;
-  vtkIdType unusable = 0;
-  if (this->Normals)
-  {
-    unusable = CountUnusableNormals(this->Normals, this->NumberOfPoints);
-    self->NumberOfInvalidNormals += unusable;
-  }
+  const vtkIdType unusable = this->UnusableNormals;
   if (!mikkTSpace || !this->Normals)
   {
     BuildTriangles(this->Cells, this->PolysAreTriangles, this->Tris);

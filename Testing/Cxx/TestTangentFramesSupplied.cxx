@@ -324,6 +324,31 @@ TEST(TangentFramesSupplied, KeepUsesFramesAsTheyAreAndReplacesOnlyNonFinite)
     std::string(run.Output->GetPointData()->GetTangents()->GetName()));
 }
 
+TEST(TangentFramesSupplied, InvalidNormalsAreCountedWhetherFramesAreKeptOrComputed)
+{
+  // One zero and one NaN normal: every mode counts both, also KEEP and KEEP_VALID when they keep
+  // every frame and compute none (the NaN normal's frame fails KEEP_VALID's check and is computed;
+  // KEEP keeps both as they are).
+  auto mesh = Plane(false);
+  SuppliedVec4(mesh, 0.0, false);
+  vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+  normals->SetTuple3(20, 0.0, 0.0, 0.0);
+  normals->SetTuple3(21, std::numeric_limits<double>::quiet_NaN(), 0.0, 1.0);
+  for (int mode : { vtkPolyDataTangentFrames::RECOMPUTE,
+         vtkPolyDataTangentFrames::KEEP,
+         vtkPolyDataTangentFrames::KEEP_VALID })
+  {
+    for (bool cellTangents : { false, true })
+    {
+      SCOPED_TRACE("mode " + std::to_string(mode) + (cellTangents ? ", cell tangents" : ""));
+      SuppliedRun run(mesh, mode);
+      run.Filter->SetComputeCellTangents(cellTangents);
+      run.Update();
+      EXPECT_EQ(2, run.Filter->GetNumberOfInvalidNormals());
+    }
+  }
+}
+
 TEST(TangentFramesSupplied, KeepReplacesTangentsTooLongForTheOutputPrecision)
 {
   // Double tangents that float output cannot hold would be written as infinity: one longer than
