@@ -551,17 +551,28 @@ void CellSums(const Surface& s,
 
 /**
  * The kernel corners that get the fallback frame: those the kernel counts as left at its default
- * or cancelled, less those of kept points (non-zero in `kept`; null: none), which keep their
- * supplied frames.
+ * or cancelled, less the corners of polygons of fewer than 3 points (which give no frame: the
+ * kernel leaves them at its default) and those of kept points (non-zero in `kept`; null: none),
+ * which keep their supplied frames.
  */
 vtkIdType FallbackCorners(const Surface& s, const mikk::Result& kernel, const unsigned char* kept)
 {
-  vtkIdType count = kernel.NumberOfDefaultCorners + kernel.NumberOfCancelledCorners;
-  for (size_t c = 0; kept && c < kernel.CornerKinds.size(); ++c)
+  const auto size = [&](long long f) { return s.FaceOffsets[f + 1] - s.FaceOffsets[f]; };
+  long long shortCorners = 0;
+  for (long long f = 0; f < s.NumPolys; ++f)
   {
-    const bool keptFallback =
-      kernel.CornerKinds[c] != mikk::CornerKind::Computed && kept[s.FaceConnectivity[c]];
-    count -= keptFallback ? 1 : 0;
+    shortCorners += size(f) < 3 ? size(f) : 0;
+  }
+  vtkIdType count = kernel.NumberOfDefaultCorners + kernel.NumberOfCancelledCorners - shortCorners;
+  for (long long f = 0; kept && f < s.NumFaces; ++f)
+  {
+    for (long long c = s.FaceOffsets[f]; size(f) >= 3 && c < s.FaceOffsets[f + 1]; ++c)
+    {
+      const bool keptFallback =
+        kernel.CornerKinds[static_cast<size_t>(c)] != mikk::CornerKind::Computed &&
+        kept[s.FaceConnectivity[c]];
+      count -= keptFallback ? 1 : 0;
+    }
   }
   return count;
 }

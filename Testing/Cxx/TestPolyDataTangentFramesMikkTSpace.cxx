@@ -1353,6 +1353,45 @@ TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutKeptPointsWhateverTheFram
   }
 }
 
+TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutPolygonsOfFewerThanThreePoints)
+{
+  // A triangle with a frame, polygons of 2 and 1 points (which pass through and give no frame:
+  // the kernel leaves their corners at its default) and a quad of zero UV area (4 fallback
+  // corners): only the quad's corners are fallbacks, also where every point keeps a supplied
+  // frame but one of the quad's.
+  TestMesh m;
+  const vtkIdType a = m.AddPoint({ 0, 0, 0 }, { 0, 0, 1 }, { 0, 0 });
+  m.AddPoint({ 1, 0, 0 }, { 0, 0, 1 }, { 1, 0 });
+  m.AddPoint({ 0, 1, 0 }, { 0, 0, 1 }, { 0, 1 });
+  m.Polys.push_back({ a, a + 1, a + 2 });
+  m.Polys.push_back({ a + 1, a + 2 });
+  m.Polys.push_back({ a });
+  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  vtkSmartPointer<vtkPolyData> input = m.Build();
+  vtkNew<vtkFloatArray> supplied;
+  supplied->SetName("TANGENT");
+  supplied->SetNumberOfComponents(4);
+  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    supplied->SetTuple4(p, p == flat ? std::nan("") : 1.0, 0.0, 0.0, 1.0);
+  }
+  input->GetPointData()->AddArray(supplied);
+
+  EXPECT_EQ(RunFilter(input).DefaultCorners, 4);
+  const FilterRun keep = RunFilter(input,
+    [](vtkPolyDataTangentFrames* f)
+    {
+      f->SetSuppliedTangents(vtkPolyDataTangentFrames::KEEP);
+      f->SetSuppliedTangentsArrayName("TANGENT");
+    });
+  EXPECT_EQ(keep.DefaultCorners, 1);
+}
+
 TEST(PolyDataTangentFramesMikkTSpace, FrameContractWhereTheReferenceBreaksIt)
 {
   TestMesh m;
