@@ -139,6 +139,20 @@ vtkIdType vtkNormalMapping::detail::CountUnusableNormals(vtkDataArray* array, vt
   return count;
 }
 
+void vtkNormalMapping::detail::WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter,
+  vtkIdType corners)
+{
+  if (corners > 0)
+  {
+    vtkWarningWithObjectMacro(filter,
+      << corners
+      << " polygon or strip corners lie on a seam where the cell's triangles need different "
+         "frames; a corner has one point, so some of those triangles shade with the other side's "
+         "frame there. Split the cells into triangles first (vtkTriangleFilter) to give each its "
+         "own.");
+  }
+}
+
 bool vtkNormalMapping::detail::PointIdsInRange(vtkPolyDataTangentFrames* filter,
   vtkPolyData* input,
   vtkPolyData* output)

@@ -215,6 +215,13 @@ void CellTriangleStarts(vtkCellArray* cells, T* first)
 }
 
 /**
+ * Warns on `filter` when `corners` (a count) corners of split points belong to cells whose
+ * triangles there have different frames: a corner has one point id, so some of those triangles
+ * shade with another side's frame.
+ */
+void WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter, vtkIdType corners);
+
+/**
  * Whether every point id of the polygons and strips of `input` is in [0, its number of points)
  * (IdsInRange, in parallel); false after an error on `filter` that passes the input through to
  * `output`. Cell arrays must be readable (vtkPolyDataTangentFrames::ExecuteBlock checks both,
@@ -372,6 +379,18 @@ struct OutputFrames
       }
     }
     return names;
+  }
+
+  /// Shortens them to their first `tuples` tuples.
+  void Truncate(vtkIdType tuples) const
+  {
+    for (ArrayT* array : { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
+    {
+      if (array)
+      {
+        array->SetNumberOfTuples(tuples);
+      }
+    }
   }
 
   /// Adds them to `pd`, the tangents as its active tangents.

@@ -366,6 +366,9 @@ struct Assignment
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
   vtkIdType Conflicts = 0;
+  /// With splitting: strip corners whose strip triangles carry different frames, which their one
+  /// point cannot all take (kept points left out).
+  vtkIdType MixedCorners = 0;
 };
 
 /**
@@ -483,6 +486,7 @@ void Assign(const Surface& s,
         if (!SameFrame(kernelFrames[slotIn(later)], kernelFrames[slot]))
         {
           markConflict(conn[slot]);
+          a.MixedCorners += splitting && !(kept && kept[conn[slot]]) ? 1 : 0;
           break;
         }
       }
@@ -709,6 +713,7 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
   this->NumberOfHandednessConflicts += assignment.Conflicts;
+  vtkNormalMapping::detail::WarnAboutMixedCorners(this, assignment.MixedCorners);
   this->NumberOfSplitPoints += static_cast<vtkIdType>(assignment.SplitSource.size());
   if (!this->ContinueBlock(block, 0.9))
   {

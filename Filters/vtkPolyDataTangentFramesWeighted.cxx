@@ -489,18 +489,28 @@ struct CornerHandedness
   }
 };
 
+/// Which corners of the cells move to the copies of split points (MirroredCorners).
+struct Repointing
+{
+  /// (connectivity position, copy id): polygon positions first, then strip positions after the
+  /// polygons' connectivity.
+  std::vector<std::pair<vtkIdType, vtkIdType>> Corners;
+  /// Corners of split points whose cell's triangles there have both handednesses: one point id
+  /// cannot give each its side's frame (a strip crossing a mirror seam, a polygon folded in UV).
+  vtkIdType Mixed = 0;
+};
+
 /**
- * Re-pointing of the corners on the mirrored side of split points, as (connectivity position,
- * copy id), polygon positions first, then strip positions after the polygons' connectivity.
- * A corner's side is the majority handedness of its cell's triangles that hold it.
+ * Re-pointing of the corners on the mirrored side of split points. A corner's side is the
+ * majority handedness of its cell's triangles that hold it.
  */
-std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const cellArrays[2],
+Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
   const CornerHandedness& handedness,
   const std::vector<SplitPoint>& splits,
   vtkIdType numPoints)
 {
-  std::vector<std::pair<vtkIdType, vtkIdType>> repoint;
+  Repointing repoint;
   if (splits.empty())
   {
     return repoint;
@@ -537,18 +547,22 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
           const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
           vtkIdType first, last;
           vtkNormalMapping::detail::TrianglesAtCorner(k, n, strip, first, last);
-          int vote = 0;
+          int positive = 0;
+          int negative = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
-            vote += handedness.At(tris, firstTriangle + j, id);
+            const int h = handedness.At(tris, firstTriangle + j, id);
+            positive += h > 0 ? 1 : 0;
+            negative += h < 0 ? 1 : 0;
           }
-          if (vote < 0)
+          repoint.Mixed += positive > 0 && negative > 0 ? 1 : 0;
+          if (negative > positive)
           {
             const auto it = std::lower_bound(splits.begin(),
               splits.end(),
               id,
               [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
-            repoint.emplace_back(
+            repoint.Corners.emplace_back(
               base + pos, numPoints + static_cast<vtkIdType>(it - splits.begin()));
           }
         }
@@ -557,6 +571,36 @@ std::vector<std::pair<vtkIdType, vtkIdType>> MirroredCorners(vtkCellArray* const
     base += cells->GetNumberOfConnectivityIds();
   }
   return repoint;
+}
+
+/**
+ * Leaves out the split points whose copy no corner moves to (a polygon corner whose triangles tie
+ * on handedness stays with the point): they stay conflicts, unsplit. The copies of the others
+ * are renumbered in order.
+ */
+void DropUnusedCopies(std::vector<SplitPoint>& splits,
+  std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
+  vtkIdType numPoints)
+{
+  std::vector<vtkIdType> copyId(splits.size(), -1);
+  for (const auto& r : repoint)
+  {
+    copyId[r.second - numPoints] = 0;
+  }
+  vtkIdType used = 0;
+  for (size_t i = 0; i < splits.size(); ++i)
+  {
+    if (copyId[i] == 0)
+    {
+      copyId[i] = numPoints + used;
+      splits[used++] = splits[i];
+    }
+  }
+  splits.resize(static_cast<size_t>(used));
+  for (auto& r : repoint)
+  {
+    r.second = copyId[r.second - numPoints];
+  }
 }
 
 /**
@@ -1044,13 +1088,20 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
   /**
    * The output (WriteSplitOutput): the split points' -1 frames after the input points', the
-   * corners on their mirrored side re-pointed to them, and the cell tangents when asked for.
+   * corners on their mirrored side re-pointed to them (split points whose copy no corner takes
+   * stay unsplit), and the cell tangents when asked for.
    */
   template<typename OutT>
-  void WriteOutput(const std::vector<SplitPoint>& splits,
+  void WriteOutput(std::vector<SplitPoint> splits,
     const OutputFrames<OutArray<OutT>>& frames,
     vtkDataArray* computedNormals)
   {
+    Repointing repoint =
+      MirroredCorners(this->Cells, this->Tris, *this->Handedness, splits, this->NumberOfPoints);
+    DropUnusedCopies(splits, repoint.Corners, this->NumberOfPoints);
+    this->Self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
+    vtkNormalMapping::detail::WarnAboutMixedCorners(this->Self, repoint.Mixed);
+    frames.Truncate(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
     const FrameStorage<OutT> out = frames.Storage();
     std::vector<vtkIdType> splitSource(splits.size());
     for (size_t i = 0; i < splits.size(); ++i)
@@ -1061,10 +1112,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
         splits[i].Tangent,
         -1.0);
     }
-    const auto repoint =
-      MirroredCorners(this->Cells, this->Tris, *this->Handedness, splits, this->NumberOfPoints);
     vtkNormalMapping::detail::WriteSplitOutput(
-      this->Input, this->Output, splitSource, repoint, frames, computedNormals);
+      this->Input, this->Output, splitSource, repoint.Corners, frames, computedNormals);
     if (this->Self->ComputeCellTangents)
     {
       // Per cell, its triangles' area-weighted tangents and normals.
@@ -1163,18 +1212,17 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   {
     FillFallbacks(this->Tris, *this->Handedness, normals, kinds.get(), fallbacks, frames.Storage());
   }
-  const std::vector<SplitPoint> splits =
+  std::vector<SplitPoint> splits =
     self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
   if (!this->Continue(0.85))
   {
     return;
   }
-  self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
   // Freed before the output copies the point data and the connectivity, the sums' and kinds'
   // memory can hold those copies.
   sums.reset();
   kinds.reset();
-  this->WriteOutput<OutT>(splits, frames, computedNormals);
+  this->WriteOutput<OutT>(std::move(splits), frames, computedNormals);
   this->Continue(1.0);
 }
 

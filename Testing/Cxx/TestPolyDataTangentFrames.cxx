@@ -561,6 +561,91 @@ TEST(PolyDataTangentFrames, SplitCornersOfPolygonsAndStripsSeeTheirOwnFrame)
     }
 }
 
+TEST(PolyDataTangentFrames, CornersThatCannotSplitAreWarnedAboutAndMakeNoCopy)
+{
+  // 1. One strip across a mirror seam (u = |x - 2|, points in pairs along x): at the seam points
+  //    strip triangles of both handednesses share a strip corner, which has one point id. Every
+  //    method warns and names the number of such corners; without splitting there is nothing to
+  //    warn about (the points take one side's frame, as conflicts).
+  vtkNew<vtkPolyData> strip;
+  {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkFloatArray> uv, normals;
+    uv->SetNumberOfComponents(2);
+    normals->SetNumberOfComponents(3);
+    vtkNew<vtkIdList> ids;
+    for (int i = 0; i <= 4; ++i)
+    {
+      for (int j = 0; j < 2; ++j)
+      {
+        ids->InsertNextId(points->InsertNextPoint(i, j, 0));
+        uv->InsertNextTuple2(std::abs(i - 2.0), j);
+        normals->InsertNextTuple3(0, 0, 1);
+      }
+    }
+    vtkNew<vtkCellArray> strips;
+    strips->InsertNextCell(ids);
+    strip->SetPoints(points);
+    strip->SetStrips(strips);
+    strip->GetPointData()->SetTCoords(uv);
+    strip->GetPointData()->SetNormals(normals);
+  }
+  const std::string warning = "polygon or strip corners lie on a seam";
+  for (int method :
+    { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
+  {
+    SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
+    for (bool splitting : { true, false })
+    {
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      Messages messages(filter);
+      filter->SetInputData(strip);
+      filter->SetMethod(method);
+      filter->SetSplitting(splitting);
+      filter->Update();
+      ExpectValidFrames(filter->GetOutput());
+      EXPECT_EQ(messages.Has(messages.Warnings, "2 " + warning), splitting);
+      EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
+    }
+  }
+
+  // 2. A quad folded in UV: its fan triangles (0, 1, 2) and (0, 2, 3) have opposite handedness
+  //    and tie at corners 0 and 2. Those points are conflicts, but no corner moves to a copy, so
+  //    none is made (none would be used) and none is counted as split; the corners are warned
+  //    about.
+  vtkNew<vtkPolyData> quad;
+  {
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkFloatArray> uv, normals;
+    uv->SetNumberOfComponents(2);
+    normals->SetNumberOfComponents(3);
+    const double corners[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+    const double uvs[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 1.5, 0.2 } };
+    for (int i = 0; i < 4; ++i)
+    {
+      points->InsertNextPoint(corners[i][0], corners[i][1], 0);
+      uv->InsertNextTuple(uvs[i]);
+      normals->InsertNextTuple3(0, 0, 1);
+    }
+    vtkNew<vtkCellArray> polys;
+    const vtkIdType ids[4] = { 0, 1, 2, 3 };
+    polys->InsertNextCell(4, ids);
+    quad->SetPoints(points);
+    quad->SetPolys(polys);
+    quad->GetPointData()->SetTCoords(uv);
+    quad->GetPointData()->SetNormals(normals);
+  }
+  vtkNew<vtkPolyDataTangentFrames> filter;
+  Messages messages(filter);
+  filter->SetInputData(quad);
+  filter->Update();
+  ExpectValidFrames(filter->GetOutput());
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 4);
+  EXPECT_EQ(filter->GetNumberOfSplitPoints(), 0);
+  EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
+  EXPECT_TRUE(messages.Has(messages.Warnings, "2 " + warning));
+}
+
 TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
 {
   // Extra point data of two kinds (numeric with component names, an information key, a lookup
