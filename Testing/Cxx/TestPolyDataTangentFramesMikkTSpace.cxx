@@ -1301,6 +1301,36 @@ TEST(PolyDataTangentFramesMikkTSpace, CellTangentsIncludeComputedCornersWithTheD
   }
 }
 
+namespace
+{
+/// Adds a unit quad at x = 5 ... 6 whose corners share one texture coordinate (zero UV area: the
+/// kernel leaves its 4 corners at the default) and returns its first point.
+vtkIdType AddFlatQuad(TestMesh& m)
+{
+  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
+  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  return flat;
+}
+
+/// Adds the point array "TANGENT" (4 components, w the sign) with frame(p) at point p.
+void AddSuppliedTangents(vtkPolyData* input,
+  const std::function<std::array<double, 4>(vtkIdType)>& frame)
+{
+  vtkNew<vtkFloatArray> supplied;
+  supplied->SetName("TANGENT");
+  supplied->SetNumberOfComponents(4);
+  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
+  {
+    supplied->SetTuple(p, frame(p).data());
+  }
+  input->GetPointData()->AddArray(supplied);
+}
+}
+
 // With supplied tangents kept (KEEP, KEEP_VALID), the fallback count leaves out the face corners
 // of the kept points, as the weighted methods leave out kept points. A point whose frame is
 // computed counts by what its corners are, not by their bits: here computed corners with the
@@ -1310,24 +1340,16 @@ TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutKeptPointsWhateverTheFram
 {
   TestMesh m = DefaultBitsGrid();
   const vtkIdType centre = 4; // of the grid: one corner in each of its 4 quads
-  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  const vtkIdType flat = AddFlatQuad(m);
   vtkSmartPointer<vtkPolyData> input = m.Build();
   // Valid supplied frames (unit, perpendicular to +z, the texture's sign -1), but for a NaN at
   // the grid's centre and at one corner of the flat quad: only those two are computed.
-  vtkNew<vtkFloatArray> supplied;
-  supplied->SetName("TANGENT");
-  supplied->SetNumberOfComponents(4);
-  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
-  {
-    const bool computed = p == centre || p == flat;
-    supplied->SetTuple4(p, computed ? std::nan("") : 0.0, 1.0, 0.0, -1.0);
-  }
-  input->GetPointData()->AddArray(supplied);
+  AddSuppliedTangents(input,
+    [&](vtkIdType p)
+    {
+      const bool computed = p == centre || p == flat;
+      return std::array<double, 4>{ computed ? std::nan("") : 0.0, 1.0, 0.0, -1.0 };
+    });
 
   const ExpectedFrames e = ComputeExpected(input);
   ASSERT_EQ(e.Kernel.Corners.size(), 20u);
@@ -1366,21 +1388,12 @@ TEST(PolyDataTangentFramesMikkTSpace, FallbacksLeaveOutPolygonsOfFewerThanThreeP
   m.Polys.push_back({ a, a + 1, a + 2 });
   m.Polys.push_back({ a + 1, a + 2 });
   m.Polys.push_back({ a });
-  const vtkIdType flat = m.AddPoint({ 5, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 6, 0, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 6, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.AddPoint({ 5, 1, 0 }, { 0, 0, 1 }, { 0.5f, 0.5f });
-  m.Polys.push_back({ flat, flat + 1, flat + 2, flat + 3 });
+  const vtkIdType flat = AddFlatQuad(m);
   vtkSmartPointer<vtkPolyData> input = m.Build();
-  vtkNew<vtkFloatArray> supplied;
-  supplied->SetName("TANGENT");
-  supplied->SetNumberOfComponents(4);
-  supplied->SetNumberOfTuples(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
-  {
-    supplied->SetTuple4(p, p == flat ? std::nan("") : 1.0, 0.0, 0.0, 1.0);
-  }
-  input->GetPointData()->AddArray(supplied);
+  AddSuppliedTangents(input,
+    [&](vtkIdType p) {
+      return std::array<double, 4>{ p == flat ? std::nan("") : 1.0, 0.0, 0.0, 1.0 };
+    });
 
   EXPECT_EQ(RunFilter(input).DefaultCorners, 4);
   const FilterRun keep = RunFilter(input,
