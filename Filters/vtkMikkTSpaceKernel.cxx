@@ -815,35 +815,58 @@ struct Kernel
         gwaVertex[size_t(WeldOf(c))] = 1;
       }
     }
-    std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
+    // The paired edges of each such vertex's fan (Member::Link per fan position), made once:
+    // every flood from one of its corners walks them.
+    std::vector<Idx> linkStart(size_t(NumVerts) + 1, 0);
+    for (Idx v = 0; v < NumVerts; ++v)
+    {
+      linkStart[size_t(v) + 1] = linkStart[size_t(v)] + (gwaVertex[size_t(v)] ? FanSize(v) : 0);
+    }
+    std::vector<std::array<Idx, 2>> links(size_t(linkStart.back()));
     Scratch scratch;
+    for (Idx v = 0; v < NumVerts; ++v)
+    {
+      if (gwaVertex[size_t(v)])
+      {
+        GatherFan(v, scratch.Members);
+        PairEdges(scratch.Members, scratch.Edges);
+        for (size_t j = 0; j < scratch.Members.size(); ++j)
+        {
+          const Member& member = scratch.Members[j];
+          links[size_t(linkStart[size_t(v)]) + j] = { member.Link[0], member.Link[1] };
+        }
+      }
+    }
+    std::vector<uint8_t> assigned(3 * size_t(NumTris), 0);
     for (Idx c = 0; c < 3 * NumTris; ++c)
     {
-      if (!flags(c) && gwaVertex[size_t(WeldOf(c))] && !assigned[size_t(c)])
+      const Idx v = WeldOf(c);
+      if (!flags(c) && gwaVertex[size_t(v)] && !assigned[size_t(c)])
       {
-        FloodGroup(c, assigned, scratch);
+        FloodGroup(c, links.data() + linkStart[size_t(v)], assigned, scratch.Stack);
       }
     }
   }
 
-  // The reference's group flood from corner c across the fan of its welded vertex's paired edges,
-  // through corners not assigned to a group yet: a GWA triangle none of whose corners has a group
-  // takes the seed's orientation, and the flood goes on through corners of that orientation.
-  void FloodGroup(Idx c, std::vector<uint8_t>& assigned, Scratch& s)
+  // The reference's group flood from corner c across the paired edges of its welded vertex's fan
+  // (`links`, per fan position), through corners not assigned to a group yet: a GWA triangle none
+  // of whose corners has a group takes the seed's orientation, and the flood goes on through
+  // corners of that orientation.
+  void FloodGroup(Idx c,
+    const std::array<Idx, 2>* links,
+    std::vector<uint8_t>& assigned,
+    std::vector<Idx>& stack)
   {
     const Idx v = WeldOf(c);
-    std::vector<Member>& m = s.Members;
-    GatherFan(v, m);
-    PairEdges(m, s.Edges);
     const Idx* fan = Fan.data() + FanStart[size_t(v)];
     const uint8_t orient = Tris[size_t(c / 3)].Flags & kOrient;
     assigned[size_t(c)] = 1;
-    s.Stack.assign(1, Idx(std::lower_bound(fan, fan + m.size(), c) - fan));
-    while (!s.Stack.empty())
+    stack.assign(1, Idx(std::lower_bound(fan, fan + FanSize(v), c) - fan));
+    while (!stack.empty())
     {
-      const Idx j = s.Stack.back();
-      s.Stack.pop_back();
-      for (const Idx q : m[size_t(j)].Link)
+      const Idx j = stack.back();
+      stack.pop_back();
+      for (const Idx q : links[j])
       {
         if (q < 0 || assigned[size_t(fan[q])])
         {
@@ -859,7 +882,7 @@ struct Kernel
         if ((fq & kOrient) == orient)
         {
           assigned[size_t(fan[q])] = 1;
-          s.Stack.push_back(q);
+          stack.push_back(q);
         }
       }
     }

@@ -624,6 +624,44 @@ TEST(MikkTSpaceKernel, GroupWithAnyAdoption)
   }
 }
 
+// A fan of 2^18 triangles around one centre whose texture orientation alternates (each centre
+// corner a group of its own), two of them of zero UV area at the centre: the group replay that
+// gives those two their orientation floods once per group, and each flood walks the centre's
+// paired edges. They are paired once per fan: pairing the whole fan again for every flood makes
+// the time grow with the square of the fan, past ctest's default timeout at this size.
+TEST(MikkTSpaceKernel, GroupWithAnyReplayPairsEachFanOnce)
+{
+  constexpr int k = 1 << 18;
+  Mesh m;
+  const long long centre = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  std::vector<long long> ring;
+  for (int i = 0; i <= k; ++i)
+  {
+    const double a = 6.283185307179586 * i / (k + 1);
+    // Ring point 5 has the centre's texture coordinates: triangles 4 and 5 have zero UV area.
+    const std::array<float, 2> uv = i == 5
+      ? std::array<float, 2>{ 0, 0 }
+      : (i % 2 ? std::array<float, 2>{ 0.5403023f, 0.84147096f } : std::array<float, 2>{ 1, 0 });
+    ring.push_back(m.AddPoint({ float(std::cos(a)), float(std::sin(a)), 0 }, kUp, uv));
+  }
+  for (int i = 0; i < k; ++i)
+  {
+    m.AddFace({ centre, ring[i], ring[i + 1] });
+  }
+  const mikk::Result r = RunKernel(m);
+  ASSERT_EQ(r.Corners.size(), static_cast<size_t>(3 * k));
+  EXPECT_EQ(r.NumberOfGroupWithAnyTriangles, 2);
+  // Triangle i (corner 3 i at the centre) turns the texture one way for even i, the other way for
+  // odd i.
+  int wrong = 0;
+  for (int i = 0; i < k; ++i)
+  {
+    const float expected = i % 2 ? -1.0f : 1.0f;
+    wrong += i == 4 || i == 5 || r.Corners[3 * static_cast<size_t>(i)].Sign == expected ? 0 : 1;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
 // Within one group, the reference averages a member only with the members whose projected
 // directions are not exactly opposite to its own (its sub-group). Five triangles around a centre,
 // ring point k at 45k degrees with its texture coordinates at 90k degrees (the map z -> z^2,
