@@ -27,8 +27,11 @@
  *   corners (CornerKind::Default), since a computed frame can have the same bits.
  *
  * Differences from the reference are limited to float rounding in the sign of zero components
- * (the reference reads a welded vertex's representative, whose zeros may carry the other sign)
- * and to inputs with NaN/Inf (where the reference produces NaN or reads out of its grid).
+ * (the reference reads a welded vertex's representative, whose zeros may carry the other sign),
+ * to inputs with NaN/Inf (where the reference produces NaN or reads out of its grid), to the
+ * reference's unsorted last run of edges (it leaves the edges at the welded vertex of the
+ * largest index in quicksort order; docs/mikktspace.md) and to coordinates beyond about 1.7e38
+ * (where the reference's welding grid overflows and it welds nothing).
  *
  * Sign convention: MikkTSpace's, bitangent = Sign * cross(N, T) with the texture coordinates
  * as given. glTF stores v downward: tangents for glTF are obtained by running on the glTF UVs
@@ -90,7 +93,8 @@ struct Result
   std::vector<CornerFrame> Corners;
   /// One per face corner, as Corners: what each corner's frame is.
   std::vector<CornerKind> CornerKinds;
-  long long NumberOfTriangles = 0;             ///< after splitting quads and fanning larger faces
+  /// After splitting quads and fanning larger faces; faces with a point id out of range count too.
+  long long NumberOfTriangles = 0;
   long long NumberOfDegenerateTriangles = 0;   ///< triangles with two equal corner positions
   long long NumberOfDefaultCorners = 0;        ///< corners of CornerKind::Default
   long long NumberOfNonFiniteCorners = 0;      ///< of those, corners whose result was not finite
