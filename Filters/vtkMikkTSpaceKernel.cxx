@@ -990,7 +990,7 @@ struct Kernel
         const Member& a = s.Members[size_t(j)];
         return (a.Flags & kGWA) || (first.S.Dot(a.S) > 0.01f && first.T.Dot(a.T) > 0.01f);
       });
-    if (!single)
+    if (!single && !OneFaceCorner(s, members, count, first))
     {
       GeneralSubgroups(s, members, count, orient, first.Corner);
       return;
@@ -1000,6 +1000,20 @@ struct Kernel
     {
       Write(s.Members[size_t(members[j])], f, orient, first.Corner);
     }
+  }
+
+  // Whether the non-GWA members all hold one face corner (a large polygon's fanned corner 0): then
+  // every two are of one face, so each member's sub-group is the whole group.
+  bool OneFaceCorner(const Scratch& s, const Idx* members, size_t count, const Member& first) const
+  {
+    const Idx slot = SlotOf(first.Corner);
+    return std::all_of(members,
+      members + count,
+      [&](Idx j)
+      {
+        const Member& a = s.Members[size_t(j)];
+        return (a.Flags & kGWA) || SlotOf(a.Corner) == slot;
+      });
   }
 
   // Angle-weighted average of the non-GWA members listed, in list order.

@@ -662,6 +662,41 @@ TEST(MikkTSpaceKernel, GroupWithAnyReplayPairsEachFanOnce)
   EXPECT_EQ(wrong, 0);
 }
 
+// One polygon of 2^20 corners on a 270-degree arc around its corner 0, with texture coordinates
+// z^2 (as complex numbers): its fan triangles keep one orientation (one group at corner 0) while
+// their tangents turn by 270 degrees, so no shortcut by direction applies. They all hold face
+// corner 0, so every two are of one face and the group is one sub-group: found in one pass over
+// the members, where comparing every pair makes the time grow with the square of the polygon,
+// past ctest's default timeout at this size.
+TEST(MikkTSpaceKernel, LargePolygonIsOneSubgroupAtItsFannedCorner)
+{
+  constexpr int k = 1 << 20;
+  Mesh m;
+  std::vector<long long> face = { m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 }) };
+  for (int i = 0; i + 1 < k; ++i)
+  {
+    const double a = 1.5 * 3.141592653589793 * i / (k - 1);
+    face.push_back(m.AddPoint({ float(std::cos(a)), float(std::sin(a)), 0 },
+      kUp,
+      { float(std::cos(2 * a)), float(std::sin(2 * a)) }));
+  }
+  m.Offsets.push_back(m.Offsets.back() + static_cast<long long>(face.size()));
+  m.Conn.insert(m.Conn.end(), face.begin(), face.end());
+  const mikk::Result r = RunKernel(m);
+  ASSERT_EQ(r.Corners.size(), static_cast<size_t>(k));
+  EXPECT_EQ(r.NumberOfDefaultCorners, 0);
+  EXPECT_EQ(r.NumberOfCancelledCorners, 0);
+  int wrong = 0;
+  for (const mikk::CornerFrame& f : r.Corners)
+  {
+    const float length = std::sqrt(
+      f.Tangent[0] * f.Tangent[0] + f.Tangent[1] * f.Tangent[1] + f.Tangent[2] * f.Tangent[2]);
+    // A float unit vector's length is 1 within a few float roundings.
+    wrong += f.Sign == 1.0f && std::abs(length - 1.0f) < 1e-5f && f.Tangent[2] == 0.0f ? 0 : 1;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
 // Within one group, the reference averages a member only with the members whose projected
 // directions are not exactly opposite to its own (its sub-group). Five triangles around a centre,
 // ring point k at 45k degrees with its texture coordinates at 90k degrees (the map z -> z^2,
