@@ -179,7 +179,7 @@ void PairEdgesByScan(std::vector<Member>& m)
 // edge (vertex, x), in triangle order, each unpaired one with the first later unpaired one of
 // opposite direction. All half-edges of an edge at the vertex are in its fan, so the rule is
 // evaluated locally. A small fan scans the later members. A large one (a polygon of thousands
-// of corners fan-triangulated around its first) stays O(k log k): its half-edges are sorted by
+// of corners fan-triangulated around its first) pairs in O(k log k): its half-edges are sorted by
 // (x, member), and each edge's are swept with a queue of the unpaired ones so far; those share
 // one direction, so a half-edge of the other direction pairs with the oldest of them.
 void PairEdges(std::vector<Member>& m, std::vector<uint64_t>& halfEdges)
