@@ -401,6 +401,9 @@ struct Kernel
   // triangles, in face order
   static constexpr long long kFaceChunk = 4096;
   std::vector<Idx> ChunkTriBase; // first triangle of each chunk of faces
+  // Per face, 1 where it starts before an earlier face ends (offsets out of order), which makes it
+  // invalid: faces never share a face corner. Empty when no face does.
+  std::vector<uint8_t> Overlapping;
   Idx NumTris = 0;
   bool AnyMulti = false; // some face has more than 3 corners
   struct Triangle
@@ -458,6 +461,7 @@ struct Kernel
 
   bool FaceInRange(long long b, long long e) const { return b >= 0 && e >= b && e <= NumSlots; }
   bool FaceHasTriangles(long long b, long long e) const { return FaceInRange(b, e) && e - b >= 3; }
+  bool Overlaps(long long f) const { return !Overlapping.empty() && Overlapping[size_t(f)]; }
   /// visit(b, e, t) for every face that gives triangles, in parallel over chunks of faces:
   /// [b, e) are its offsets and t its first triangle.
   template<typename Visit>
@@ -475,7 +479,7 @@ struct Kernel
           for (long long f = c * kFaceChunk; f < fe; ++f)
           {
             const long long b = Off[f], e = Off[f + 1];
-            if (FaceHasTriangles(b, e))
+            if (FaceHasTriangles(b, e) && !Overlaps(f))
             {
               visit(b, e, t);
               t += Idx(e - b - 2);
@@ -582,6 +586,7 @@ struct Kernel
   void BuildTriangles()
   {
     bool inOrder = true;
+    long long reach = 0; // the end of the faces in range so far
     for (long long f = 0; f < In.NumberOfFaces; ++f)
     {
       if (f % kFaceChunk == 0)
@@ -590,6 +595,14 @@ struct Kernel
       }
       const long long b = Off[f], e = Off[f + 1];
       inOrder = inOrder && b == 3 * f && e == b + 3;
+      if (FaceInRange(b, e) && b < reach)
+      {
+        Overlapping.resize(size_t(In.NumberOfFaces), 0);
+        Overlapping[size_t(f)] = 1;
+        ++NumInvalid;
+        continue;
+      }
+      reach = FaceInRange(b, e) ? e : reach;
       if (FaceHasTriangles(b, e))
       {
         NumTris += Idx(e - b - 2);

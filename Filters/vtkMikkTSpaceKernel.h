@@ -19,8 +19,9 @@
  *   receives the reference's pairwise average of their frames (in group creation order), and a
  *   degenerate fan triangle only fills face corners that no good fan triangle covers. The quad
  *   specific rules (orientation forcing, "quad with one degenerate triangle") do not apply.
- * - Faces with fewer than 3 corners, and faces with a point id outside [0, NumberOfPoints) or
- *   offsets outside the connectivity, are skipped: their corners get the default frame.
+ * - Faces with fewer than 3 corners, and faces with a point id outside [0, NumberOfPoints),
+ *   offsets outside the connectivity or a start before an earlier face's end (no two faces share
+ *   a face corner), are skipped: their corners get the default frame.
  * - Corners never reached by a tangent group get the reference default: tangent (1,0,0),
  *   sign -1 (note: not perpendicular to the normal). Any non-finite result (for example from
  *   NaN or Inf input) is replaced by that default and counted. Result::CornerKinds marks these

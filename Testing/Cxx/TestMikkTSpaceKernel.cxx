@@ -920,6 +920,32 @@ TEST(MikkTSpaceKernel, OutOfRangeIds)
   EXPECT_EQ(res.NumberOfDefaultCorners, 12);
 }
 
+// Offsets out of order can make two faces share face corners, which each face writes on its own
+// thread: a face that starts before an earlier one ends is invalid, its corners that no valid
+// face holds get the default, and the earlier face keeps its frames.
+TEST(MikkTSpaceKernel, FacesThatOverlapEarlierOnesAreInvalid)
+{
+  Mesh m;
+  const long long a = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  const long long b = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+  const long long c = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
+  const long long d = m.AddPoint({ 1, 1, 0.5f }, kUp, { 1, 1 });
+  Mesh clean = m;
+  clean.AddFace({ a, b, c });
+  m.Conn = { a, b, c, d, b };
+  m.Offsets = { 0, 3, 2, 5 }; // [0, 3), then [3, 2) (out of range) and [2, 5), overlapping [0, 3)
+  const mikk::Result res = RunKernel(m);
+  const mikk::Result ref = RunKernel(clean);
+  ASSERT_EQ(res.Corners.size(), 5u);
+  EXPECT_EQ(res.NumberOfInvalidFaces, 2);
+  for (size_t k = 0; k < 3; ++k)
+  {
+    EXPECT_TRUE(BitEqual(res.Corners[k], ref.Corners[k])) << "corner " << k;
+  }
+  EXPECT_TRUE(IsDefault(res.Corners[3]));
+  EXPECT_TRUE(IsDefault(res.Corners[4]));
+}
+
 // NaN and Inf anywhere in the input never produce non-finite output.
 TEST(MikkTSpaceKernel, NonFiniteInput)
 {
