@@ -102,7 +102,8 @@ struct TriangleFrame
   /// of the rescaled edges: normalizing it here would cost a square root and a division per
   /// triangle that the sign tests do not need); zero when degenerate in position.
   glm::dvec3 Normal{ 0.0 };
-  /// Area of the triangle in position space (finite, possibly 0).
+  /// Area of the triangle in position space: 0, or clamped to [detail::AreaMinimum,
+  /// detail::AreaMaximum].
   double Area = 0.0;
   /// +1 when the UV winding agrees with the position winding, -1 when mirrored, 0 when the
   /// triangle has no usable frame (zero UV area, zero area, or non-finite input).
@@ -159,6 +160,13 @@ inline int RescaleExponent(double m)
 {
   return InSafeRange(m) ? 0 : UnitExponent(m);
 }
+
+/// The range of triangle areas as weights. Areas outside it (only from edges outside the safe
+/// range, which give areas in [2^-330, 2^320]) are clamped to it, so that they weigh alike there:
+/// sums of up to 2^63 of them, of their multiples by unit vectors or angles, neither overflow nor
+/// vanish, and the weighted directions degrade to unweighted ones instead of to a fallback.
+constexpr double AreaMinimum = 0x1p-900;
+constexpr double AreaMaximum = 0x1p900;
 
 /// The same for the normalization of one vector (normals, summed tangents): no product of two
 /// components of a vector whose largest component lies in [NormalizeMinimum, NormalizeMaximum]
@@ -375,10 +383,11 @@ inline TriangleFrame ComputeFrameFromEdges(glm::dvec3 e1,
       angles[k] = detail::CornerAngle(frame.Area, angles[k]);
     }
   }
-  // Back to the input's units; an area beyond DBL_MAX still weighs as the largest double.
+  // Back to the input's units, clamped to [AreaMinimum, AreaMaximum] (see there).
   const double area =
     detail::ScaleByPowerOfTwo(detail::ScaleByPowerOfTwo(frame.Area, -ePos), -ePos);
-  frame.Area = std::isfinite(area) ? area : DBL_MAX;
+  frame.Area =
+    frame.Area > 0.0 ? std::min(std::max(area, detail::AreaMinimum), detail::AreaMaximum) : 0.0;
   return frame;
 }
 

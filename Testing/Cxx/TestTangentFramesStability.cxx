@@ -198,6 +198,41 @@ TEST(TangentFramesStability, ScaledPositionsAndTextureCoordinates)
   }
 }
 
+TEST(TangentFramesStability, AreaWeightsAtTheExtremesOfDouble)
+{
+  // Beyond the documented scales, double positions scaled by 1e-300 ... 1e300: the edges are
+  // rescaled exactly, but the areas that weigh the tangents of AREA_WEIGHTED overflow or vanish
+  // in the input's units. They are clamped to one range, where they weigh alike, so that
+  // AREA_WEIGHTED gives the unit mesh's UNWEIGHTED frames (every area of this torus lies beyond
+  // the clamp at these scales) and no point falls back; UNWEIGHTED and ANGLE_WEIGHTED give the
+  // unit mesh's own. Bound: 1e-9 degrees, as for the documented scales.
+  auto mesh = Torus(true);
+  const int precision = vtkAlgorithm::DOUBLE_PRECISION;
+  auto unit = Transformed(mesh, 1.0, 0.0, 1.0, true);
+  for (double scale : { 1e-300, 1e-200, 1e154, 1e200, 1e300 })
+  {
+    for (int method : WeightedMethods)
+    {
+      SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method) + std::string(" scale ") +
+        std::to_string(scale));
+      const int referenceMethod = method == vtkPolyDataTangentFrames::AREA_WEIGHTED
+        ? vtkPolyDataTangentFrames::UNWEIGHTED
+        : method;
+      auto reference = Frames(unit, referenceMethod, precision);
+      vtkNew<vtkPolyDataTangentFrames> filter;
+      filter->SetInputData(Transformed(mesh, scale, 0.0, 1.0, true));
+      filter->SetMethod(method);
+      filter->SetOutputPrecision(precision);
+      filter->Update();
+      vtkPolyData* out = filter->GetOutput();
+      ASSERT_EQ(out->GetNumberOfPoints(), reference->GetNumberOfPoints());
+      ExpectValid(out, 1e-12);
+      EXPECT_EQ(filter->GetNumberOfFallbackPoints(), 0);
+      EXPECT_LE(MaxAngleBetween(out, reference), 1e-9);
+    }
+  }
+}
+
 TEST(TangentFramesStability, TranslatedFarFromTheOrigin)
 {
   // Translating by T rounds float coordinates to ulp(T) = T * 2^-24 (about 6e-4 at 1e4, 0.5 at
