@@ -161,10 +161,11 @@ inline int RescaleExponent(double m)
   return InSafeRange(m) ? 0 : UnitExponent(m);
 }
 
-/// The range of triangle areas as weights. Areas outside it (only from edges outside the safe
-/// range, which give areas in [2^-330, 2^320]) are clamped to it, so that they weigh alike there:
-/// sums of up to 2^63 of them, of their multiples by unit vectors or angles, neither overflow nor
-/// vanish, and the weighted directions degrade to unweighted ones instead of to a fallback.
+/// The range of triangle areas as weights. Only edges outside the safe range give areas outside
+/// it (a triangle whose edges lie inside and that is not rounding noise has an area within about
+/// [2^-340, 2^320]); those areas are clamped to it, so that they weigh alike there: sums of up to
+/// 2^63 of them, or of their multiples by unit vectors, neither overflow nor vanish, and the
+/// weighted directions degrade to unweighted ones instead of to a fallback.
 constexpr double AreaMinimum = 0x1p-900;
 constexpr double AreaMaximum = 0x1p900;
 
