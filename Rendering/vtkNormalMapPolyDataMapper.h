@@ -18,8 +18,10 @@
  * - The perturbed normal is built in model coordinates from a frame re-orthogonalized per
  *   fragment and then transformed like every normal, with the inverse transpose of the
  *   model-view matrix. That is exact under non-uniform and mirroring actor transforms (the
- *   lit result equals that of the displaced geometry under the same transform); VTK's mapper
- *   transforms tangents with the normal matrix and re-derives the bitangent in view space.
+ *   lit result equals that of the displaced geometry under the same transform; with point
+ *   normals, VTK 9.1 lights a mirroring actor's faces as back faces, and this mapper follows
+ *   it); VTK's mapper transforms tangents with the normal matrix and re-derives the bitangent
+ *   in view space.
  * - Map encodings: tangent space with +Y (OpenGL) or -Y (DirectX) green, two-channel (RG,
  *   z = sqrt(1 - x^2 - y^2)) in either convention, and object space (no tangents needed).
  * - Back faces (two-sided lighting) see the mirror of the front's perturbed normal.

@@ -445,8 +445,12 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
 
   // Declarations go before VTK's lighting declarations (after its normal ones, which a cell
   // normal path consumes); the code goes just before the lighting, where the normal is final.
-  std::string declarations =
-    Block(vtkNormalMapFS, "Dec") + Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear");
+  // VTK derives the normal from the position's derivatives (oriented to the camera) where it has
+  // neither point normals to interpolate nor cell normals; it flips those on back faces.
+  const bool derivedNormal = fs.find("normalize(cross(fdx,fdy))") != std::string::npos;
+  std::string declarations = Block(vtkNormalMapFS, "Dec") +
+    Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear") +
+    Block(vtkNormalMapFS, derivedNormal ? "FlippedDerived" : "FlippedAttribute");
   std::string code;
   if (plan.Frame == Mapper::APPLIED_OBJECT_SPACE)
   {
@@ -607,6 +611,11 @@ void vtkNormalMapShading::SetCameraUniforms(vtkShaderProgram* program,
   vtkMatrix3x3::Invert(normalMatrix, inverse);
   program->SetUniformMatrix("nmNormalMatrix", normalMatrix);
   program->SetUniformMatrix("nmNormalMatrixInverse", inverse);
+  if (program->IsUniformUsed("nmMirrored"))
+  {
+    // The inverse transpose has the sign of the model-view matrix's determinant.
+    program->SetUniformi("nmMirrored", normalMatrix->Determinant() < 0.0 ? 1 : 0);
+  }
 }
 
 //------------------------------------------------------------------------------

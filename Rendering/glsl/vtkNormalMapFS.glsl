@@ -51,6 +51,19 @@ vec4 nmStoredTexel(vec4 texel)
 }
 //NM::End
 
+//NM::Begin FlippedAttribute
+// Whether VTK flipped the normal: it flips point and cell normals on back faces.
+bool nmFlipped() { return gl_FrontFacing == false; }
+//NM::End
+
+//NM::Begin FlippedDerived
+// Whether VTK's normal is the back of the surface: the normal it derives from the position's
+// derivatives faces the camera, which is the back on back faces, and with a mirroring model-view
+// transform (nmMirrored, det < 0) on the faces GL calls front faces.
+uniform int nmMirrored;
+bool nmFlipped() { return (gl_FrontFacing == false) != (nmMirrored != 0); }
+//NM::End
+
 //NM::Begin DecodeRGB
 // Tangent-space normal from an RGB texel, strength applied (left unnormalized: the final
 // normalize makes its length irrelevant).
@@ -148,14 +161,14 @@ mat3 nmFrameMC(vec3 normalMC)
 
 //NM::Begin ImplTangentSpace
   {
-    // Normal mapping (vtkNormalMapPolyDataMapper). VTK flipped the normal of back faces; undo
-    // that, perturb the front side, then flip the result: the back of a bumpy sheet sees the
-    // mirror of the front's normal.
-    vec3 nmFrontVC = gl_FrontFacing == false ? -normalVCVSOutput : normalVCVSOutput;
+    // Normal mapping (vtkNormalMapPolyDataMapper). Where VTK's normal is the surface's back
+    // (nmFlipped), turn it to the front, perturb the front side, then flip the result: the back
+    // of a bumpy sheet sees the mirror of the front's normal.
+    vec3 nmFrontVC = nmFlipped() ? -normalVCVSOutput : normalVCVSOutput;
     vec3 nmNormalMC = normalize(nmNormalMatrixInverse * nmFrontVC);
     vec3 nmMapped = nmDecode(nmStoredTexel(texture(normalTex, @TCOORD@VCVSOutput)));
     vec3 nmPerturbedVC = normalize(nmNormalMatrix * (nmFrameMC(nmNormalMC) * nmMapped));
-    normalVCVSOutput = gl_FrontFacing == false ? -nmPerturbedVC : nmPerturbedVC;
+    normalVCVSOutput = nmFlipped() ? -nmPerturbedVC : nmPerturbedVC;
   }
 //NM::End
 
@@ -163,11 +176,11 @@ mat3 nmFrameMC(vec3 normalMC)
   {
     // Normal mapping (vtkNormalMapPolyDataMapper), object-space map: the texel is the normal
     // in model coordinates; NormalScale blends from the surface normal (0) to the map's (1).
-    vec3 nmFrontVC = gl_FrontFacing == false ? -normalVCVSOutput : normalVCVSOutput;
+    vec3 nmFrontVC = nmFlipped() ? -normalVCVSOutput : normalVCVSOutput;
     vec3 nmNormalMC = normalize(nmNormalMatrixInverse * nmFrontVC);
     vec3 nmMapMC = nmStoredTexel(texture(normalTex, @TCOORD@VCVSOutput)).rgb * 2.0 - 1.0;
     vec3 nmBlendMC = mix(nmNormalMC, nmMapMC, nmNormalScale);
     vec3 nmPerturbedVC = normalize(nmNormalMatrix * nmBlendMC);
-    normalVCVSOutput = gl_FrontFacing == false ? -nmPerturbedVC : nmPerturbedVC;
+    normalVCVSOutput = nmFlipped() ? -nmPerturbedVC : nmPerturbedVC;
   }
 //NM::End

@@ -6,6 +6,8 @@
 #include "vtkDataArray.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkProperty.h" // VTK_FLAT, VTK_GOURAUD, VTK_PBR
 
 #include <functional>
@@ -143,6 +145,47 @@ int TestNormalMapEquivalences(int, char*[])
       Report(("texture coordinates " + what + ": point tangents vs derivatives").c_str(), d, 2);
       check(d.WithinFraction >= 0.999,
         "texture coordinates " + what + ": point tangents and derivative frame agree");
+    }
+  }
+  // A mirroring actor transform (scale x by -1) equals the mirror image made in the data (x
+  // negated, winding reversed, tangents computed anew) where VTK derives the normal from the
+  // position's derivatives (Flat), for both frame sources. Same arithmetic up to float rounding:
+  // 2 levels on 99.9% of the pixels. A frame built around the inward normal turns every rivet's
+  // light and shadow.
+  {
+    auto mirrored = vtkSmartPointer<vtkPolyData>::New();
+    mirrored->DeepCopy(nmtest::MakeQuad(2));
+    vtkPoints* points = mirrored->GetPoints();
+    for (vtkIdType p = 0; p < points->GetNumberOfPoints(); ++p)
+    {
+      double x[3];
+      points->GetPoint(p, x);
+      points->SetPoint(p, -x[0], x[1], x[2]);
+    }
+    mirrored->BuildCells();
+    for (vtkIdType c = 0; c < mirrored->GetNumberOfCells(); ++c)
+    {
+      mirrored->ReverseCell(c);
+    }
+    auto premirrored = nmtest::WithTangents(mirrored);
+    for (int frame : { Mapper::POINT_TANGENTS, Mapper::SCREEN_DERIVATIVES })
+    {
+      std::vector<unsigned char> images[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        nmtest::FlatActor a;
+        a.Mesh = k == 0 ? quad.Get() : premirrored.Get();
+        a.NormalTexture = openGL;
+        a.FrameSource = frame;
+        a.Interpolation = VTK_FLAT;
+        a.Scale[0] = k == 0 ? -1.0 : 1.0;
+        images[k] = nmtest::RenderFlat(setup, { a });
+      }
+      const auto d = Between(images[0], images[1], 2);
+      const std::string what = std::string("mirroring actor transform, Flat, ") +
+        (frame == Mapper::POINT_TANGENTS ? "point tangents" : "derivatives");
+      Report(what.c_str(), d, 2);
+      check(d.WithinFraction >= 0.999, what + ": the same as the mirrored data");
     }
   }
   // Without tangents the automatic source is the derivative frame.
