@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -695,6 +696,51 @@ TEST(MikkTSpaceKernel, LargePolygonIsOneSubgroupAtItsFannedCorner)
     wrong += f.Sign == 1.0f && std::abs(length - 1.0f) < 1e-5f && f.Tangent[2] == 0.0f ? 0 : 1;
   }
   EXPECT_EQ(wrong, 0);
+}
+
+// A fan of 63 triangles around one centre (more than 32 corners: its edges are paired through a
+// sorted index) on the boundary of the square [-8, 8]^2 in exact coordinates, whose texture
+// orientation alternates, with ring point 6 at the centre's texture coordinates: triangles 5 and 6
+// have zero UV area and take the orientation of triangle 4's group, which reaches them first in the
+// reference's flood (positive, where a zero-area triangle is negative by itself). The expected hash
+// (FNV-1a over the bits of every corner frame, in corner order) is that of the original
+// mikktspace.c's output (genTangSpaceDefault) for this mesh.
+TEST(MikkTSpaceKernel, GroupWithAnyFanMatchesTheOriginal)
+{
+  Mesh m;
+  const long long centre = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  std::vector<long long> ring;
+  for (int i = 0; i < 64; ++i)
+  {
+    // counter-clockwise from (8, -8), one unit per step
+    const int side = i / 16, step = i % 16;
+    const std::array<int, 4> x = { 8, 8 - step, -8, -8 + step };
+    const std::array<int, 4> y = { -8 + step, 8, 8 - step, -8 };
+    const std::array<float, 2> uv = i == 6
+      ? std::array<float, 2>{ 0, 0 }
+      : (i % 2 ? std::array<float, 2>{ 0.5f, 0.75f } : std::array<float, 2>{ 1, 0 });
+    ring.push_back(m.AddPoint({ float(x[side]), float(y[side]), 0 }, kUp, uv));
+  }
+  for (int i = 0; i + 1 < 64; ++i)
+  {
+    m.AddFace({ centre, ring[i], ring[i + 1] });
+  }
+  const mikk::Result r = RunKernel(m);
+  ASSERT_EQ(r.Corners.size(), 189u);
+  EXPECT_EQ(r.NumberOfGroupWithAnyTriangles, 2);
+  uint64_t hash = 14695981039346656037ULL;
+  for (const mikk::CornerFrame& f : r.Corners)
+  {
+    for (const float value : { f.Tangent[0], f.Tangent[1], f.Tangent[2], f.Sign })
+    {
+      uint32_t bits;
+      std::memcpy(&bits, &value, sizeof(bits));
+      hash = (hash ^ bits) * 1099511628211ULL;
+    }
+  }
+  EXPECT_EQ(hash, 0xb6a7ca0c2dc53627ULL);
+  EXPECT_EQ(r.Corners[15].Sign, 1.0f); // triangle 5's corner at the centre
+  EXPECT_EQ(r.Corners[18].Sign, 1.0f); // triangle 6's
 }
 
 // Within one group, the reference averages a member only with the members whose projected
