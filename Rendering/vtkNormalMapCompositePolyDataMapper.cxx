@@ -246,6 +246,7 @@ protected:
     context.LightComplexity = this->PrimitiveInfo[cellBO].LastLightComplexity;
     context.TCoordName = this->GetTextureCoordinateName("normalTex");
     context.TCoordComponents = this->VBOs->GetNumberOfComponents(context.TCoordName.c_str());
+    context.ColorCoordinates = this->InterpolateScalarsBeforeMapping && this->ColorCoordinates;
     context.Frames = this->Frames;
     context.Where = BlockNames(flatIndices);
     this->SurfaceFrame = this->Shading->ReplaceShaderNormal(shaders, context, this->Settings);

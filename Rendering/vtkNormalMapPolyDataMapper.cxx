@@ -191,6 +191,7 @@ void vtkNormalMapPolyDataMapper::ReplaceShaderNormal(std::map<vtkShader::Type, v
   context.LightComplexity = this->PrimitiveInfo[cellBO].LastLightComplexity;
   context.TCoordName = this->GetTextureCoordinateName("normalTex");
   context.TCoordComponents = this->VBOs->GetNumberOfComponents(context.TCoordName.c_str());
+  context.ColorCoordinates = this->InterpolateScalarsBeforeMapping && this->ColorCoordinates;
   context.Frames = FramesOf(this->VBOs);
   this->LastAppliedFrame = shading.ReplaceShaderNormal(shaders, context, settings);
   if (this->LastAppliedFrame != NOT_APPLIED)

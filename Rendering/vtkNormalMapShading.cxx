@@ -42,7 +42,8 @@ enum class vtkNormalMapShading::Reason : unsigned
   BadTangents = 1u << 6,
   SRGBTexture = 1u << 7,
   BadSigns = 1u << 8,
-  MappedScalars = 1u << 9
+  MappedScalars = 1u << 9,
+  ColorCoordinates = 1u << 10
 };
 
 namespace
@@ -512,6 +513,17 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
         ? std::string("The normal texture is not applied: the input has no texture coordinates.")
         : "The normal texture is not applied: texture coordinates have " +
           std::to_string(context.TCoordComponents) + " components (2 needed).");
+    return Mapper::NOT_APPLIED;
+  }
+  if (context.ColorCoordinates)
+  {
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::ColorCoordinates,
+      "The normal texture is not applied: the mapper interpolates scalars before mapping "
+      "(InterpolateScalarsBeforeMapping), and VTK then draws the color map's coordinates in place "
+      "of the texture coordinates; turn it off to show the map.");
     return Mapper::NOT_APPLIED;
   }
 

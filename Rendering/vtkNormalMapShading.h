@@ -113,8 +113,11 @@ public:
     int LightComplexity = 0;
     std::string TCoordName;   // the normal texture's texture coordinate attribute
     int TCoordComponents = 0; // its components in the vertex buffers
-    FrameMix Frames;          // of the tangent-space map
-    std::string Where;        // names the datasets in warnings ("" or "Blocks 1, 3: ")
+    /// Whether VTK uploads the color map's coordinates in place of the texture coordinates
+    /// (scalars interpolated before mapping).
+    bool ColorCoordinates = false;
+    FrameMix Frames;   // of the tangent-space map
+    std::string Where; // names the datasets in warnings ("" or "Blocks 1, 3: ")
   };
 
   /// The normal texture of the actor's property, or nullptr.
