@@ -219,7 +219,8 @@ protected:
     const bool mapChanged = this->Shading->NeedsRebuild(&cellBO,
       actor,
       this->Frames.Key(),
-      this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()));
+      this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()),
+      this->InterpolateScalarsBeforeMapping && this->ColorCoordinates);
     return rebuild || mapChanged;
   }
 

@@ -163,7 +163,8 @@ bool vtkNormalMapPolyDataMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO
   const bool mapChanged = this->Internal->Shading.NeedsRebuild(&cellBO,
     actor,
     FramesOf(this->VBOs).Key(),
-    this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()));
+    this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()),
+    this->InterpolateScalarsBeforeMapping && this->ColorCoordinates);
   return rebuild || mapChanged;
 }
 

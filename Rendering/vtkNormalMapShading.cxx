@@ -365,11 +365,13 @@ const double* TextureTransform(vtkActor* actor)
 bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   vtkActor* actor,
   unsigned framesKey,
-  int tcoordComponents)
+  int tcoordComponents,
+  bool colorCoordinates)
 {
   // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
   // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes, the
-  // components of the texture coordinates it is sampled with), and on whether VTK's shader
+  // components of the texture coordinates it is sampled with, and whether those are the color
+  // map's), and on whether VTK's shader
   // applies a texture transform, which nmTextureFrame must match.
   std::uint64_t key = 0;
   vtkTexture* texture = NormalTexture(actor);
@@ -379,7 +381,8 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
       (static_cast<unsigned>(TextureChannels(texture)) << 2) + (framesKey << 5) +
       (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32) +
       (MapsThroughLookupTable(texture) ? std::uint64_t(1) << 40 : 0) +
-      (TextureTransform(actor) ? std::uint64_t(1) << 41 : 0);
+      (TextureTransform(actor) ? std::uint64_t(1) << 41 : 0) +
+      (colorCoordinates ? std::uint64_t(1) << 42 : 0);
   }
   std::uint64_t& stored = this->ShaderKeys[cellBO];
   if (stored != key)

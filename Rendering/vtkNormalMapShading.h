@@ -166,13 +166,14 @@ public:
     const ShaderContext& context,
     const Settings& settings);
 
-  /// True when the shader must be rebuilt for the normal map: the texture, the frames or the
-  /// components of the texture coordinates it is sampled with (`tcoordComponents`, as in
-  /// ShaderContext) changed.
+  /// True when the shader must be rebuilt for the normal map: the texture, the frames, the
+  /// components of the texture coordinates it is sampled with (`tcoordComponents`) or whether
+  /// they are the color map's (`colorCoordinates`), as in ShaderContext, changed.
   bool NeedsRebuild(const vtkOpenGLHelper* cellBO,
     vtkActor* actor,
     unsigned framesKey,
-    int tcoordComponents);
+    int tcoordComponents,
+    bool colorCoordinates);
 
   /// The normal matrix and its inverse (nmNormalMatrix, nmNormalMatrixInverse).
   static void SetCameraUniforms(vtkShaderProgram* program, vtkRenderer* renderer, vtkActor* actor);

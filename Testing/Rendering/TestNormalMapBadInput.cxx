@@ -244,6 +244,7 @@ int TestNormalMapBadInput(int, char*[])
     scalars->SetNumberOfTuples(colored->GetNumberOfPoints());
     scalars->Fill(0.5);
     colored->GetPointData()->SetScalars(scalars);
+    std::vector<unsigned char> withMap;
     for (bool interpolate : { true, false })
     {
       std::vector<unsigned char> images[2];
@@ -267,7 +268,14 @@ int TestNormalMapBadInput(int, char*[])
       check((applied == Mapper::NOT_APPLIED) == interpolate &&
           Same(images[0], images[1], 0) == interpolate,
         what + (interpolate ? "drawn without the map" : "the map applies"));
+      withMap = images[0];
     }
+    // Turned off after a render, the map comes back: the shader is rebuilt.
+    Scene scene(colored, texture);
+    scene.NormalMapper->SetInterpolateScalarsBeforeMapping(true);
+    scene.Render();
+    scene.NormalMapper->SetInterpolateScalarsBeforeMapping(false);
+    check(Same(scene.Render(), withMap, 0), "scalars: the map comes back when turned off");
   }
   { // Texture coordinates with 3 components: drawn without the map, one warning.
     auto uvw = vtkSmartPointer<vtkPolyData>::New();
