@@ -933,16 +933,24 @@ TEST(MikkTSpaceKernel, NonManifoldEdgesPairAlikeInLargeAndSmallFans)
   EXPECT_EQ(differing, 0);
 }
 
+/// Four points, ids 0 to 3, the last out of the plane of the others; no faces.
+Mesh FourPoints()
+{
+  Mesh m;
+  m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
+  m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
+  m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
+  m.AddPoint({ 1, 1, 0.5f }, kUp, { 1, 1 });
+  return m;
+}
+
 // Point ids outside [0, NumberOfPoints) skip the face (default corners), leaving the rest of
 // the mesh as if the face were absent.
 TEST(MikkTSpaceKernel, OutOfRangeIds)
 {
-  Mesh m;
-  const long long a = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
-  const long long b = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
-  const long long c = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
-  const long long d = m.AddPoint({ 1, 1, 0.5f }, kUp, { 1, 1 });
-  Mesh clean = m;
+  const Mesh m0 = FourPoints();
+  Mesh m = m0, clean = m0;
+  const long long a = 0, b = 1, c = 2, d = 3;
   clean.AddFace({ a, b, c });
   clean.AddFace({ b, d, c });
   m.AddFace({ a, b, c });
@@ -971,12 +979,9 @@ TEST(MikkTSpaceKernel, OutOfRangeIds)
 // face holds get the default, and the earlier face keeps its frames.
 TEST(MikkTSpaceKernel, FacesThatOverlapEarlierOnesAreInvalid)
 {
-  Mesh m;
-  const long long a = m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 });
-  const long long b = m.AddPoint({ 1, 0, 0 }, kUp, { 1, 0 });
-  const long long c = m.AddPoint({ 0, 1, 0 }, kUp, { 0, 1 });
-  const long long d = m.AddPoint({ 1, 1, 0.5f }, kUp, { 1, 1 });
-  Mesh clean = m;
+  const Mesh m0 = FourPoints();
+  Mesh m = m0, clean = m0;
+  const long long a = 0, b = 1, c = 2, d = 3;
   clean.AddFace({ a, b, c });
   m.Conn = { a, b, c, d, b };
   m.Offsets = { 0, 3, 2, 5 }; // [0, 3), then [3, 2) (out of range) and [2, 5), overlapping [0, 3)
