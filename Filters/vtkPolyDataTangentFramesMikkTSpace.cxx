@@ -562,8 +562,9 @@ void CellSums(const Surface& s,
 vtkIdType FallbackCorners(const Surface& s, const mikk::Result& kernel, const unsigned char* kept)
 {
   const auto size = [&](long long f) { return s.FaceOffsets[f + 1] - s.FaceOffsets[f]; };
+  // Only polygons can be short faces (a short strip gives no face); the kernel counts them.
   long long shortCorners = 0;
-  for (long long f = 0; f < s.NumPolys; ++f)
+  for (long long f = 0; kernel.NumberOfSkippedFaces > 0 && f < s.NumPolys; ++f)
   {
     shortCorners += size(f) < 3 ? size(f) : 0;
   }

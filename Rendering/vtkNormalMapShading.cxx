@@ -371,8 +371,8 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
   // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes, the
   // components of the texture coordinates it is sampled with, and whether those are the color
-  // map's), and on whether VTK's shader
-  // applies a texture transform, which nmTextureFrame must match.
+  // map's), and on whether VTK's shader applies a texture transform, which nmTextureFrame must
+  // match.
   std::uint64_t key = 0;
   vtkTexture* texture = NormalTexture(actor);
   if (texture)
