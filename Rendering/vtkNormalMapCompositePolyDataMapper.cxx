@@ -15,6 +15,7 @@
 #include "vtkNormalMapShading.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkShaderProgram.h"
@@ -141,7 +142,10 @@ protected:
     // Each block's tangents, before the superclass appends the blocks: whether blocks without
     // tangents need a zero placeholder depends on the others.
     this->BlockTangents.clear();
-    this->AppendedTangents.clear();
+    this->Appended.clear();
+    this->TCoords =
+      vtkNormalMapShading::SampledTCoords(this, actor, this->GetTextureCoordinateName("normalTex"));
+    this->OwnTCoords = this->TCoords == vtkNormalMapShading::TCoordAttribute;
     this->Frames = vtkNormalMapShading::FrameMix();
     bool allUnsigned = true;
     this->ForEachBlock(
@@ -178,12 +182,14 @@ protected:
     vtkSmartPointer<vtkPolyData> forVTK =
       vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
     // VTK lets a block reuse the vertices appended for an earlier block with the same point,
-    // normal and texture-coordinate arrays. With other tangents it must not: a new array over
-    // the same points makes VTK append the block's vertices again.
-    const auto& tangents = this->BlockTangents[hdata];
-    const auto appended = this->AppendedTangents.find(reusedOffset);
-    if (pointsAppended && this->Frames.PointTangents &&
-      (appended == this->AppendedTangents.end() || !SameArrays(appended->second, tangents)))
+    // normal and texture-coordinate arrays. With other tangents, or other texture coordinates of
+    // the mapper's own, it must not: a new array over the same points makes VTK append the
+    // block's vertices again.
+    const AppendedArrays arrays{ this->BlockTangents[hdata],
+      this->OwnTCoords ? block->GetPointData()->GetTCoords() : nullptr };
+    const auto appended = this->Appended.find(reusedOffset);
+    if (pointsAppended && (this->Frames.PointTangents || this->OwnTCoords) &&
+      (appended == this->Appended.end() || !appended->second.Same(arrays)))
     {
       forVTK = WithOwnPointArray(forVTK ? forVTK.Get() : block);
     }
@@ -194,23 +200,41 @@ protected:
     this->Superclass::AppendOneBufferObject(ren, actor, hdata, voffset, colors, normals);
     PolyDataOf(hdata) = block;
     // Nothing appended (no points), or the block reuses vertices appended for an earlier block
-    // with the same point arrays and tangents.
-    if (!hasPoints || voffset != appendedBefore || !this->Frames.PointTangents)
+    // with the same point arrays and the same arrays of ours.
+    if (!hasPoints || voffset != appendedBefore)
     {
       return;
     }
-    vtkFloatArray* packed = vtkNormalMapShading::NewPackedTangents(tangents);
-    if (!packed)
+    const vtkIdType numPoints = points->GetNumberOfPoints();
+    if (this->Frames.PointTangents)
     {
-      // A block without tangents: zeros keep the attribute aligned with the vertices.
-      packed = vtkFloatArray::New();
-      packed->SetNumberOfComponents(4);
-      packed->SetNumberOfTuples(points->GetNumberOfPoints());
-      packed->Fill(0.0);
+      auto packed = vtk::TakeSmartPointer(vtkNormalMapShading::NewPackedTangents(arrays.Tangents));
+      this->AppendPoints(vtkNormalMapShading::TangentAttribute, packed, 4, numPoints);
     }
-    this->VBOs->AppendDataArray(vtkNormalMapShading::TangentAttribute, packed, VTK_FLOAT);
-    packed->Delete();
-    this->AppendedTangents[voffset] = tangents;
+    if (this->OwnTCoords)
+    {
+      this->AppendPoints(vtkNormalMapShading::TCoordAttribute, arrays.TCoords, 2, numPoints);
+    }
+    this->Appended[voffset] = arrays;
+  }
+
+  /// Appends a block's array of an attribute, or zeros (for a block without one: they keep the
+  /// attribute aligned with the vertices).
+  void AppendPoints(const char* attribute,
+    vtkDataArray* values,
+    int components,
+    vtkIdType numPoints)
+  {
+    vtkSmartPointer<vtkDataArray> appended = values;
+    if (!appended)
+    {
+      auto zeros = vtkSmartPointer<vtkFloatArray>::New();
+      zeros->SetNumberOfComponents(components);
+      zeros->SetNumberOfTuples(numPoints);
+      zeros->Fill(0.0);
+      appended = zeros;
+    }
+    this->VBOs->AppendDataArray(attribute, appended, VTK_FLOAT);
   }
 
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* actor) override
@@ -219,8 +243,8 @@ protected:
     const bool mapChanged = this->Shading->NeedsRebuild(&cellBO,
       actor,
       this->Frames.Key(),
-      this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()),
-      this->InterpolateScalarsBeforeMapping && this->ColorCoordinates);
+      this->TCoords,
+      this->VBOs->GetNumberOfComponents(this->TCoords.c_str()));
     return rebuild || mapChanged;
   }
 
@@ -245,9 +269,8 @@ protected:
     context.Actor = actor;
     context.DrawingVertices = this->DrawingVertices;
     context.LightComplexity = this->PrimitiveInfo[cellBO].LastLightComplexity;
-    context.TCoordName = this->GetTextureCoordinateName("normalTex");
+    context.TCoordName = this->TCoords;
     context.TCoordComponents = this->VBOs->GetNumberOfComponents(context.TCoordName.c_str());
-    context.ColorCoordinates = this->InterpolateScalarsBeforeMapping && this->ColorCoordinates;
     context.Frames = this->Frames;
     context.Where = BlockNames(flatIndices);
     this->SurfaceFrame = this->Shading->ReplaceShaderNormal(shaders, context, this->Settings);
@@ -348,8 +371,22 @@ private:
   /// Per block, its tangents as found at the last vertex buffer build (the array pointers are
   /// read during that build only).
   std::map<const BlockData*, vtkNormalMapShading::Tangents> BlockTangents;
-  /// By first vertex, the tangents appended for the vertices from there, in the current build.
-  std::map<vtkIdType, vtkNormalMapShading::Tangents> AppendedTangents;
+  /// What a block appends besides VTK's own attributes.
+  struct AppendedArrays
+  {
+    vtkNormalMapShading::Tangents Tangents;
+    vtkDataArray* TCoords; // with OwnTCoords
+    bool Same(const AppendedArrays& other) const
+    {
+      return SameArrays(this->Tangents, other.Tangents) && this->TCoords == other.TCoords;
+    }
+  };
+  /// By first vertex, the arrays appended for the vertices from there, in the current build.
+  std::map<vtkIdType, AppendedArrays> Appended;
+  /// The attribute the normal texture is sampled with in the current build, and whether it is
+  /// the helper's own (vtkNormalMapShading::SampledTCoords).
+  std::string TCoords;
+  bool OwnTCoords = false;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;

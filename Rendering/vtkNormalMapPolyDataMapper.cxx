@@ -6,6 +6,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
@@ -141,6 +142,13 @@ void vtkNormalMapPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* 
   this->VBOs->CacheDataArray(
     vtkNormalMapShading::TangentAttribute, tangents.Vectors, cache, VTK_FLOAT);
   this->VBOs->CacheDataArray(vtkNormalMapShading::SignAttribute, tangents.Signs, cache, VTK_FLOAT);
+  // The dataset's texture coordinates under the mapper's own name, where VTK's may be the color
+  // map's; when they are not, both names share one buffer.
+  const bool ownTCoords = this->NormalTCoords(actor) == vtkNormalMapShading::TCoordAttribute;
+  this->VBOs->CacheDataArray(vtkNormalMapShading::TCoordAttribute,
+    ownTCoords ? this->CurrentInput->GetPointData()->GetTCoords() : nullptr,
+    cache,
+    VTK_FLOAT);
   // VTK's own code uploads the active Tangents (tangentMC) whenever they exist; it sees a copy
   // without them unless its shader reads them.
   vtkPolyData* input = this->CurrentInput;
@@ -154,17 +162,25 @@ void vtkNormalMapPolyDataMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* 
 }
 
 //------------------------------------------------------------------------------
+std::string vtkNormalMapPolyDataMapper::NormalTCoords(vtkActor* actor)
+{
+  return vtkNormalMapShading::SampledTCoords(
+    this, actor, this->GetTextureCoordinateName("normalTex"));
+}
+
+//------------------------------------------------------------------------------
 bool vtkNormalMapPolyDataMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
   vtkRenderer* ren,
   vtkActor* actor)
 {
   // The superclass also records the light complexity that the shader plan depends on.
   const bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, actor);
+  const std::string tcoords = this->NormalTCoords(actor);
   const bool mapChanged = this->Internal->Shading.NeedsRebuild(&cellBO,
     actor,
     FramesOf(this->VBOs).Key(),
-    this->VBOs->GetNumberOfComponents(this->GetTextureCoordinateName("normalTex").c_str()),
-    this->InterpolateScalarsBeforeMapping && this->ColorCoordinates);
+    tcoords,
+    this->VBOs->GetNumberOfComponents(tcoords.c_str()));
   return rebuild || mapChanged;
 }
 
@@ -190,9 +206,8 @@ void vtkNormalMapPolyDataMapper::ReplaceShaderNormal(std::map<vtkShader::Type, v
   context.Actor = actor;
   context.DrawingVertices = this->DrawingVertices;
   context.LightComplexity = this->PrimitiveInfo[cellBO].LastLightComplexity;
-  context.TCoordName = this->GetTextureCoordinateName("normalTex");
+  context.TCoordName = this->NormalTCoords(actor);
   context.TCoordComponents = this->VBOs->GetNumberOfComponents(context.TCoordName.c_str());
-  context.ColorCoordinates = this->InterpolateScalarsBeforeMapping && this->ColorCoordinates;
   context.Frames = FramesOf(this->VBOs);
   this->LastAppliedFrame = shading.ReplaceShaderNormal(shaders, context, settings);
   if (this->LastAppliedFrame != NOT_APPLIED)

@@ -170,6 +170,9 @@ private:
   vtkNormalMapPolyDataMapper(const vtkNormalMapPolyDataMapper&) = delete;
   void operator=(const vtkNormalMapPolyDataMapper&) = delete;
 
+  /// The attribute the normal texture is sampled with (vtkNormalMapShading::SampledTCoords).
+  std::string NormalTCoords(vtkActor* actor);
+
   struct Internals;
   std::unique_ptr<Internals> Internal;
 };

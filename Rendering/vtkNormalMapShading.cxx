@@ -42,8 +42,7 @@ enum class vtkNormalMapShading::Reason : unsigned
   BadTangents = 1u << 6,
   SRGBTexture = 1u << 7,
   BadSigns = 1u << 8,
-  MappedScalars = 1u << 9,
-  ColorCoordinates = 1u << 10
+  MappedScalars = 1u << 9
 };
 
 namespace
@@ -173,6 +172,16 @@ bool vtkNormalMapShading::WantsPointTangents(vtkActor* actor, const Settings& se
 {
   return WantsMap(actor) && IsTangentSpace(settings.MapEncoding) &&
     settings.FrameSource != Mapper::SCREEN_DERIVATIVES;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkNormalMapShading::SampledTCoords(vtkMapper* mapper,
+  vtkActor* actor,
+  const std::string& vtkName)
+{
+  const bool colorCoordinates =
+    mapper->GetInterpolateScalarsBeforeMapping() && mapper->GetScalarVisibility();
+  return vtkName == "tcoord" && colorCoordinates && WantsMap(actor) ? TCoordAttribute : vtkName;
 }
 
 //------------------------------------------------------------------------------
@@ -365,14 +374,14 @@ const double* TextureTransform(vtkActor* actor)
 bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
   vtkActor* actor,
   unsigned framesKey,
-  int tcoordComponents,
-  bool colorCoordinates)
+  const std::string& tcoordName,
+  int tcoordComponents)
 {
   // The normal-map state depends on the texture and the vertex buffers, which VTK's own test
   // does not cover in full (a texture's channels, its sRGB flag, the tangent attributes, the
-  // components of the texture coordinates it is sampled with, and whether those are the color
-  // map's), and on whether VTK's shader applies a texture transform, which nmTextureFrame must
-  // match.
+  // texture coordinates it is sampled with and their components), and on whether VTK's shader
+  // applies a texture transform, which nmTextureFrame and the mapper's own texture coordinates
+  // must match.
   std::uint64_t key = 0;
   vtkTexture* texture = NormalTexture(actor);
   if (texture)
@@ -382,7 +391,7 @@ bool vtkNormalMapShading::NeedsRebuild(const vtkOpenGLHelper* cellBO,
       (static_cast<std::uint64_t>(std::max(tcoordComponents, 0)) << 32) +
       (MapsThroughLookupTable(texture) ? std::uint64_t(1) << 40 : 0) +
       (TextureTransform(actor) ? std::uint64_t(1) << 41 : 0) +
-      (colorCoordinates ? std::uint64_t(1) << 42 : 0);
+      (tcoordName == TCoordAttribute ? std::uint64_t(1) << 42 : 0);
   }
   std::uint64_t& stored = this->ShaderKeys[cellBO];
   if (stored != key)
@@ -412,23 +421,23 @@ int FrameOf(int encoding, const vtkNormalMapShading::FrameMix& frames, bool& per
   return frames.Unsigned ? Mapper::APPLIED_UNSIGNED_TANGENTS : Mapper::APPLIED_POINT_TANGENTS;
 }
 
-/// Passes the point tangents (and their signs) from the vertex shader, through the geometry
-/// shader when there is one, to the fragment shader.
-void PassTangents(std::map<vtkShader::Type, vtkShader*>& shaders, bool separateSigns)
+/// Passes an attribute from the vertex shader, through the geometry shader when there is one, to
+/// the fragment shader: the named blocks of vtkNormalMapVS.glsl and vtkNormalMapGS.glsl.
+void PassAttribute(std::map<vtkShader::Type, vtkShader*>& shaders,
+  const char* vertexDec,
+  const char* vertexImpl,
+  const char* geometryBlocks)
 {
   std::string vs = shaders[vtkShader::Vertex]->GetSource();
-  InsertBefore(vs,
-    "//VTK::Normal::Dec",
-    Block(vtkNormalMapVS, separateSigns ? "TangentSignDec" : "TangentDec"));
-  InsertBefore(vs,
-    "//VTK::Normal::Impl",
-    Block(vtkNormalMapVS, separateSigns ? "TangentSignImpl" : "TangentImpl"));
+  InsertBefore(vs, "//VTK::Normal::Dec", Block(vtkNormalMapVS, vertexDec));
+  InsertBefore(vs, "//VTK::Normal::Impl", Block(vtkNormalMapVS, vertexImpl));
   shaders[vtkShader::Vertex]->SetSource(vs);
   std::string gs = shaders[vtkShader::Geometry]->GetSource();
   if (!gs.empty())
   {
-    InsertBefore(gs, "//VTK::Normal::Dec", Block(vtkNormalMapGS, "TangentDec"));
-    InsertBefore(gs, "//VTK::Normal::Impl", Block(vtkNormalMapGS, "TangentImpl"));
+    const std::string name(geometryBlocks);
+    InsertBefore(gs, "//VTK::Normal::Dec", Block(vtkNormalMapGS, (name + "Dec").c_str()));
+    InsertBefore(gs, "//VTK::Normal::Impl", Block(vtkNormalMapGS, (name + "Impl").c_str()));
     shaders[vtkShader::Geometry]->SetSource(gs);
   }
 }
@@ -443,7 +452,18 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
   const bool derivatives = plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame;
   if (pointTangents)
   {
-    PassTangents(shaders, context.Frames.SeparateSigns);
+    const bool signs = context.Frames.SeparateSigns;
+    PassAttribute(shaders,
+      signs ? "TangentSignDec" : "TangentDec",
+      signs ? "TangentSignImpl" : "TangentImpl",
+      "Tangent");
+  }
+  const bool ownTCoords = context.TCoordName == vtkNormalMapShading::TCoordAttribute;
+  if (ownTCoords)
+  {
+    const bool transformed = TextureTransform(context.Actor) != nullptr;
+    PassAttribute(
+      shaders, "TCoordDec", transformed ? "TCoordTransformedImpl" : "TCoordImpl", "TCoord");
   }
   std::string fs = shaders[vtkShader::Fragment]->GetSource();
 
@@ -454,7 +474,8 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
   const bool derivedNormal = fs.find("normalize(cross(fdx,fdy))") != std::string::npos;
   std::string declarations = Block(vtkNormalMapFS, "Dec") +
     Block(vtkNormalMapFS, plan.SRGB ? "TexelSRGB" : "TexelLinear") +
-    Block(vtkNormalMapFS, derivedNormal ? "FlippedDerived" : "FlippedAttribute");
+    Block(vtkNormalMapFS, derivedNormal ? "FlippedDerived" : "FlippedAttribute") +
+    (ownTCoords ? Block(vtkNormalMapFS, "TCoordDec") : std::string());
   std::string code;
   if (plan.Frame == Mapper::APPLIED_OBJECT_SPACE)
   {
@@ -516,17 +537,6 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
         ? std::string("The normal texture is not applied: the input has no texture coordinates.")
         : "The normal texture is not applied: texture coordinates have " +
           std::to_string(context.TCoordComponents) + " components (2 needed).");
-    return Mapper::NOT_APPLIED;
-  }
-  if (context.ColorCoordinates)
-  {
-    this->Warn(reporter,
-      actor,
-      where,
-      Reason::ColorCoordinates,
-      "The normal texture is not applied: the mapper interpolates scalars before mapping "
-      "(InterpolateScalarsBeforeMapping), and VTK then draws the color map's coordinates in place "
-      "of the texture coordinates; turn it off to show the map.");
     return Mapper::NOT_APPLIED;
   }
 

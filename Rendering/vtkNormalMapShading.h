@@ -22,6 +22,7 @@
 class vtkActor;
 class vtkDataArray;
 class vtkFloatArray;
+class vtkMapper;
 class vtkObject;
 class vtkOpenGLHelper;
 class vtkPolyData;
@@ -35,6 +36,8 @@ public:
   /// The vertex attributes of the point tangents and of their signs (vtkNormalMapVS.glsl).
   static constexpr const char* TangentAttribute = "nmTangentMC";
   static constexpr const char* SignAttribute = "nmTangentSignMC";
+  /// The vertex attribute of the mapper's own copy of the texture coordinates (SampledTCoords).
+  static constexpr const char* TCoordAttribute = "nmTCoord";
 
   /// The settings of a normal-mapping mapper (values of vtkNormalMapPolyDataMapper's enums).
   struct Settings
@@ -111,13 +114,10 @@ public:
     vtkActor* Actor = nullptr;
     bool DrawingVertices = false;
     int LightComplexity = 0;
-    std::string TCoordName;   // the normal texture's texture coordinate attribute
+    std::string TCoordName;   // the attribute the normal texture is sampled with (SampledTCoords)
     int TCoordComponents = 0; // its components in the vertex buffers
-    /// Whether VTK uploads the color map's coordinates in place of the texture coordinates
-    /// (scalars interpolated before mapping).
-    bool ColorCoordinates = false;
-    FrameMix Frames;   // of the tangent-space map
-    std::string Where; // names the datasets in warnings ("" or "Blocks 1, 3: ")
+    FrameMix Frames;          // of the tangent-space map
+    std::string Where;        // names the datasets in warnings ("" or "Blocks 1, 3: ")
   };
 
   /// The normal texture of the actor's property, or nullptr.
@@ -126,6 +126,15 @@ public:
   static bool WantsMap(vtkActor* actor);
   /// Whether a dataset's point tangents will be used (read from the settings and the actor).
   static bool WantsPointTangents(vtkActor* actor, const Settings& settings);
+
+  /**
+   * The texture coordinate attribute the normal texture is sampled with, given the one VTK would
+   * sample it with (`vtkName`, from GetTextureCoordinateName). That is VTK's own, unless it is
+   * VTK's "tcoord", which holds the color map's coordinates instead of the dataset's while the
+   * mapper shows scalars interpolated before mapping: then the mapper's own copy
+   * (TCoordAttribute), which the mapper uploads.
+   */
+  static std::string SampledTCoords(vtkMapper* mapper, vtkActor* actor, const std::string& vtkName);
 
   /// Whether VTK's own shader code reads its Tangents attribute (tangentMC): PBR anisotropy or a
   /// clear-coat normal map.
@@ -166,14 +175,14 @@ public:
     const ShaderContext& context,
     const Settings& settings);
 
-  /// True when the shader must be rebuilt for the normal map: the texture, the frames, the
-  /// components of the texture coordinates it is sampled with (`tcoordComponents`) or whether
-  /// they are the color map's (`colorCoordinates`), as in ShaderContext, changed.
+  /// True when the shader must be rebuilt for the normal map: the texture, the frames, or the
+  /// texture coordinates it is sampled with (`tcoordName`, `tcoordComponents`, as in
+  /// ShaderContext) changed.
   bool NeedsRebuild(const vtkOpenGLHelper* cellBO,
     vtkActor* actor,
     unsigned framesKey,
-    int tcoordComponents,
-    bool colorCoordinates);
+    const std::string& tcoordName,
+    int tcoordComponents);
 
   /// The normal matrix and its inverse (nmNormalMatrix, nmNormalMatrixInverse).
   static void SetCameraUniforms(vtkShaderProgram* program, vtkRenderer* renderer, vtkActor* actor);

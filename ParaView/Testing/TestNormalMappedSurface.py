@@ -2,8 +2,8 @@
 """The Normal Mapped Surface representation: the plugin adds it to ParaView's list, it renders
 the mirrored quads symmetric where ParaView's Surface does not (TestSurfaceMirrorControl), with
 the Tangent Frames filter's tangents and without any tangents, its image matches the baseline,
-its settings reach the mapper, it is offered for image data and structured grids, and a saved
-state reloads to the same image.
+its settings reach the mapper, the map shows on surfaces colored by an array, it is offered for
+image data and structured grids, and a saved state reloads to the same image.
 
 pvbatch TestNormalMappedSurface.py <plugin.so> <work dir> <baseline dir>
 """
@@ -162,6 +162,29 @@ check(mapper.GetCompositeIdArrayName() == "vtkCompositeIndex"
       and mapper.GetProcessIdArrayName() == "vtkProcessId",
       "the mapper keeps ParaView's selection arrays (%s, %s)"
       % (mapper.GetCompositeIdArrayName(), mapper.GetProcessIdArrayName()))
+# Colored by a point array with Interpolate Scalars Before Mapping (ParaView's default), VTK's
+# texture coordinates are the color map's; the map is sampled at the dataset's own, so the image
+# is that of the colors mapped at the points (the same arithmetic: within 1 level), and the map
+# shows on most of the covered view. The colors are constant (every normal's magnitude is 1).
+ColorBy(plain, ("POINTS", "Normals", "Magnitude"))
+colored = []
+for interpolate in (1, 0):
+    plain.InterpolateScalarsBeforeMapping = interpolate
+    Render(view)
+    colored.append(nm.capture(view, "colored-interpolated-%d" % interpolate)[0])
+plain.NormalMapScale = 0.0
+Render(view)
+colored_unmapped = nm.capture(view, "colored-unmapped")[0]
+plain.NormalMapScale = 1.0
+plain.InterpolateScalarsBeforeMapping = 1
+ColorBy(plain, ("POINTS", None))
+same, largest = nm.difference(colored[0], colored[1], 1)
+shows, _ = nm.difference(colored[0], colored_unmapped, 4)
+print("colored, scalars interpolated before mapping against mapped at the points: %.2f%% within "
+      "1 level, max %d; %.1f%% of the pixels within 4 levels of the unmapped image"
+      % (100 * same, largest, 100 * shows))
+check(same >= BASELINE_FRACTION and shows < 0.9,
+      "colored by a point array, the map shows with Interpolate Scalars Before Mapping")
 Hide(reader, view)
 
 # Image data and structured grids draw their surface through representations of their own; the

@@ -85,6 +85,11 @@ vec3 nmDecode(vec4 texel)
 }
 //NM::End
 
+//NM::Begin TCoordDec
+// The dataset's texture coordinates, where VTK's tcoord holds the color map's.
+in vec2 nmTCoordVCVSOutput;
+//NM::End
+
 //NM::Begin TangentDec
 in vec4 nmTangentMCVSOutput;
 // The texture coordinates' transform (vtkProp::GeneralTextureTransform), M on (u, v), as seen

@@ -23,3 +23,23 @@ out vec4 nmTangentMCVSOutput;
 //NM::Begin TangentSignImpl
   nmTangentMCVSOutput = vec4(nmTangentMC, nmTangentSignMC);
 //NM::End
+
+//NM::Begin TCoordDec
+// The dataset's texture coordinates, for the normal texture while VTK's own tcoord attribute
+// holds the color map's coordinates (scalars interpolated before mapping).
+in vec2 nmTCoord;
+out vec2 nmTCoordVCVSOutput;
+//NM::End
+
+//NM::Begin TCoordImpl
+  nmTCoordVCVSOutput = nmTCoord;
+//NM::End
+
+//NM::Begin TCoordTransformedImpl
+  // The actor's texture transform, applied as VTK applies it to its own texture coordinates
+  // (VTK declares tcMatrix whenever the actor has one and the dataset texture coordinates).
+  {
+    vec4 nmTCoordH = tcMatrix * vec4(nmTCoord, 0.0, 1.0);
+    nmTCoordVCVSOutput = nmTCoordH.xy / nmTCoordH.w;
+  }
+//NM::End

@@ -544,6 +544,7 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
     {
       mapper->SetInputData(a.Mesh);
     }
+    mapper->SetInterpolateScalarsBeforeMapping(a.InterpolateScalars);
     if (a.Shaders)
     {
       vtkNew<vtkCallbackCommand> capture;
@@ -576,6 +577,7 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
     property->SetSpecularPower(setup.SpecularPower);
     property->SetSpecularColor(1.0, 1.0, 1.0);
     property->SetBackfaceCulling(!a.TwoSided);
+    property->SetEdgeVisibility(a.EdgeVisibility);
     if (a.NormalTexture)
     {
       property->SetNormalTexture(a.NormalTexture);

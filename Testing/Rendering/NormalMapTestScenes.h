@@ -171,6 +171,11 @@ struct FlatActor
   /// When set, the actor's vtkProp::GeneralTextureTransform: 16 values, a row-major 4x4
   /// matrix that VTK applies to the texture coordinates (ParaView's Flip Textures sets one).
   const double* TextureTransform = nullptr;
+  /// The mapper's InterpolateScalarsBeforeMapping (ParaView's default is on): whether point
+  /// scalars, which color the mesh when it has them, go through the color map as a texture.
+  bool InterpolateScalars = false;
+  /// Edges drawn over the surface, which VTK draws through a geometry shader.
+  bool EdgeVisibility = false;
 };
 
 /// The fixed camera and light of the flat scenes, shared with the CPU reference.

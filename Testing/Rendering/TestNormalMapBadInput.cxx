@@ -233,50 +233,6 @@ int TestNormalMapBadInput(int, char*[])
         Same(pixels, mapped, 2),
       "missing tangents: derivative frame, the same image");
   }
-  { // Scalars colored through the lookup table and interpolated before mapping: VTK uploads the
-    // color map's coordinates in place of the texture coordinates, so the map cannot apply: not
-    // applied, and said (the image is that without a normal texture). Without the interpolation the
-    // map applies to the colored quad.
-    auto colored = vtkSmartPointer<vtkPolyData>::New();
-    colored->DeepCopy(quad);
-    vtkNew<vtkFloatArray> scalars;
-    scalars->SetName("Value");
-    scalars->SetNumberOfTuples(colored->GetNumberOfPoints());
-    scalars->Fill(0.5);
-    colored->GetPointData()->SetScalars(scalars);
-    std::vector<unsigned char> withMap;
-    for (bool interpolate : { true, false })
-    {
-      std::vector<unsigned char> images[2];
-      bool warned = false;
-      int applied = -1;
-      for (int k = 0; k < 2; ++k)
-      {
-        Scene scene(colored, k == 0 ? texture.Get() : nullptr);
-        scene.NormalMapper->ScalarVisibilityOn();
-        scene.NormalMapper->SetInterpolateScalarsBeforeMapping(interpolate);
-        images[k] = scene.Render();
-        if (k == 0)
-        {
-          warned = scene.Warned("interpolates scalars before mapping");
-          applied = scene.NormalMapper->GetLastAppliedFrame();
-        }
-      }
-      const std::string what =
-        interpolate ? "scalars interpolated before mapping: " : "scalars mapped at the points: ";
-      check(warned == interpolate, what + (interpolate ? "one warning" : "no warning"));
-      check((applied == Mapper::NOT_APPLIED) == interpolate &&
-          Same(images[0], images[1], 0) == interpolate,
-        what + (interpolate ? "drawn without the map" : "the map applies"));
-      withMap = images[0];
-    }
-    // Turned off after a render, the map comes back: the shader is rebuilt.
-    Scene scene(colored, texture);
-    scene.NormalMapper->SetInterpolateScalarsBeforeMapping(true);
-    scene.Render();
-    scene.NormalMapper->SetInterpolateScalarsBeforeMapping(false);
-    check(Same(scene.Render(), withMap, 0), "scalars: the map comes back when turned off");
-  }
   { // Texture coordinates with 3 components: drawn without the map, one warning.
     auto uvw = vtkSmartPointer<vtkPolyData>::New();
     uvw->DeepCopy(quad);

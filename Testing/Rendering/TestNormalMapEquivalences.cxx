@@ -3,12 +3,20 @@
 // image, and the shader must hold only what each scene needs.
 #include "NormalMapTestScenes.h"
 
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h" // VTK_FLAT, VTK_GOURAUD, VTK_PBR
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
 
 #include <functional>
 #include <iostream>
@@ -297,6 +305,82 @@ int TestNormalMapEquivalences(int, char*[])
     const auto toTwoChannel = Between(channels[0], channels[1], 2);
     Report("RGB image replaced by a two-channel one after a render vs before", toTwoChannel, 2);
     check(toTwoChannel.WithinFraction == 1.0, "the shader follows the texture's components");
+  }
+  // Point scalars colored through the color map and interpolated before mapping (ParaView's
+  // default): VTK's texture coordinates are then the color map's, so the mappers sample the
+  // normal texture at their own copy of the dataset's. The image is that of the scalars mapped
+  // at the points, for both mappers (the same arithmetic: 0 levels), also with edges shown
+  // (VTK then draws through a geometry shader, which passes the coordinates on), and with the
+  // setting turned on after a render. Sampled at the color map's coordinates (constant here),
+  // the map would show no rivets.
+  {
+    auto colored = vtkSmartPointer<vtkPolyData>::New();
+    colored->ShallowCopy(quad);
+    vtkNew<vtkFloatArray> scalars;
+    scalars->SetName("Value");
+    scalars->SetNumberOfTuples(colored->GetNumberOfPoints());
+    scalars->Fill(0.5);
+    colored->GetPointData()->SetScalars(scalars);
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetBlock(0, colored);
+    auto coloredActor = [&](bool composite, bool interpolate, bool edges = false)
+    {
+      nmtest::FlatActor a;
+      a.Mesh = colored;
+      a.Blocks = composite ? blocks.Get() : nullptr;
+      a.NormalTexture = openGL;
+      a.InterpolateScalars = interpolate;
+      a.EdgeVisibility = edges;
+      return a;
+    };
+    for (bool composite : { false, true })
+    {
+      const std::string mapper = composite ? "composite mapper" : "single mapper";
+      std::vector<unsigned char> interpolated;
+      for (bool edges : { true, false })
+      {
+        const std::string what = mapper + (edges ? ", edges shown" : "");
+        const auto atPoints = nmtest::RenderFlat(setup, { coloredActor(composite, false, edges) });
+        interpolated = nmtest::RenderFlat(setup, { coloredActor(composite, true, edges) });
+        const auto d = Between(interpolated, atPoints, 0);
+        Report(
+          ("scalars interpolated before mapping vs mapped at the points, " + what).c_str(), d, 0);
+        check(
+          d.WithinFraction == 1.0, "scalars interpolated before mapping, " + what + ": the map");
+      }
+
+      auto window = nmtest::MakeFlatScene(setup, { coloredActor(composite, false) });
+      window->Render();
+      window->GetRenderers()
+        ->GetFirstRenderer()
+        ->GetActors()
+        ->GetLastActor()
+        ->GetMapper()
+        ->InterpolateScalarsBeforeMappingOn();
+      window->Render();
+      const auto turnedOn = Between(nmtest::ReadPixels(window), interpolated, 0);
+      Report(("interpolation turned on after a render vs from the start, " + mapper).c_str(),
+        turnedOn,
+        0);
+      check(turnedOn.WithinFraction == 1.0,
+        "scalars interpolated before mapping from a later render, " + mapper + ": the map");
+    }
+    // With a texture transform (v flipped) VTK also transforms the color map's coordinates (the
+    // colors differ), and the mappers transform their own copy as VTK would the texture
+    // coordinates: the two frame sources agree as in the transform test above.
+    const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+    std::vector<unsigned char> images[2];
+    for (int k = 0; k < 2; ++k)
+    {
+      nmtest::FlatActor a = coloredActor(false, true);
+      a.TextureTransform = flip;
+      a.FrameSource = k == 0 ? Mapper::POINT_TANGENTS : Mapper::SCREEN_DERIVATIVES;
+      images[k] = nmtest::RenderFlat(setup, { a });
+    }
+    const auto d = Between(images[0], images[1], 2);
+    Report("scalars interpolated before mapping, v flipped: point tangents vs derivatives", d, 2);
+    check(d.WithinFraction >= 0.999,
+      "scalars interpolated before mapping, v flipped: the frame sources agree");
   }
   // Every lighting model shows the map: with it the image differs from without it, by more
   // than rounding (Flat: the face normal from derivatives is perturbed; Gouraud is lit per
