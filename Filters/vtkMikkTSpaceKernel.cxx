@@ -37,7 +37,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <tuple>
@@ -148,9 +150,11 @@ struct Scratch
   std::vector<Member> Members; // the fan of the vertex at hand
   std::vector<uint64_t> Edges; // half-edges of PairEdges
   std::vector<float> XYZ;      // vectors to project, see CornerMath
-  std::vector<Idx> Order, List, Stack;
-  // the members and frame of each sub-group, see GeneralSubgroups
-  std::vector<std::pair<std::vector<Idx>, Frame>> Subgroups;
+  std::vector<Idx> Order, Stack;
+  // GeneralSubgroups: the non-GWA members of a group, the members one list leaves out and those
+  // it keeps, and the frame of each sub-group by the members its list leaves out
+  std::vector<Idx> Contributors, LeftOut, Kept;
+  std::map<std::vector<Idx>, Frame> Subgroups;
 };
 
 // PairEdges for a small fan: each member's unpaired half-edges take the first later unpaired
@@ -1003,7 +1007,7 @@ struct Kernel
         const Member& a = s.Members[size_t(j)];
         return (a.Flags & kGWA) || (first.S.Dot(a.S) > 0.01f && first.T.Dot(a.T) > 0.01f);
       });
-    if (!single && !OneFaceCorner(s, members, count, first))
+    if (!single)
     {
       GeneralSubgroups(s, members, count, orient, first.Corner);
       return;
@@ -1013,20 +1017,6 @@ struct Kernel
     {
       Write(s.Members[size_t(members[j])], f, orient, first.Corner);
     }
-  }
-
-  // Whether the non-GWA members all hold one face corner (a large polygon's fanned corner 0): then
-  // every two are of one face, so each member's sub-group is the whole group.
-  bool OneFaceCorner(const Scratch& s, const Idx* members, size_t count, const Member& first) const
-  {
-    const Idx slot = SlotOf(first.Corner);
-    return std::all_of(members,
-      members + count,
-      [&](Idx j)
-      {
-        const Member& a = s.Members[size_t(j)];
-        return (a.Flags & kGWA) || SlotOf(a.Corner) == slot;
-      });
   }
 
   // Angle-weighted average of the non-GWA members listed, in list order.
@@ -1058,32 +1048,74 @@ struct Kernel
   }
 
   // The reference's sub-groups: the list of member f holds every member t with (either GWA) or
-  // (same face) or (cosS > -1 and cosT > -1); equal lists share a frame.
+  // (same face) or (cosS > -1 and cosT > -1); equal lists share a frame. A list is thus all the
+  // members but some non-GWA members of faces other than f's, and is known by those (LeftOut):
+  // f is tested against the non-GWA members of the other faces only. A face's triangles are
+  // consecutive, so its members are too.
   void GeneralSubgroups(Scratch& s, const Idx* members, size_t count, uint8_t orient, Idx seed)
   {
     s.Subgroups.clear();
-    for (size_t a = 0; a < count; ++a)
+    std::vector<Idx>& c = s.Contributors;
+    c.clear();
+    std::copy_if(members,
+      members + count,
+      std::back_inserter(c),
+      [&s](Idx j) { return !(s.Members[size_t(j)].Flags & kGWA); });
+    const auto triangleOf = [&s](Idx j) { return s.Members[size_t(j)].Corner / 3; };
+    // the contributors in [from, to) that the list of f leaves out, to s.LeftOut
+    const auto leaveOut = [&s, &c](const Member& f, size_t from, size_t to)
     {
-      const Member& mf = s.Members[size_t(members[a])];
-      s.List.clear();
-      for (size_t j = 0; j < count; ++j)
+      for (size_t k = from; k < to; ++k)
       {
-        const Member& mt = s.Members[size_t(members[j])];
-        if (((mf.Flags | mt.Flags) & kGWA) || SameFace(mf.Corner / 3, mt.Corner / 3) ||
-          (mf.S.Dot(mt.S) > -1.0f && mf.T.Dot(mt.T) > -1.0f))
+        const Member& t = s.Members[size_t(c[k])];
+        if (!(f.S.Dot(t.S) > -1.0f && f.T.Dot(t.T) > -1.0f))
         {
-          s.List.push_back(members[j]);
+          s.LeftOut.push_back(c[k]);
         }
       }
-      auto sub = std::find_if(s.Subgroups.begin(),
-        s.Subgroups.end(),
-        [&s](const std::pair<std::vector<Idx>, Frame>& g) { return g.first == s.List; });
-      if (sub == s.Subgroups.end())
+    };
+    // [b, e): the contributors of one face
+    for (size_t b = 0, e; b < c.size(); b = e)
+    {
+      e = b + 1;
+      while (e < c.size() && SameFace(triangleOf(c[b]), triangleOf(c[e])))
       {
-        sub = s.Subgroups.emplace(sub, s.List, Eval(s, s.List.data(), s.List.size()));
+        ++e;
       }
-      Write(mf, sub->second, orient, seed);
+      for (size_t i = b; i < e; ++i)
+      {
+        const Member& f = s.Members[size_t(c[i])];
+        s.LeftOut.clear();
+        leaveOut(f, 0, b);
+        leaveOut(f, e, c.size());
+        Write(f, SubgroupFrame(s, members, count), orient, seed);
+      }
     }
+    // a GWA member's list holds every member
+    s.LeftOut.clear();
+    for (size_t j = 0; j < count; ++j)
+    {
+      const Member& m = s.Members[size_t(members[j])];
+      if (m.Flags & kGWA)
+      {
+        Write(m, SubgroupFrame(s, members, count), orient, seed);
+      }
+    }
+  }
+
+  // The frame of the sub-group whose list is the members but s.LeftOut (both ascending), in list
+  // order; evaluated once per distinct list.
+  const Frame& SubgroupFrame(Scratch& s, const Idx* members, size_t count) const
+  {
+    auto sub = s.Subgroups.find(s.LeftOut);
+    if (sub == s.Subgroups.end())
+    {
+      s.Kept.clear();
+      std::set_difference(
+        members, members + count, s.LeftOut.begin(), s.LeftOut.end(), std::back_inserter(s.Kept));
+      sub = s.Subgroups.emplace(s.LeftOut, Eval(s, s.Kept.data(), s.Kept.size())).first;
+    }
+    return sub->second;
   }
 
   // Triangles of one face share a face corner; different faces never do.

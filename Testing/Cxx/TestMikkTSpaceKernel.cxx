@@ -331,6 +331,20 @@ Mesh AsTriangles(const Mesh& quad, std::initializer_list<std::array<long long, 3
   }
   return m;
 }
+
+// The corners whose frame is not a unit tangent in the plane z = 0 with sign +1.
+int CountNotUnitInPlane(const mikk::Result& r)
+{
+  int wrong = 0;
+  for (const mikk::CornerFrame& f : r.Corners)
+  {
+    const float length = std::sqrt(
+      f.Tangent[0] * f.Tangent[0] + f.Tangent[1] * f.Tangent[1] + f.Tangent[2] * f.Tangent[2]);
+    // A float unit vector's length is 1 within a few float roundings.
+    wrong += f.Sign == 1.0f && std::abs(length - 1.0f) < 1e-5f && f.Tangent[2] == 0.0f ? 0 : 1;
+  }
+  return wrong;
+}
 } // namespace
 
 // Quads split on the shorter UV diagonal; on a UV tie, 1-3 only if its position diagonal is
@@ -687,15 +701,45 @@ TEST(MikkTSpaceKernel, LargePolygonIsOneSubgroupAtItsFannedCorner)
   ASSERT_EQ(r.Corners.size(), static_cast<size_t>(k));
   EXPECT_EQ(r.NumberOfDefaultCorners, 0);
   EXPECT_EQ(r.NumberOfCancelledCorners, 0);
-  int wrong = 0;
-  for (const mikk::CornerFrame& f : r.Corners)
+  EXPECT_EQ(CountNotUnitInPlane(r), 0);
+}
+
+// One polygon of 2^20 corners on a 150-degree arc around its corner 0 and two triangles of other
+// faces that continue the arc to 170 degrees, all with texture coordinates z^2: one group at the
+// centre whose tangents turn by 170 degrees, so neither the direction shortcut nor the one-face
+// case applies. No two members are opposite, so the group is one sub-group and the three face
+// corners at the centre get one frame. Each member is compared with the members of the other faces
+// only: comparing every pair makes the time grow with the square of the polygon, past ctest's
+// default timeout at this size.
+TEST(MikkTSpaceKernel, SubgroupsCompareMembersOfDifferentFacesOnly)
+{
+  constexpr int k = 1 << 20;
+  Mesh m;
+  const auto ringPoint = [&m](double degrees)
   {
-    const float length = std::sqrt(
-      f.Tangent[0] * f.Tangent[0] + f.Tangent[1] * f.Tangent[1] + f.Tangent[2] * f.Tangent[2]);
-    // A float unit vector's length is 1 within a few float roundings.
-    wrong += f.Sign == 1.0f && std::abs(length - 1.0f) < 1e-5f && f.Tangent[2] == 0.0f ? 0 : 1;
+    const double a = degrees * 3.141592653589793 / 180;
+    return m.AddPoint({ float(std::cos(a)), float(std::sin(a)), 0 },
+      kUp,
+      { float(std::cos(2 * a)), float(std::sin(2 * a)) });
+  };
+  std::vector<long long> face = { m.AddPoint({ 0, 0, 0 }, kUp, { 0, 0 }) };
+  for (int i = 0; i + 1 < k; ++i)
+  {
+    face.push_back(ringPoint(150.0 * i / (k - 2)));
   }
-  EXPECT_EQ(wrong, 0);
+  m.Offsets.push_back(m.Offsets.back() + static_cast<long long>(face.size()));
+  m.Conn.insert(m.Conn.end(), face.begin(), face.end());
+  const long long at160 = ringPoint(160), at170 = ringPoint(170);
+  m.AddFace({ face[0], face.back(), at160 });
+  m.AddFace({ face[0], at160, at170 });
+  const mikk::Result r = RunKernel(m);
+  ASSERT_EQ(r.Corners.size(), static_cast<size_t>(k) + 6);
+  EXPECT_EQ(r.NumberOfDefaultCorners, 0);
+  EXPECT_EQ(r.NumberOfCancelledCorners, 0);
+  EXPECT_EQ(CountNotUnitInPlane(r), 0);
+  // the centre's face corners: the polygon's corner 0 and the triangles' first corners
+  EXPECT_TRUE(BitEqual(r.Corners[0], r.Corners[k]));
+  EXPECT_TRUE(BitEqual(r.Corners[0], r.Corners[k + 3]));
 }
 
 // A fan of 63 triangles around one centre (more than 32 corners: its edges are paired through a
