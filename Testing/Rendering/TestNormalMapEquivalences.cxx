@@ -6,9 +6,11 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkFloatArray.h"
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkOpenGLPolyDataMapper.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -364,6 +366,21 @@ int TestNormalMapEquivalences(int, char*[])
         0);
       check(turnedOn.WithinFraction == 1.0,
         "scalars interpolated before mapping from a later render, " + mapper + ": the map");
+    }
+    // A normal texture that reads texture coordinates of its own (mapped to an attribute by
+    // name) is sampled there as VTK samples it, whatever the color map does.
+    {
+      const auto atPoints = nmtest::RenderFlat(setup, { coloredActor(false, false) });
+      auto window = nmtest::MakeFlatScene(setup, { coloredActor(false, true) });
+      auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(
+        window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
+      mapper->MapDataArrayToMultiTextureAttribute(
+        "normalTex", "TCoords", vtkDataObject::FIELD_ASSOCIATION_POINTS);
+      window->Render();
+      const auto d = Between(nmtest::ReadPixels(window), atPoints, 0);
+      Report("scalars interpolated before mapping, the map's own mapped texture coordinates", d, 0);
+      check(d.WithinFraction == 1.0,
+        "scalars interpolated before mapping, the map's own mapped texture coordinates: the map");
     }
     // With a texture transform (v flipped) VTK also transforms the color map's coordinates (the
     // colors differ), and the mappers transform their own copy as VTK would the texture
