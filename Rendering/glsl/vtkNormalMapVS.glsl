@@ -37,7 +37,8 @@ out vec2 nmTCoordVCVSOutput;
 
 //NM::Begin TCoordTransformedImpl
   // The actor's texture transform, applied as VTK applies it to its own texture coordinates
-  // (VTK declares tcMatrix whenever the actor has one and the dataset texture coordinates).
+  // (VTK declares tcMatrix when the actor has one and VTK has texture coordinates of its own,
+  // which it has here: the color map's, or the dataset's themselves).
   {
     vec4 nmTCoordH = tcMatrix * vec4(nmTCoord, 0.0, 1.0);
     nmTCoordVCVSOutput = nmTCoordH.xy / nmTCoordH.w;
