@@ -335,10 +335,14 @@ int TestNormalMapEquivalences(int, char*[])
       a.EdgeVisibility = edges;
       return a;
     };
+    // The mapper of a flat scene's only actor.
+    const auto mapperOf = [](vtkRenderWindow* window) {
+      return window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper();
+    };
     for (bool composite : { false, true })
     {
       const std::string mapper = composite ? "composite mapper" : "single mapper";
-      std::vector<unsigned char> interpolated;
+      std::vector<unsigned char> interpolated; // the last image: without edges
       for (bool edges : { true, false })
       {
         const std::string what = mapper + (edges ? ", edges shown" : "");
@@ -353,12 +357,7 @@ int TestNormalMapEquivalences(int, char*[])
 
       auto window = nmtest::MakeFlatScene(setup, { coloredActor(composite, false) });
       window->Render();
-      window->GetRenderers()
-        ->GetFirstRenderer()
-        ->GetActors()
-        ->GetLastActor()
-        ->GetMapper()
-        ->InterpolateScalarsBeforeMappingOn();
+      mapperOf(window)->InterpolateScalarsBeforeMappingOn();
       window->Render();
       const auto turnedOn = Between(nmtest::ReadPixels(window), interpolated, 0);
       Report(("interpolation turned on after a render vs from the start, " + mapper).c_str(),
@@ -372,10 +371,9 @@ int TestNormalMapEquivalences(int, char*[])
     {
       const auto atPoints = nmtest::RenderFlat(setup, { coloredActor(false, false) });
       auto window = nmtest::MakeFlatScene(setup, { coloredActor(false, true) });
-      auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(
-        window->GetRenderers()->GetFirstRenderer()->GetActors()->GetLastActor()->GetMapper());
-      mapper->MapDataArrayToMultiTextureAttribute(
-        "normalTex", "TCoords", vtkDataObject::FIELD_ASSOCIATION_POINTS);
+      vtkOpenGLPolyDataMapper::SafeDownCast(mapperOf(window))
+        ->MapDataArrayToMultiTextureAttribute(
+          "normalTex", "TCoords", vtkDataObject::FIELD_ASSOCIATION_POINTS);
       window->Render();
       const auto d = Between(nmtest::ReadPixels(window), atPoints, 0);
       Report("scalars interpolated before mapping, the map's own mapped texture coordinates", d, 0);
