@@ -155,8 +155,9 @@ protected:
         const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
         this->Frames.PointTangents = this->Frames.PointTangents || has;
         this->Frames.Derivatives = this->Frames.Derivatives || !has;
-        allUnsigned =
-          allUnsigned && (!has || tangents.Use == vtkNormalMapShading::TangentUse::Unsigned);
+        const bool unsignedTangents = tangents.Use == vtkNormalMapShading::TangentUse::Unsigned;
+        allUnsigned = allUnsigned && (!has || unsignedTangents);
+        this->Frames.SomeUnsigned = this->Frames.SomeUnsigned || unsignedTangents;
         this->BlockTangents[block] = tangents;
       });
     this->Frames.Unsigned = this->Frames.PointTangents && allUnsigned;

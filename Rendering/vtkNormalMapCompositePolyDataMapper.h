@@ -11,7 +11,8 @@
  * (MapEncodings, FrameSources, AppliedFrames).
  *
  * Per block: each block's own point tangents and signs are used (float or double, 3 components
- * with a sign array or 4 with the sign in w, 3 without signs: sign +1 and a warning); a block
+ * with a sign array or 4 with the sign in w, 3 without signs: the handedness from the texture
+ * coordinates' orientation, as in vtkNormalMapPolyDataMapper); a block
  * without tangents gets the frame from screen-space derivatives, in the same draw as blocks
  * with them. A block without 2-component texture coordinates is drawn without the map, with a
  * warning naming it. Per-block visibility, colour and opacity (vtkCompositeDataDisplayAttributes)

@@ -26,6 +26,7 @@ vtkNormalMapShading::FrameMix FramesOf(vtkOpenGLVertexBufferObjectGroup* vbos)
   frames.SeparateSigns =
     tangentComponents == 3 && vbos->GetNumberOfComponents(vtkNormalMapShading::SignAttribute) == 1;
   frames.Unsigned = tangentComponents == 3 && !frames.SeparateSigns;
+  frames.SomeUnsigned = frames.Unsigned;
   frames.Derivatives = !frames.PointTangents;
   return frames;
 }
@@ -212,7 +213,7 @@ void vtkNormalMapPolyDataMapper::ReplaceShaderNormal(std::map<vtkShader::Type, v
   this->LastAppliedFrame = shading.ReplaceShaderNormal(shaders, context, settings);
   if (this->LastAppliedFrame != NOT_APPLIED)
   {
-    // Say why point tangents were not used or are used without signs.
+    // Say why point tangents were not used.
     shading.WarnAboutTangents(this,
       actor,
       vtkNormalMapShading::FindTangents(this->CurrentInput, actor, settings),

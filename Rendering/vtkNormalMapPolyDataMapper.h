@@ -12,7 +12,9 @@
  * - The bitangent is sign * cross(N, T), with the handedness sign from vtkPolyDataTangentFrames
  *   (point array `TangentSigns`) or from the w of a glTF-style 4-component tangent array, so
  *   mirrored UV islands shade right. Three-component tangents without a sign (VTK's
- *   vtkPolyDataTangents) are used with sign +1 and a warning, once.
+ *   vtkPolyDataTangents, VTK's glTF reader and importer, which drop TANGENT's w) take the
+ *   handedness of each triangle from the orientation of its texture coordinates, found from
+ *   screen-space derivatives, so mirrored UVs shade right with them too.
  * - Without tangents, the frame is built per fragment from screen-space derivatives of the
  *   position and the texture coordinates: no vertex memory, mirroring handled by itself.
  * - The perturbed normal is built in model coordinates from a frame re-orthogonalized per
@@ -117,7 +119,8 @@ public:
   /**
    * Point array with the handedness signs, used with 3-component tangents (default
    * "TangentSigns", what vtkPolyDataTangentFrames writes). Bitangent = sign * cross(N, T).
-   * Empty: no sign array; 3-component tangents are unsigned (sign +1, with a warning).
+   * Empty, or no such array: 3-component tangents are unsigned, and each triangle's
+   * handedness is the orientation of its texture coordinates (screen-space derivatives).
    */
   void SetTangentSignsArrayName(const std::string& name);
   const std::string& GetTangentSignsArrayName() const { return this->TangentSignsArrayName; }
@@ -130,7 +133,8 @@ public:
     NOT_APPLIED = 0,
     /// Tangent-space map with point tangents and their signs.
     APPLIED_POINT_TANGENTS,
-    /// Tangent-space map with point tangents without signs (sign +1).
+    /// Tangent-space map with point tangents without signs (the handedness from the texture
+    /// coordinates' orientation).
     APPLIED_UNSIGNED_TANGENTS,
     /// Tangent-space map with a frame from screen-space derivatives.
     APPLIED_DERIVATIVES,

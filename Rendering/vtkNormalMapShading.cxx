@@ -37,7 +37,6 @@ enum class vtkNormalMapShading::Reason : unsigned
   OneChannel = 1u << 1,
   TwoChannelAsRGB = 1u << 2,
   ObjectSpaceTwoChannel = 1u << 3,
-  UnsignedTangents = 1u << 4,
   MissingTangents = 1u << 5,
   BadTangents = 1u << 6,
   SRGBTexture = 1u << 7,
@@ -119,7 +118,8 @@ struct ShaderPlan
 };
 
 /// Copies tangents (3 or 4 components, any numeric type) into 4 floats per point, w the sign as
-/// stored (the shader reads its sign: negative for -1, anything else for +1).
+/// stored (the shader reads its sign: negative for -1, anything else for +1), or 0 for tangents
+/// without signs (the shader then takes the orientation of the texture coordinates).
 struct PackTangents
 {
   template<typename TangentArray>
@@ -130,7 +130,7 @@ struct PackTangents
     const int components = tangents->GetNumberOfComponents();
     for (vtkIdType i = 0; i < in.size(); ++i)
     {
-      float sign = 1.0f;
+      float sign = 0.0f;
       if (components == 4)
       {
         sign = static_cast<float>(in[i][3]);
@@ -152,7 +152,7 @@ struct PackTangents
 unsigned vtkNormalMapShading::FrameMix::Key() const
 {
   return (this->PointTangents ? 1u : 0u) | (this->SeparateSigns ? 2u : 0u) |
-    (this->Unsigned ? 4u : 0u) | (this->Derivatives ? 8u : 0u);
+    (this->Unsigned ? 4u : 0u) | (this->Derivatives ? 8u : 0u) | (this->SomeUnsigned ? 16u : 0u);
 }
 
 //------------------------------------------------------------------------------
@@ -315,7 +315,8 @@ void vtkNormalMapShading::WarnAboutTangents(vtkObject* reporter,
       where,
       tangents.Vectors ? Reason::BadSigns : Reason::BadTangents,
       "Point tangents: " + tangents.Problem +
-        (tangents.Vectors ? "; using sign +1." : "; using screen-space derivatives."));
+        (tangents.Vectors ? "; taking the handedness from the texture coordinates."
+                          : "; using screen-space derivatives."));
   }
   else if (tangents.Missing)
   {
@@ -327,19 +328,6 @@ void vtkNormalMapShading::WarnAboutTangents(vtkObject* reporter,
         (settings.TangentsArrayName.empty() ? std::string()
                                             : " named '" + settings.TangentsArrayName + "'") +
         "; using screen-space derivatives.");
-  }
-  else if (tangents.Use == TangentUse::Unsigned)
-  {
-    this->Warn(reporter,
-      actor,
-      where,
-      Reason::UnsignedTangents,
-      "Point tangents have no handedness sign (no 4th component, " +
-        (settings.TangentSignsArrayName.empty()
-            ? std::string("no sign array named")
-            : "no '" + settings.TangentSignsArrayName + "' array") +
-        "); using +1, so mirrored UVs shade inverted. vtkPolyDataTangentFrames "
-        "writes the signs.");
   }
 }
 
@@ -449,13 +437,16 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
 {
   const bool pointTangents =
     plan.Frame == Mapper::APPLIED_POINT_TANGENTS || plan.Frame == Mapper::APPLIED_UNSIGNED_TANGENTS;
-  const bool derivatives = plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame;
+  // Derivatives also give the handedness of tangents without signs.
+  const bool unsignedTangents = pointTangents && context.Frames.SomeUnsigned;
+  const bool derivatives =
+    plan.Frame == Mapper::APPLIED_DERIVATIVES || plan.PerDatasetFrame || unsignedTangents;
   if (pointTangents)
   {
     const bool signs = context.Frames.SeparateSigns;
     PassAttribute(shaders,
       signs ? "TangentSignDec" : "TangentDec",
-      signs ? "TangentSignImpl" : "TangentImpl",
+      signs ? "TangentSignImpl" : (context.Frames.Unsigned ? "TangentUnsignedImpl" : "TangentImpl"),
       "Tangent");
   }
   const bool ownTCoords = context.TCoordName == vtkNormalMapShading::TCoordAttribute;
@@ -496,6 +487,12 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
       std::string flow = Block(vtkNormalMapFS, "DerivativeUniformFlow");
       vtkShaderProgram::Substitute(flow, "@TCOORD@", context.TCoordName);
       InsertBefore(fs, "//VTK::UniformFlow::Impl", flow);
+    }
+    if (pointTangents)
+    {
+      declarations +=
+        Block(vtkNormalMapFS, unsignedTangents ? "HandednessDerived" : "HandednessStored") +
+        Block(vtkNormalMapFS, "TangentFrame");
     }
     declarations += Block(vtkNormalMapFS,
       plan.PerDatasetFrame ? "FramePerDataset"

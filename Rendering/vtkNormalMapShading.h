@@ -83,7 +83,7 @@ public:
     Derivatives,   // no usable point tangents (or not wanted): screen-space derivatives
     Signed,        // 4-component tangents, the sign in w
     SeparateSigns, // 3-component tangents and a sign array
-    Unsigned       // 3-component tangents without signs: sign +1
+    Unsigned       // 3-component tangents without signs: the handedness from the UV map
   };
 
   /// One dataset's tangent arrays, checked against the settings.
@@ -102,6 +102,7 @@ public:
     bool PointTangents = false; // some dataset has point tangents (attribute nmTangentMC)
     bool SeparateSigns = false; // ... whose signs are their own attribute (nmTangentSignMC)
     bool Unsigned = false;      // every dataset with tangents has them without signs
+    bool SomeUnsigned = false;  // some dataset has tangents without signs
     bool Derivatives = false;   // some dataset has none: frame from screen-space derivatives
     /// A small number that changes whenever the shader code, or the frame it reports, would.
     unsigned Key() const;
@@ -150,7 +151,7 @@ public:
   static Tangents FindTangents(vtkPolyData* poly, vtkActor* actor, const Settings& settings);
 
   /**
-   * The tangents as 4 floats per point, the handedness sign in w (+1 for unsigned tangents);
+   * The tangents as 4 floats per point, the handedness sign in w (0 for unsigned tangents);
    * nullptr when the dataset's frame comes from derivatives.
    */
   static vtkFloatArray* NewPackedTangents(const Tangents& tangents);

@@ -67,15 +67,25 @@ fraction, _ = nm.difference(directx, ours, BASELINE_BOUND)
 check(fraction < 0.9, "the map encoding changes the image (%.1f%% unchanged)" % (100 * fraction))
 display.NormalMapEncoding = "Tangent space, OpenGL (+Y green)"
 
-# The signs are what shade the mirrored half right: naming an array that does not exist leaves
-# the tangents unsigned (sign +1, with a warning), and the mirrored half is wrong again.
+# Tangents without signs take each triangle's handedness from its texture coordinates, so the
+# mirrored half stays right: naming an array that does not exist leaves the tangents unsigned,
+# and a cleared name asks for unsigned tangents (TangentSigns, though present, is not read).
+# Signs that are all +1, which is what unsigned tangents meant to VTK's mapper, shade the
+# mirrored half wrong (the check can fail).
 display.TangentSignsArray = "NoSuchArray"
 Render(view)
-nm.measure_symmetry(view, "Normal Mapped Surface, signs not found", check, False, "no-signs")
-# A cleared name asks for unsigned tangents: TangentSigns, though present, is not read.
+nm.measure_symmetry(view, "Normal Mapped Surface, signs not found", check, True, "no-signs")
 display.TangentSignsArray = ""
 Render(view)
-nm.measure_symmetry(view, "Normal Mapped Surface, signs cleared", check, False, "signs-cleared")
+nm.measure_symmetry(view, "Normal Mapped Surface, signs cleared", check, True, "signs-cleared")
+plus_one = Calculator(Input=frames, ResultArrayName="PlusOne", Function="1")
+display_plus_one = nm.show_mirrored(plus_one, view, REPRESENTATION, texture)
+Hide(frames, view)
+display_plus_one.TangentSignsArray = "PlusOne"
+Render(view)
+nm.measure_symmetry(view, "Normal Mapped Surface, signs all +1", check, False, "signs-plus-one")
+Hide(plus_one, view)
+Show(frames, view)
 display.TangentSignsArray = "TangentSigns"
 
 # 4-component tangents, the sign in w (glTF's TANGENT), chosen as the Tangent Array: ParaView

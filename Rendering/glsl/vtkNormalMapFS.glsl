@@ -91,19 +91,39 @@ in vec2 nmTCoordVCVSOutput;
 //NM::End
 
 //NM::Begin TangentDec
+// The interpolated point tangent; w its handedness sign, 0 for tangents without one.
 in vec4 nmTangentMCVSOutput;
 // The texture coordinates' transform (vtkProp::GeneralTextureTransform), M on (u, v), as seen
 // from the point tangents: (x, y) of the direction of dP/du' in (dP/du, dP/dv) for the
 // transformed u' (the first column of M^-1, scaled by |det M|), and the sign of det M, which
 // turns the handedness. Without a transform (1, 0, 1).
 uniform vec3 nmTextureFrame;
+//NM::End
 
-// Frame from the interpolated point tangent and its sign (nmOrthoFrame), for the transformed
-// texture coordinates. A tangent parallel to the normal leaves the unperturbed normal.
+//NM::Begin HandednessStored
+// The handedness the point tangents carry.
+float nmHandedness(vec3 normalMC) { return nmTangentMCVSOutput.w; }
+//NM::End
+
+//NM::Begin HandednessDerived
+// Tangents without a sign (w = 0) take the orientation of the texture coordinates on the
+// triangle under the fragment, which is the sign a signed tangent carries there; for the
+// untransformed coordinates, so turned by the transform's sign (nmTextureFrame.z).
+float nmHandedness(vec3 normalMC)
+{
+  float w = nmTangentMCVSOutput.w;
+  return w != 0.0 ? w : nmUVOrientation(normalMC) * nmTextureFrame.z;
+}
+//NM::End
+
+//NM::Begin TangentFrame
+// Frame from the interpolated point tangent and its handedness (nmOrthoFrame), for the
+// transformed texture coordinates. A tangent parallel to the normal leaves the unperturbed
+// normal.
 mat3 nmTangentFrameMC(vec3 normalMC)
 {
   vec3 t = nmTangentMCVSOutput.xyz;
-  float w = nmTangentMCVSOutput.w;
+  float w = nmHandedness(normalMC);
   t = nmTextureFrame.x * t + nmTextureFrame.y * (w * cross(normalMC, t));
   return nmOrthoFrame(t, w * nmTextureFrame.z, normalMC, 1e-12 * dot(t, t));
 }
@@ -117,19 +137,37 @@ vec3 nmDPositionDy;
 vec2 nmDTCoordDx;
 vec2 nmDTCoordDy;
 
-// Frame of the triangle under the fragment: dP/du and dP/dv solved from the derivatives (in
-// model coordinates: the model-view inverse is the transpose of nmNormalMatrix), the tangent
-// is dP/du made perpendicular to the normal, the sign is that of the UV map's orientation
-// against the normal. Same conventions as the point tangents, so both sources agree on flat
-// triangles. Degenerate texture coordinates give zero T and B columns: no perturbation.
+// The triangle under the fragment, from the derivatives: its position's derivatives in model
+// coordinates (the model-view inverse is the transpose of nmNormalMatrix), and det * dP/du and
+// det * dP/dv solved from them, det the determinant of the texture coordinates' derivatives.
+void nmDerivativeAxesMC(out vec3 dpdx, out vec3 dpdy, out vec3 dpdu, out vec3 dpdv, out float det)
+{
+  dpdx = nmDPositionDx * nmNormalMatrix;
+  dpdy = nmDPositionDy * nmNormalMatrix;
+  det = nmDTCoordDx.x * nmDTCoordDy.y - nmDTCoordDy.x * nmDTCoordDx.y;
+  dpdu = dpdx * nmDTCoordDy.y - dpdy * nmDTCoordDx.y;
+  dpdv = dpdy * nmDTCoordDx.x - dpdx * nmDTCoordDy.x;
+}
+
+// The orientation of the texture coordinates on that triangle against the normal: -1 where
+// they are mirrored, else +1 (also where they are degenerate).
+float nmUVOrientation(vec3 normalMC)
+{
+  vec3 dpdx, dpdy, dpdu, dpdv;
+  float det;
+  nmDerivativeAxesMC(dpdx, dpdy, dpdu, dpdv, det);
+  return dot(cross(dpdu, dpdv), normalMC) < 0.0 ? -1.0 : 1.0;
+}
+
+// Frame of that triangle: the tangent is dP/du made perpendicular to the normal, the sign is
+// the orientation of the texture coordinates (nmUVOrientation). Same conventions as the point
+// tangents, so both sources agree on flat triangles. Degenerate texture coordinates give zero T
+// and B columns: no perturbation.
 mat3 nmDerivativeFrameMC(vec3 normalMC)
 {
-  vec3 dpdx = nmDPositionDx * nmNormalMatrix;
-  vec3 dpdy = nmDPositionDy * nmNormalMatrix;
-  float det = nmDTCoordDx.x * nmDTCoordDy.y - nmDTCoordDy.x * nmDTCoordDx.y;
-  // det * dP/du and det * dP/dv
-  vec3 dpdu = dpdx * nmDTCoordDy.y - dpdy * nmDTCoordDx.y;
-  vec3 dpdv = dpdy * nmDTCoordDx.x - dpdx * nmDTCoordDy.x;
+  vec3 dpdx, dpdy, dpdu, dpdv;
+  float det;
+  nmDerivativeAxesMC(dpdx, dpdy, dpdu, dpdv, det);
   float scale2 = (dot(dpdx, dpdx) + dot(dpdy, dpdy)) *
     (dot(nmDTCoordDx, nmDTCoordDx) + dot(nmDTCoordDy, nmDTCoordDy));
   return nmOrthoFrame(det < 0.0 ? -dpdu : dpdu,

@@ -3,14 +3,18 @@
 // and "//NM::End" is inserted at one of VTK's shader tags when the scene needs it.
 
 //NM::Begin TangentDec
-// Model-coordinate tangent; w carries the handedness sign. A 3-component tangent array reads
-// w = 1 (OpenGL's default for a missing component), the sign of unsigned tangents.
+// Model-coordinate tangent; w carries the handedness sign, 0 for tangents without one.
 in vec4 nmTangentMC;
 out vec4 nmTangentMCVSOutput;
 //NM::End
 
 //NM::Begin TangentImpl
   nmTangentMCVSOutput = nmTangentMC;
+//NM::End
+
+//NM::Begin TangentUnsignedImpl
+  // A 3-component array reads w = 1 (OpenGL's default for a missing component): no sign.
+  nmTangentMCVSOutput = vec4(nmTangentMC.xyz, 0.0);
 //NM::End
 
 //NM::Begin TangentSignDec

@@ -290,6 +290,15 @@ vtkSmartPointer<vtkPolyData> WithTangentLayout(vtkPolyData* withTangents, Tangen
     case TangentLayout::Unsigned:
       pd->SetTangents(tangents);
       break;
+    case TangentLayout::SignsIgnored:
+    {
+      pd->SetTangents(tangents);
+      vtkSmartPointer<vtkDataArray> plusOne = vtk::TakeSmartPointer(signs->NewInstance());
+      plusOne->DeepCopy(signs);
+      plusOne->Fill(1.0);
+      pd->AddArray(plusOne);
+      break;
+    }
     default:
       break;
   }

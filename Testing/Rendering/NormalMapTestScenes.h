@@ -87,6 +87,7 @@ enum class TangentLayout
   NamedFloat3WithSigns, // float "TANGENT" (3 components, not active) and TangentSigns
   NamedDouble4,         // double "TANGENT", 4 components, the sign in w (glTF)
   Unsigned,             // active float Tangents, no signs (VTK's vtkPolyDataTangents)
+  SignsIgnored,         // active float Tangents, TangentSigns all +1: mirroring ignored
   None                  // no tangents
 };
 

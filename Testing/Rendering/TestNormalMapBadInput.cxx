@@ -201,13 +201,14 @@ int TestNormalMapBadInput(int, char*[])
     check(scene.Warned("sRGB"), "sRGB texture: one warning");
     check(Same(pixels, mapped, 3), "sRGB texture: rendered like the linear one");
   }
-  { // Three-component tangents without signs (VTK's own filter): sign +1, one warning.
+  { // Three-component tangents without signs (VTK's own filter): the handedness from the
+    // texture coordinates, +1 on this quad as its signs are; nothing to warn about.
     auto unsigned3 = vtkSmartPointer<vtkPolyData>::New();
     unsigned3->DeepCopy(quad);
     unsigned3->GetPointData()->RemoveArray("TangentSigns");
     Scene scene(unsigned3, texture);
     const auto pixels = scene.Render();
-    check(scene.Warned("no handedness sign"), "unsigned tangents: one warning");
+    check(scene.Warnings.empty(), "unsigned tangents: no warning");
     check(scene.NormalMapper->GetLastAppliedFrame() == Mapper::APPLIED_UNSIGNED_TANGENTS &&
         Same(pixels, mapped, 0),
       "unsigned tangents on an unmirrored quad: the same image");
@@ -288,8 +289,9 @@ int TestNormalMapBadInput(int, char*[])
     check(Same(objectPixels, unmapped, 0), "two-channel object-space map: drawn without the map");
   }
   { // Malformed named tangent arrays: a tuple short (derivatives instead), 2 components
-    // (derivatives), a sign array a tuple short (sign +1). Derivatives and point tangents agree
-    // within 2 levels on this quad (see "missing tangents" above); sign +1 is right on it.
+    // (derivatives), a sign array a tuple short (the handedness from the texture coordinates).
+    // Derivatives and point tangents agree within 2 levels on this quad (see "missing tangents"
+    // above).
     vtkDataArray* t = quad->GetPointData()->GetArray("Tangents");
     const auto named = [&](vtkIdType tuples, int components, vtkIdType signTuples)
     {
@@ -324,7 +326,8 @@ int TestNormalMapBadInput(int, char*[])
       { named(n - 1, 3, n), "tangent array has", Mapper::APPLIED_DERIVATIVES },
       { named(n, 2, n), "has 2 components (3 or 4 needed)", Mapper::APPLIED_DERIVATIVES },
       { named(n, 3, n - 1),
-        "sign array 'S2' is not one value per point; using sign +1",
+        "sign array 'S2' is not one value per point; taking the handedness from the texture "
+        "coordinates",
         Mapper::APPLIED_UNSIGNED_TANGENTS },
     };
     for (const auto& c : cases)

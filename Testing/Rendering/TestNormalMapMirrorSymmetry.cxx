@@ -52,5 +52,37 @@ int TestNormalMapMirrorSymmetry(int, char*[])
       }
     }
   }
+  // Tangents without signs (VTK's vtkPolyDataTangents, VTK's glTF reader): each triangle's
+  // handedness comes from its texture coordinates, so ours is symmetric with them too; with
+  // every sign +1 instead (what those tangents meant before) it is not.
+  for (const auto layout : { nmtest::TangentLayout::Unsigned, nmtest::TangentLayout::SignsIgnored })
+  {
+    const auto left = nmtest::WithTangentLayout(scene.Left, layout);
+    const auto right = nmtest::WithTangentLayout(scene.Right, layout);
+    nmtest::FlatActor a, b;
+    a.Mesh = left;
+    b.Mesh = right;
+    a.NormalTexture = b.NormalTexture = scene.Texture;
+    int applied = -1;
+    b.AppliedFrame = &applied;
+    const auto pixels = nmtest::RenderFlat(setup, { a, b });
+    const nmtest::Difference d = nmtest::MirrorSymmetry(pixels, setup.Width, setup.Height, bound);
+    const bool unsignedTangents = layout == nmtest::TangentLayout::Unsigned;
+    const std::string name =
+      unsignedTangents ? "ours, unsigned tangents" : "ours, tangent signs all +1 (control)";
+    std::cout << name << ": " << d.Compared << " pixels, " << 100.0 * d.WithinFraction
+              << "% symmetric within " << bound << " levels, max difference " << d.MaxChannel
+              << std::endl;
+    if (unsignedTangents)
+    {
+      check(applied == vtkNormalMapPolyDataMapper::APPLIED_UNSIGNED_TANGENTS &&
+          d.WithinFraction >= 0.999,
+        name + ": is mirror-symmetric");
+    }
+    else
+    {
+      check(d.WithinFraction < 0.95, name + ": is not mirror-symmetric");
+    }
+  }
   return check.Result();
 }

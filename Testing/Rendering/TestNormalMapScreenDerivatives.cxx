@@ -2,8 +2,8 @@
 // Image test: a torus with mirrored texture coordinates (the two halves use the texture
 // mirrored) and no tangents: the frame comes from screen-space derivatives, which follow the
 // mirroring by themselves, so every dome on both halves is lit from the light's side. It fails
-// when the frame ignores the mirroring (unsigned point tangents: the mirrored half inverted)
-// or the green is read in the other convention.
+// when the frame ignores the mirroring (point tangents with signs all +1: the mirrored half
+// inverted) or the green is read in the other convention.
 #include "NormalMapImageTest.h"
 
 #include "vtkNormalMapPolyDataMapper.h"
@@ -19,16 +19,16 @@ int TestNormalMapScreenDerivatives(int argc, char* argv[])
   options.V = 48;
   options.MirrorU = true;
   auto torus = vtkNormalMapping::MakeTorus(options);
-  auto unsignedTorus =
-    nmtest::WithTangentLayout(nmtest::WithTangents(torus), nmtest::TangentLayout::Unsigned);
+  auto ignoredTorus =
+    nmtest::WithTangentLayout(nmtest::WithTangents(torus), nmtest::TangentLayout::SignsIgnored);
   return nmtest::RunImageTest(argc,
     argv,
-    { "unsigned point tangents", "the other green convention" },
+    { "point tangents with signs all +1", "the other green convention" },
     [&](int alteration)
     {
       auto window = nmtest::MakeWindow(300, 300);
       nmtest::Panel p;
-      p.Mesh = alteration == 0 ? unsignedTorus.Get() : torus.Get();
+      p.Mesh = alteration == 0 ? ignoredTorus.Get() : torus.Get();
       p.Texture = map;
       p.FrameSource = alteration == 0 ? Mapper::POINT_TANGENTS : Mapper::SCREEN_DERIVATIVES;
       p.Encoding = alteration == 1 ? Mapper::TANGENT_SPACE_DIRECTX : Mapper::TANGENT_SPACE_OPENGL;

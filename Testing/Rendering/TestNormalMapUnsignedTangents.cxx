@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Image test: a sphere with rivets and three-component tangents without signs (as VTK's
-// vtkPolyDataTangents writes them), used with sign +1: on this unmirrored surface every dome
-// is lit from the upper left. It fails when the sign is taken as -1 (the bitangent flipped) or
-// the map is dropped.
+// vtkPolyDataTangents writes them), whose handedness comes from the texture coordinates: +1 on
+// this unmirrored surface, where every dome is lit from the upper left. It fails when the sign
+// is taken as -1 (the bitangent flipped) or the map is dropped.
 #include "NormalMapImageTest.h"
 
 #include "vtkDataArray.h"
