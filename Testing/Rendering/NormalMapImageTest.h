@@ -100,6 +100,14 @@ int RunEncodingTest(int argc, char* argv[], Storage storage, int encoding, int o
  */
 vtkSmartPointer<vtkPolyData> LoadKhronosModel(const std::string& file);
 
+/**
+ * The worst cell of a Khronos test model's grid in a size x size RGB image on black: each cell
+ * compared with the first (real-geometry) cell of its group of columns in the same row. Returns
+ * the smallest share of a cell's pixels within `bound` levels of its reference, and counts the
+ * cells compared.
+ */
+double WorstCell(const std::vector<unsigned char>& rgb, int size, int bound, int& cells);
+
 /// A Khronos model's normal map (PNG) as a normal texture.
 vtkSmartPointer<vtkTexture> LoadKhronosNormalMap(const std::string& file);
 

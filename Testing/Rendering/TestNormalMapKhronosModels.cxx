@@ -41,99 +41,6 @@ std::vector<unsigned char> Render(vtkPolyData* model,
   return nmtest::ReadPixels(window);
 }
 
-/// Runs of covered (non-black) pixels along one axis: [begin, end) pairs.
-std::vector<std::pair<int, int>> Runs(const std::vector<bool>& covered)
-{
-  std::vector<std::pair<int, int>> runs;
-  for (int i = 0; i < static_cast<int>(covered.size()); ++i)
-  {
-    if (covered[i] && (i == 0 || !covered[i - 1]))
-    {
-      runs.emplace_back(i, i);
-    }
-    if (covered[i])
-    {
-      runs.back().second = i + 1;
-    }
-  }
-  return runs;
-}
-
-/// The worst cell of the grid: each cell compared with the first (real-geometry) cell of its
-/// group of columns in the same row. Returns the smallest share of a cell's pixels within
-/// `bound` levels of its reference, and counts the cells compared.
-double WorstCell(const std::vector<unsigned char>& rgb, int size, int bound, int& cells)
-{
-  auto covered = [&](int x, int y)
-  {
-    const size_t p = 3 * (static_cast<size_t>(y) * size + x);
-    return rgb[p] || rgb[p + 1] || rgb[p + 2];
-  };
-  std::vector<bool> rowsCovered(size, false);
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      rowsCovered[y] = rowsCovered[y] || covered(x, y);
-  // Rows of cells; thinner runs are the models' label bars.
-  auto rows = Runs(rowsCovered);
-  int tallest = 0;
-  for (const auto& r : rows)
-    tallest = std::max(tallest, r.second - r.first);
-  rows.erase(
-    std::remove_if(rows.begin(),
-      rows.end(),
-      [&](const std::pair<int, int>& r) { return 5 * (r.second - r.first) < 4 * tallest; }),
-    rows.end());
-  std::vector<bool> columnsCovered(size, false);
-  for (const auto& r : rows)
-    for (int y = r.first; y < r.second; ++y)
-      for (int x = 0; x < size; ++x)
-        columnsCovered[x] = columnsCovered[x] || covered(x, y);
-  const auto columns = Runs(columnsCovered);
-  int minGap = size;
-  for (size_t c = 1; c < columns.size(); ++c)
-    minGap = std::min(minGap, columns[c].first - columns[c - 1].second);
-  int width = size, height = size;
-  for (const auto& c : columns)
-    width = std::min(width, c.second - c.first);
-  for (const auto& r : rows)
-    height = std::min(height, r.second - r.first);
-  // Two pixels in from each cell's border, where coverage, not shading, decides.
-  const int margin = 2;
-  double worst = 1.0;
-  cells = 0;
-  for (const auto& r : rows)
-  {
-    size_t reference = 0;
-    for (size_t c = 0; c < columns.size(); ++c)
-    {
-      if (c > 0 && columns[c].first - columns[c - 1].second > 3 * minGap)
-      {
-        reference = c; // a wider gap starts a new group; its first column is the geometry
-        continue;
-      }
-      if (c == reference)
-        continue;
-      int within = 0, total = 0;
-      for (int y = margin; y < height - margin; ++y)
-      {
-        for (int x = margin; x < width - margin; ++x)
-        {
-          const size_t a = 3 * (static_cast<size_t>(r.first + y) * size + columns[c].first + x);
-          const size_t b =
-            3 * (static_cast<size_t>(r.first + y) * size + columns[reference].first + x);
-          int m = 0;
-          for (int k = 0; k < 3; ++k)
-            m = std::max(m, std::abs(int(rgb[a + k]) - int(rgb[b + k])));
-          within += m <= bound ? 1 : 0;
-          ++total;
-        }
-      }
-      worst = std::min(worst, total ? static_cast<double>(within) / total : 0.0);
-      ++cells;
-    }
-  }
-  return worst;
-}
 }
 
 int TestNormalMapKhronosModels(int argc, char* argv[])
@@ -166,7 +73,7 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
     // convention gives about 60%. Bound: 90% of every cell within 12 levels.
     const int bound = 12;
     int cells = 0;
-    const double worst = WorstCell(
+    const double worst = nmtest::WorstCell(
       Render(model, texture, size, folder.empty() ? nullptr : picture.c_str()), size, bound, cells);
     std::cout << name << ": " << cells << " normal-mapped cells, worst " << 100.0 * worst
               << "% of its pixels within " << bound << " levels of its geometry cell" << std::endl;
@@ -176,7 +83,7 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
     // (they drop w): each triangle's handedness comes from its texture coordinates, and every
     // cell still looks like its geometry, within the same bound.
     int unsignedCells = 0;
-    const double unsignedWorst = WorstCell(
+    const double unsignedWorst = nmtest::WorstCell(
       Render(
         nmtest::WithTangentLayout(model, nmtest::TangentLayout::Unsigned), texture, size, nullptr),
       size,
@@ -188,7 +95,7 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
       std::string(name) + ": unsigned tangents: every normal-mapped cell looks like its geometry");
     // Control: the map read with the wrong green convention lights the mapped cells from below.
     int controlCells = 0;
-    const double control = WorstCell(
+    const double control = nmtest::WorstCell(
       Render(model, texture, size, nullptr, vtkNormalMapPolyDataMapper::TANGENT_SPACE_DIRECTX),
       size,
       bound,
