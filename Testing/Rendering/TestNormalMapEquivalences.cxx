@@ -134,19 +134,22 @@ int TestNormalMapEquivalences(int, char*[])
   // Textures is v' = 1 - v): the derivative frame differentiates the transformed coordinates,
   // and the point tangents must be turned to them. A flip of v and a quarter turn (u' = -v,
   // v' = u), under which the rivets look the same: both frame sources agree, as above (point
-  // tangents that ignore the transform show the flipped rivets as dents).
+  // tangents that ignore the transform show the flipped rivets as dents). Tangents without signs
+  // take the handedness of the untransformed coordinates (the flip mirrors the transformed ones),
+  // so they give the image of the signed ones.
   {
     const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
     const double turn[16] = { 0, -1, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    const auto unsignedQuad = nmtest::WithTangentLayout(quad, nmtest::TangentLayout::Unsigned);
     for (const double* transform : { flip, turn })
     {
-      std::vector<unsigned char> images[2];
-      for (int k = 0; k < 2; ++k)
+      std::vector<unsigned char> images[3];
+      for (int k = 0; k < 3; ++k)
       {
         nmtest::FlatActor a;
-        a.Mesh = quad;
+        a.Mesh = k == 2 ? unsignedQuad.Get() : quad.Get();
         a.NormalTexture = openGL;
-        a.FrameSource = k == 0 ? Mapper::POINT_TANGENTS : Mapper::SCREEN_DERIVATIVES;
+        a.FrameSource = k == 1 ? Mapper::SCREEN_DERIVATIVES : Mapper::POINT_TANGENTS;
         a.TextureTransform = transform;
         images[k] = nmtest::RenderFlat(setup, { a });
       }
@@ -155,6 +158,10 @@ int TestNormalMapEquivalences(int, char*[])
       Report(("texture coordinates " + what + ": point tangents vs derivatives").c_str(), d, 2);
       check(d.WithinFraction >= 0.999,
         "texture coordinates " + what + ": point tangents and derivative frame agree");
+      const auto u = Between(images[0], images[2], 0);
+      Report(("texture coordinates " + what + ": signed vs unsigned tangents").c_str(), u, 0);
+      check(u.WithinFraction == 1.0,
+        "texture coordinates " + what + ": unsigned tangents give the signed ones' image");
     }
   }
   // A mirroring actor transform (scale x by -1) equals the mirror image made in the data (x
