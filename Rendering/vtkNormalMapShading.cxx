@@ -516,9 +516,11 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
   vtkProperty* property = actor->GetProperty();
   vtkTexture* texture = NormalTexture(actor);
   if (!WantsMap(actor) || context.DrawingVertices || property->GetRepresentation() != VTK_SURFACE ||
-    context.LightComplexity == 0)
+    context.LightComplexity <= 0)
   {
-    // Nothing to show: no map, zero strength, or an unlit or non-surface drawing.
+    // Nothing to show: no map, zero strength, or an unlit or non-surface drawing. VTK writes its
+    // normal code only for a positive light complexity; a render pass chain without a lights
+    // pass (a value pass, say) leaves it at -1.
     return Mapper::NOT_APPLIED;
   }
   vtkObject* reporter = context.Reporter;

@@ -6,6 +6,9 @@
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCameraPass.h"
+#include "vtkClearRGBPass.h"
+#include "vtkClearZPass.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -13,16 +16,23 @@
 #include "vtkImageShiftScale.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
+#include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkObjectFactory.h"
 #include "vtkObjectFactoryCollection.h"
+#include "vtkOpaquePass.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkRenderPassCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSequencePass.h"
 
 #include <algorithm>
 #include <iostream>
@@ -87,6 +97,21 @@ struct Scene
     return count == 1;
   }
 };
+
+/// An output window that counts the errors it is given (and prints them as VTK's does).
+class ErrorCounter : public vtkOutputWindow
+{
+public:
+  static ErrorCounter* New();
+  vtkTypeMacro(ErrorCounter, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override
+  {
+    ++this->Errors;
+    this->Superclass::DisplayErrorText(text);
+  }
+  int Errors = 0;
+};
+vtkStandardNewMacro(ErrorCounter);
 
 bool Same(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int bound)
 {
@@ -408,6 +433,46 @@ int TestNormalMapBadInput(int, char*[])
     check(std::all_of(empty.begin(), empty.end(), [](unsigned char v) { return v == 0; }),
       "empty input: only the black background");
     check(scene.Warnings.empty(), "empty input: no warning");
+  }
+  { // A render pass chain without a lights pass (a value pass, or camera -> clear -> opaque as
+    // here) leaves the light complexity at -1, and VTK writes no normal code: the map is not
+    // applied, by either mapper, and no shader fails to compile. (What VTK draws without lights
+    // passes is not a picture to compare: it depends on what the framebuffer held.)
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetBlock(0, quad);
+    for (bool composite : { false, true })
+    {
+      Scene scene(quad, texture);
+      vtkNew<vtkNormalMapCompositePolyDataMapper> compositeMapper;
+      compositeMapper->SetInputDataObject(blocks);
+      if (composite)
+      {
+        scene.Actor->SetMapper(compositeMapper);
+      }
+      vtkNew<vtkClearRGBPass> clearColor;
+      vtkNew<vtkClearZPass> clearDepth;
+      vtkNew<vtkOpaquePass> opaque;
+      vtkNew<vtkRenderPassCollection> passes;
+      passes->AddItem(clearColor);
+      passes->AddItem(clearDepth);
+      passes->AddItem(opaque);
+      vtkNew<vtkSequencePass> sequence;
+      sequence->SetPasses(passes);
+      vtkNew<vtkCameraPass> camera;
+      camera->SetDelegatePass(sequence);
+      scene.Renderer->SetPass(camera);
+      vtkNew<ErrorCounter> errors;
+      vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+      vtkOutputWindow::SetInstance(errors);
+      scene.Render();
+      vtkOutputWindow::SetInstance(previous);
+      const int applied = composite ? compositeMapper->GetLastAppliedFrame(1)
+                                    : scene.NormalMapper->GetLastAppliedFrame();
+      const std::string what = composite ? "composite mapper" : "polydata mapper";
+      std::cout << "no lights pass, " << what << ": " << errors->Errors << " errors" << std::endl;
+      check(applied == Mapper::NOT_APPLIED && errors->Errors == 0,
+        "no lights pass, " + what + ": not applied, no shader error");
+    }
   }
   { // The object factory: opt-in, reversible.
     auto before = vtk::TakeSmartPointer(vtkPolyDataMapper::New());
