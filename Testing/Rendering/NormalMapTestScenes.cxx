@@ -16,6 +16,7 @@
 #include "vtkNew.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkObjectFactory.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
@@ -471,6 +472,15 @@ std::vector<unsigned char> ReadPixels(vtkRenderWindow* window)
   auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
   return std::vector<unsigned char>(
     rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
+}
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(ErrorCounter);
+
+void ErrorCounter::DisplayErrorText(const char* text)
+{
+  ++this->Errors;
+  this->Superclass::DisplayErrorText(text);
 }
 
 //------------------------------------------------------------------------------

@@ -8,6 +8,7 @@
 
 #include "vtkImageData.h"                        // For vtkSmartPointer<vtkImageData>
 #include "vtkNormalMapCompositePolyDataMapper.h" // For StockCompositeMapper
+#include "vtkOutputWindow.h"                     // For ErrorCounter
 #include "vtkPolyData.h"                         // For vtkSmartPointer<vtkPolyData>
 #include "vtkRenderWindow.h"                     // For vtkSmartPointer<vtkRenderWindow>
 #include "vtkSmartPointer.h"
@@ -114,6 +115,17 @@ vtkSmartPointer<vtkImageData> GrabImage(vtkRenderWindow* window);
 
 /// The window's RGB pixels, bottom row first.
 std::vector<unsigned char> ReadPixels(vtkRenderWindow* window);
+
+/// An output window that counts the errors it is given (shader compile errors, say) and prints
+/// them as VTK's does; installed with vtkOutputWindow::SetInstance around what it watches.
+class ErrorCounter : public vtkOutputWindow
+{
+public:
+  static ErrorCounter* New();
+  vtkTypeMacro(ErrorCounter, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override;
+  int Errors = 0;
+};
 
 /// Keeps checking after a failure and reports every failed check.
 class Checks

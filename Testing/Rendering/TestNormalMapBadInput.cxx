@@ -21,7 +21,6 @@
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
 #include "vtkNormalMapPolyDataMapper.h"
-#include "vtkObjectFactory.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkOpaquePass.h"
 #include "vtkOutputWindow.h"
@@ -97,21 +96,6 @@ struct Scene
     return count == 1;
   }
 };
-
-/// An output window that counts the errors it is given (and prints them as VTK's does).
-class ErrorCounter : public vtkOutputWindow
-{
-public:
-  static ErrorCounter* New();
-  vtkTypeMacro(ErrorCounter, vtkOutputWindow);
-  void DisplayErrorText(const char* text) override
-  {
-    ++this->Errors;
-    this->Superclass::DisplayErrorText(text);
-  }
-  int Errors = 0;
-};
-vtkStandardNewMacro(ErrorCounter);
 
 bool Same(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int bound)
 {
@@ -461,7 +445,7 @@ int TestNormalMapBadInput(int, char*[])
       vtkNew<vtkCameraPass> camera;
       camera->SetDelegatePass(sequence);
       scene.Renderer->SetPass(camera);
-      vtkNew<ErrorCounter> errors;
+      vtkNew<nmtest::ErrorCounter> errors;
       vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
       vtkOutputWindow::SetInstance(errors);
       scene.Render();

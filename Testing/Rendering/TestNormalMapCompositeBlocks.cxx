@@ -17,6 +17,7 @@
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
@@ -596,6 +597,93 @@ void Changes(nmtest::Checks& check)
 }
 
 /// Install() registers the override of VTK's composite mapper.
+/**
+ * Blocks without texture coordinates, colored by a point array with scalars interpolated before
+ * mapping (ParaView's default), where the mapper samples the map at its own copy of the blocks'
+ * texture coordinates: such a block is drawn without the map and named in a warning, next to a
+ * block that has them, alone, and under a texture transform (whose matrix VTK declares only when
+ * it has texture coordinates of its own). No shader error. Without a transform the scalars are
+ * constant, so the image is that of the scalars mapped at the points: 0 levels apart (a
+ * transform moves the color map's coordinates too, and so the colors).
+ */
+void BlocksWithoutTCoords(nmtest::Checks& check)
+{
+  const Halves scene;
+  const auto colored = [](vtkPolyData* mesh, bool tcoords, bool scalars)
+  {
+    auto copy = tcoords ? vtkSmartPointer<vtkPolyData>::New() : nmtest::WithoutTCoords(mesh);
+    if (tcoords)
+    {
+      copy->ShallowCopy(mesh);
+    }
+    if (scalars)
+    {
+      vtkNew<vtkFloatArray> values;
+      values->SetName("Value");
+      values->SetNumberOfTuples(copy->GetNumberOfPoints());
+      values->Fill(0.5);
+      copy->GetPointData()->SetScalars(values);
+    }
+    return copy;
+  };
+  const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
+  struct Case
+  {
+    const char* Name;
+    bool LeftTCoords;
+    bool Scalars;
+    const double* Transform;
+  };
+  const Case cases[] = {
+    { "left block with texture coordinates, right without", true, true, nullptr },
+    { "the same, texture coordinates flipped in v", true, true, flip },
+    { "no block with texture coordinates", false, true, nullptr },
+    { "no texture coordinates nor scalars, flipped in v", false, false, flip },
+  };
+  for (const Case& c : cases)
+  {
+    auto blocks = MakeBlocks(
+      { colored(scene.Left, c.LeftTCoords, c.Scalars), colored(scene.Right, false, c.Scalars) });
+    Rendered out[2];
+    int errors = 0;
+    for (int interpolate = 0; interpolate < 2; ++interpolate)
+    {
+      nmtest::FlatActor actor = scene.Actor;
+      actor.Blocks = blocks;
+      actor.InterpolateScalars = interpolate != 0;
+      actor.TextureTransform = c.Transform;
+      vtkNew<nmtest::ErrorCounter> counter;
+      vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+      vtkOutputWindow::SetInstance(counter);
+      out[interpolate] = RenderBlocks(scene.Setup, actor);
+      vtkOutputWindow::SetInstance(previous);
+      errors += counter->Errors;
+    }
+    const nmtest::Difference d = nmtest::Compare(
+      out[1].Pixels, out[0].Pixels, nmtest::CoveredPixels(out[1].Pixels, out[0].Pixels), 0);
+    const std::string name = std::string("blocks without texture coordinates, ") + c.Name;
+    std::cout << name << ": " << errors
+              << " errors; interpolated vs at the points: " << 100.0 * d.WithinFraction
+              << "% within 0 levels; frames" << FrameNames(out[1].Frames)
+              << " (at the points:" << FrameNames(out[0].Frames) << ")" << std::endl;
+    const int leftFrame = c.LeftTCoords ? Mapper::APPLIED_POINT_TANGENTS : int(Mapper::NOT_APPLIED);
+    check(errors == 0 && d.Compared > 20000 && (c.Transform || d.WithinFraction == 1.0),
+      name +
+        (c.Transform ? ": no error" : ": no error, the image of the scalars mapped at the points"));
+    for (const Rendered& r : out)
+    {
+      check(r.Frames.at(1) == leftFrame && r.Frames.at(2) == Mapper::NOT_APPLIED,
+        name + ": the map only where there are texture coordinates");
+    }
+    check(Warned(out[1],
+            c.LeftTCoords ? "Block 2: The normal texture is not applied: the input "
+                            "has no texture coordinates."
+                          : "Blocks 1, 2: The normal texture is not applied: the "
+                            "input has no texture coordinates."),
+      name + ": the blocks without texture coordinates are named in a warning");
+  }
+}
+
 void Factory(nmtest::Checks& check)
 {
   const std::string stock = nmtest::StockCompositeName();
@@ -629,6 +717,7 @@ int TestNormalMapCompositeBlocks(int, char*[])
   SharedPointArrays(check);
   DisplayAttributes(check);
   Changes(check);
+  BlocksWithoutTCoords(check);
   Factory(check);
   return check.Result();
 }
