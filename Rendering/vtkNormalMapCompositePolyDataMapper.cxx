@@ -23,7 +23,6 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -147,20 +146,12 @@ protected:
     this->TCoords =
       vtkNormalMapShading::SampledTCoords(this, actor, this->GetTextureCoordinateName("normalTex"));
     this->Frames = vtkNormalMapShading::FrameMix();
-    this->WithoutTCoords.clear();
     bool allUnsigned = true;
-    bool someTCoords = false;
+    bool allTCoords = true;
     this->ForEachBlock(
       [&](BlockData* block)
       {
-        if (PolyDataOf(block)->GetPointData()->GetTCoords())
-        {
-          someTCoords = true;
-        }
-        else
-        {
-          this->WithoutTCoords.insert(block);
-        }
+        allTCoords = allTCoords && PolyDataOf(block)->GetPointData()->GetTCoords();
         auto tangents = vtkNormalMapShading::FindTangents(PolyDataOf(block), actor, this->Settings);
         const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
         this->Frames.PointTangents = this->Frames.PointTangents || has;
@@ -171,11 +162,10 @@ protected:
         this->BlockTangents[block] = tangents;
       });
     this->Frames.Unsigned = this->Frames.PointTangents && allUnsigned;
-    // The blocks' own texture coordinates are uploaded only when some block has them; blocks
-    // without them (zeros) are then drawn without the map. With none, the attribute is absent
-    // and the shader code warns that there are no texture coordinates.
-    this->OwnTCoords = this->TCoords == vtkNormalMapShading::TCoordAttribute && someTCoords;
-    this->Frames.SomeWithoutTCoords = this->OwnTCoords && !this->WithoutTCoords.empty();
+    // The blocks' own texture coordinates are uploaded only when every block has them: VTK draws
+    // blocks with and without texture coordinates with separate helpers (VTK 9.1 and 9.6 do).
+    // Without them the attribute is absent, and the shader code warns that there are none.
+    this->OwnTCoords = this->TCoords == vtkNormalMapShading::TCoordAttribute && allTCoords;
     this->Superclass::BuildBufferObjects(ren, actor);
   }
 
@@ -292,15 +282,6 @@ protected:
     this->SurfaceFrame = this->Shading->ReplaceShaderNormal(shaders, context, this->Settings);
     if (this->SurfaceFrame != vtkNormalMapPolyDataMapper::NOT_APPLIED)
     {
-      if (this->Frames.SomeWithoutTCoords)
-      {
-        std::vector<unsigned int> without;
-        for (const BlockData* block : this->WithoutTCoords)
-        {
-          without.push_back(FlatIndexOf(*block));
-        }
-        this->Shading->WarnAboutTCoords(this->Parent, actor, BlockNames(without), 0);
-      }
       for (const auto& block : this->BlockTangents)
       {
         this->Shading->WarnAboutTangents(this->Parent,
@@ -328,15 +309,10 @@ protected:
     vtkNormalMapShading::SetMapUniforms(cellBO.Program, actor, this->Settings);
   }
 
-  /// Per block, before its draw: whether its frame comes from its tangents, and whether it has
-  /// texture coordinates for the map.
+  /// Per block, before its draw: whether its frame comes from its tangents.
   void SetShaderValues(vtkShaderProgram* program, BlockData* hdata, size_t primOffset) override
   {
     this->Superclass::SetShaderValues(program, hdata, primOffset);
-    if (program->IsUniformUsed("nmDatasetHasTCoords"))
-    {
-      program->SetUniformi("nmDatasetHasTCoords", this->WithoutTCoords.count(hdata) ? 0 : 1);
-    }
     if (program->IsUniformUsed("nmDatasetHasTangents"))
     {
       const auto found = this->BlockTangents.find(hdata);
@@ -376,8 +352,7 @@ private:
 
   int AppliedFrame(const BlockData& block, vtkNormalMapShading::TangentUse use) const
   {
-    if (!IsVisible(block) ||
-      (this->Frames.SomeWithoutTCoords && this->WithoutTCoords.count(&block)))
+    if (!IsVisible(block))
     {
       return vtkNormalMapPolyDataMapper::NOT_APPLIED;
     }
@@ -415,12 +390,10 @@ private:
   /// By first vertex, the arrays appended for the vertices from there, in the current build.
   std::map<vtkIdType, AppendedArrays> Appended;
   /// The attribute the normal texture is sampled with in the current build, and whether it is
-  /// the helper's own (vtkNormalMapShading::SampledTCoords) and uploaded (some block has point
+  /// the helper's own (vtkNormalMapShading::SampledTCoords) and uploaded (every block has point
   /// texture coordinates).
   std::string TCoords;
   bool OwnTCoords = false;
-  /// The blocks without point texture coordinates, in the current build.
-  std::set<const BlockData*> WithoutTCoords;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;

@@ -152,8 +152,7 @@ struct PackTangents
 unsigned vtkNormalMapShading::FrameMix::Key() const
 {
   return (this->PointTangents ? 1u : 0u) | (this->SeparateSigns ? 2u : 0u) |
-    (this->Unsigned ? 4u : 0u) | (this->Derivatives ? 8u : 0u) | (this->SomeUnsigned ? 16u : 0u) |
-    (this->SomeWithoutTCoords ? 32u : 0u);
+    (this->Unsigned ? 4u : 0u) | (this->Derivatives ? 8u : 0u) | (this->SomeUnsigned ? 16u : 0u);
 }
 
 //------------------------------------------------------------------------------
@@ -300,22 +299,6 @@ void vtkNormalMapShading::Warn(vtkObject* reporter,
     done.Reasons |= static_cast<unsigned>(reason);
     vtkWarningWithObjectMacro(reporter, << where << message);
   }
-}
-
-//------------------------------------------------------------------------------
-void vtkNormalMapShading::WarnAboutTCoords(vtkObject* reporter,
-  vtkActor* actor,
-  const std::string& where,
-  int components)
-{
-  this->Warn(reporter,
-    actor,
-    where,
-    Reason::NoTCoords,
-    components == 0
-      ? std::string("The normal texture is not applied: the input has no texture coordinates.")
-      : "The normal texture is not applied: texture coordinates have " +
-        std::to_string(components) + " components (2 needed).");
 }
 
 //------------------------------------------------------------------------------
@@ -517,11 +500,6 @@ void AddMapCode(std::map<vtkShader::Type, vtkShader*>& shaders,
     code = Block(vtkNormalMapFS, "ImplTangentSpace");
   }
   vtkShaderProgram::Substitute(code, "@TCOORD@", context.TCoordName);
-  if (context.Frames.SomeWithoutTCoords)
-  {
-    declarations += Block(vtkNormalMapFS, "TCoordsPerDataset");
-    code = "  if (nmDatasetHasTCoords != 0)\n" + code;
-  }
   InsertBefore(fs, "//VTK::Light::Dec", declarations);
   InsertBefore(fs, "//VTK::Light::Impl", code);
 
@@ -550,7 +528,14 @@ int vtkNormalMapShading::ReplaceShaderNormal(std::map<vtkShader::Type, vtkShader
 
   if (context.TCoordComponents != 2)
   {
-    this->WarnAboutTCoords(reporter, actor, where, context.TCoordComponents);
+    this->Warn(reporter,
+      actor,
+      where,
+      Reason::NoTCoords,
+      context.TCoordComponents == 0
+        ? std::string("The normal texture is not applied: the input has no texture coordinates.")
+        : "The normal texture is not applied: texture coordinates have " +
+          std::to_string(context.TCoordComponents) + " components (2 needed).");
     return Mapper::NOT_APPLIED;
   }
 

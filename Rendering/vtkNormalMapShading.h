@@ -104,9 +104,6 @@ public:
     bool Unsigned = false;      // every dataset with tangents has them without signs
     bool SomeUnsigned = false;  // some dataset has tangents without signs
     bool Derivatives = false;   // some dataset has none: frame from screen-space derivatives
-    /// Some datasets have no texture coordinates where the others have them (in the mapper's own
-    /// attribute, which holds zeros for them): a per-dataset uniform leaves the map out there.
-    bool SomeWithoutTCoords = false;
     /// A small number that changes whenever the shader code, or the frame it reports, would.
     unsigned Key() const;
   };
@@ -158,13 +155,6 @@ public:
    * nullptr when the dataset's frame comes from derivatives.
    */
   static vtkFloatArray* NewPackedTangents(const Tangents& tangents);
-
-  /// Warns once per actor and datasets that the map is not applied for want of texture
-  /// coordinates with 2 components (`components`: those the datasets have, 0 for none).
-  void WarnAboutTCoords(vtkObject* reporter,
-    vtkActor* actor,
-    const std::string& where,
-    int components);
 
   /// Warns once per actor, datasets and reason why point tangents are not used as they are.
   void WarnAboutTangents(vtkObject* reporter,

@@ -85,12 +85,6 @@ vec3 nmDecode(vec4 texel)
 }
 //NM::End
 
-//NM::Begin TCoordsPerDataset
-// Composite data drawn by one shader: datasets without texture coordinates of their own (zeros
-// in the attribute) are drawn without the map; the mapper sets this before each draw.
-uniform int nmDatasetHasTCoords;
-//NM::End
-
 //NM::Begin TCoordDec
 // The dataset's texture coordinates, where VTK's tcoord holds the color map's.
 in vec2 nmTCoordVCVSOutput;
