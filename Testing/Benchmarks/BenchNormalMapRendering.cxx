@@ -60,6 +60,7 @@ struct Configuration
   bool WithTangents = true; // the mesh has point Tangents and TangentSigns
   bool PBR = false;
   bool Mipmapped = false; // the texture's own mipmaps on (trilinear filtering)
+  bool Unsigned = false;  // the mesh's Tangents without TangentSigns
 };
 
 std::vector<Configuration> Configurations()
@@ -77,6 +78,14 @@ std::vector<Configuration> Configurations()
       pbr,
       true });
     all.push_back({ "ours, point tangents", false, true, Mapper::POINT_TANGENTS, true, pbr });
+    all.push_back({ "ours, point tangents without signs",
+      false,
+      true,
+      Mapper::POINT_TANGENTS,
+      true,
+      pbr,
+      false,
+      true });
     all.push_back(
       { "ours, screen derivatives", false, true, Mapper::SCREEN_DERIVATIVES, false, pbr });
   }
@@ -203,6 +212,7 @@ int main(int argc, char* argv[])
   auto normalMap = nmtest::MakeNormalMapImage(pattern, 128, nmtest::Storage::OpenGL);
   auto bare = nmtest::MakeQuad(quadResolution);
   auto withTangents = nmtest::WithTangents(bare);
+  auto unsignedTangents = nmtest::WithTangentLayout(withTangents, nmtest::TangentLayout::Unsigned);
 
   // The geometry the map stands for, per lighting model, in parallel projection.
   nmtest::FlatSetup parallel = setup;
@@ -247,7 +257,7 @@ int main(int argc, char* argv[])
     scene.Texture = nmtest::MakeNormalTexture(normalMap);
     scene.Texture->SetMipmap(c.Mipmapped);
     nmtest::FlatActor a;
-    a.Mesh = c.WithTangents ? withTangents : bare;
+    a.Mesh = c.Unsigned ? unsignedTangents : (c.WithTangents ? withTangents : bare);
     a.NormalTexture = c.Mapped ? scene.Texture.Get() : nullptr;
     a.StockMapper = c.Stock;
     a.FrameSource = c.FrameSource;
@@ -347,7 +357,9 @@ int main(int argc, char* argv[])
         "the \"mipmapped texture\" row shows what trilinear filtering costs VTK's mapper "
         "(on llvmpipe, even where the map is magnified). The point tangents are "
         "`vtkPolyDataTangentFrames`' (AngleWeighted; VTK's mapper uses the same float "
-        "`Tangents`); the rows without tangents render the mesh without tangent arrays.\n\n"
+        "`Tangents`); the rows without signs render them without `TangentSigns` (the mapper takes "
+        "each triangle's handedness from screen-space derivatives), the rows without tangents "
+        "the mesh without tangent arrays.\n\n"
      << "- **ms/frame**: median of " << frames
      << " frames, each `Render()` then `glFinish`, after one frame that builds the shaders and "
         "buffers (**first frame**) and two warm-up frames. All configurations' windows stay "
