@@ -54,7 +54,7 @@ int TestNormalMapMirrorSymmetry(int, char*[])
   }
   // Tangents without signs (VTK's vtkPolyDataTangents, VTK's glTF reader): each triangle's
   // handedness comes from its texture coordinates, so ours is symmetric with them too; with
-  // every sign +1 instead (what those tangents meant before) it is not.
+  // every sign +1 (how VTK's mapper reads such tangents) it is not.
   for (const auto layout : { nmtest::TangentLayout::Unsigned, nmtest::TangentLayout::SignsIgnored })
   {
     const auto left = nmtest::WithTangentLayout(scene.Left, layout);
