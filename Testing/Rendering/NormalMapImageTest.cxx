@@ -493,11 +493,6 @@ void AddKhronosView(vtkRenderWindow* window,
 {
   vtkNew<vtkRenderer> renderer;
   renderer->SetViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPosition(-1.0, 1.0, 1.5);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
   vtkNew<vtkNormalMapPolyDataMapper> mapper;
   mapper->SetInputData(model);
   mapper->SetMapEncoding(encoding);
@@ -507,17 +502,29 @@ void AddKhronosView(vtkRenderWindow* window,
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
   actor->GetProperty()->SetSpecular(0.0);
   renderer->AddActor(actor);
+  double bounds[6];
+  model->GetBounds(bounds);
+  SetKhronosViewpoint(renderer, bounds);
+  window->AddRenderer(renderer);
+}
+
+//------------------------------------------------------------------------------
+void SetKhronosViewpoint(vtkRenderer* renderer, const double bounds[6])
+{
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(-1.0, 1.0, 1.5);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  renderer->AddLight(light);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->ParallelProjectionOn();
-  // Fit the model's bounds (a square view) with a 3% border.
-  double b[6];
-  model->GetBounds(b);
-  const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
-  camera->SetPosition(cx, cy, 5.0);
+  // Fit the bounds (a square view) with a 3% border.
+  const double cx = 0.5 * (bounds[0] + bounds[1]), cy = 0.5 * (bounds[2] + bounds[3]);
+  camera->SetPosition(cx, cy, bounds[5] + 5.0);
   camera->SetFocalPoint(cx, cy, 0.0);
-  camera->SetParallelScale(0.515 * std::max(b[1] - b[0], b[3] - b[2]));
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetParallelScale(0.515 * std::max(bounds[1] - bounds[0], bounds[3] - bounds[2]));
   renderer->ResetCameraClippingRange();
-  window->AddRenderer(renderer);
 }
 
 //------------------------------------------------------------------------------

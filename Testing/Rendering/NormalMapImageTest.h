@@ -101,6 +101,12 @@ int RunEncodingTest(int argc, char* argv[], Storage storage, int encoding, int o
 vtkSmartPointer<vtkPolyData> LoadKhronosModel(const std::string& file);
 
 /**
+ * A Khronos model's view in `renderer`: one scene light from the upper left, and a head-on
+ * parallel camera fit to `bounds` (xmin, xmax, ymin, ymax, zmin, zmax).
+ */
+void SetKhronosViewpoint(vtkRenderer* renderer, const double bounds[6]);
+
+/**
  * The worst cell of a Khronos test model's grid in a size x size RGB image on black: each cell
  * compared with the first (real-geometry) cell of its group of columns in the same row. Returns
  * the smallest share of a cell's pixels within `bound` levels of its reference, and counts the

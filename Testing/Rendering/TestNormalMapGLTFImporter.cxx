@@ -10,9 +10,7 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
-#include "vtkCamera.h"
 #include "vtkGLTFImporter.h"
-#include "vtkLight.h"
 #include "vtkMapper.h"
 #include "vtkNew.h"
 #include "vtkNormalMapObjectFactory.h"
@@ -31,7 +29,7 @@ namespace
 /**
  * The importer's scene of `file`, only its normal-mapped actors shown, head-on with a parallel
  * camera on the left half of the first of them (the mirror model's front grid) and one scene
- * light from the upper left (as nmtest::AddKhronosView). That actor's mapper class goes to
+ * light from the upper left (nmtest::SetKhronosViewpoint). That actor's mapper class goes to
  * `mapperClass`, and, for our mapper, the frame it applied to `appliedFrame`.
  */
 std::vector<unsigned char> RenderImported(const std::string& file,
@@ -48,11 +46,6 @@ std::vector<unsigned char> RenderImported(const std::string& file,
   importer->Update();
   renderer->RemoveAllLights();
   renderer->AutomaticLightCreationOff();
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPosition(-1.0, 1.0, 1.5);
-  light->SetFocalPoint(0.0, 0.0, 0.0);
-  renderer->AddLight(light);
   double bounds[6] = { 1.0, -1.0, 1.0, -1.0, 1.0, -1.0 };
   vtkActorCollection* actors = renderer->GetActors();
   actors->InitTraversal();
@@ -67,15 +60,8 @@ std::vector<unsigned char> RenderImported(const std::string& file,
     }
   }
   // The left half of the model: its front grid (the right half is the grid's back, unlit).
-  vtkCamera* camera = renderer->GetActiveCamera();
-  camera->ParallelProjectionOn();
-  const double width = 0.5 * (bounds[1] - bounds[0]);
-  const double cx = bounds[0] + 0.5 * width, cy = 0.5 * (bounds[2] + bounds[3]);
-  camera->SetPosition(cx, cy, bounds[5] + 5.0);
-  camera->SetFocalPoint(cx, cy, 0.0);
-  camera->SetViewUp(0.0, 1.0, 0.0);
-  camera->SetParallelScale(0.515 * std::max(width, bounds[3] - bounds[2]));
-  renderer->ResetCameraClippingRange();
+  bounds[1] = 0.5 * (bounds[0] + bounds[1]);
+  nmtest::SetKhronosViewpoint(renderer, bounds);
   window->Render();
   nmtest::ReportRenderPath(window);
   actors->InitTraversal();
