@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Tests of vtkPolyDataTangentFrames through the pipeline.
 #include "NormalMappingGrid.h"
+#include "NormalMappingMessages.h"
 #include "NormalMappingProgress.h"
 #include "NormalMappingShuffle.h"
 #include "NormalMappingThreads.h"
@@ -92,33 +93,6 @@ double AngleDeg(const Vec& a, const Vec& b)
 {
   return std::atan2(Norm(Cross(a, b)), Dot(a, b)) * 180.0 / Pi;
 }
-
-/// Collects the messages a filter emits instead of printing them.
-struct Messages
-{
-  std::vector<std::string> Errors, Warnings;
-  vtkNew<vtkCallbackCommand> Callback;
-
-  explicit Messages(vtkObject* object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback(
-      [](vtkObject*, unsigned long event, void* self, void* data)
-      {
-        auto* m = static_cast<Messages*>(self);
-        (event == vtkCommand::ErrorEvent ? m->Errors : m->Warnings)
-          .emplace_back(static_cast<const char*>(data));
-      });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
-  }
-  bool Has(const std::vector<std::string>& list, const std::string& text) const
-  {
-    return std::any_of(list.begin(),
-      list.end(),
-      [&](const std::string& m) { return m.find(text) != std::string::npos; });
-  }
-};
 
 /// The invariants every output must meet: finite unit tangents perpendicular to the normals,
 /// signs of exactly +1 or -1, and bitangents (when present) equal to sign * cross(N, T).

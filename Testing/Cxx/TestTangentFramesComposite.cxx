@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkPolyDataTangentFrames on composite input: every polydata block as if filtered alone, the
 // counts summed over the blocks.
+#include "NormalMappingMessages.h"
 #include "NormalMappingProgress.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
@@ -82,26 +83,6 @@ void ExpectSameArray(vtkDataArray* a, vtkDataArray* b, const char* name)
     << name;
 }
 
-/// Counts the warnings an object emits, and keeps their text.
-struct WarningCounter
-{
-  int Warnings = 0;
-  std::string Text;
-  vtkNew<vtkCallbackCommand> Callback;
-  explicit WarningCounter(vtkObject* object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback(
-      [](vtkObject*, unsigned long, void* self, void* message)
-      {
-        auto* counter = static_cast<WarningCounter*>(self);
-        ++counter->Warnings;
-        counter->Text += static_cast<const char*>(message);
-      });
-    object->AddObserver(vtkCommand::WarningEvent, this->Callback);
-  }
-};
-
 vtkSmartPointer<vtkPolyData> Torus(bool mirrored, int u)
 {
   vtkNormalMapping::TorusOptions options;
@@ -149,7 +130,7 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->ComputeBitangentsOn();
   filter->SetInputData(input);
-  WarningCounter warnings(filter);
+  Messages warnings(filter);
   filter->Update();
   // The blocks alone: their counts, and their outputs for the comparison below.
   std::vector<vtkSmartPointer<vtkPolyData>> alone;
@@ -177,13 +158,14 @@ TEST(TangentFramesComposite, BlocksAsAloneAndCountsSummed)
 
   auto* output = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
   ASSERT_NE(output, nullptr) << "composite input must give composite output";
-  EXPECT_EQ(warnings.Warnings, 2)
+  EXPECT_TRUE(warnings.Errors.empty()) << warnings.Errors.front();
+  EXPECT_EQ(warnings.Warnings.size(), 2u)
     << "two warnings: the image block, and the block where no triangle has a frame";
   // The image's flat index: the root 0, the first torus 1, the inner dataset 2, its torus 3.
-  EXPECT_NE(warnings.Text.find(
+  EXPECT_NE(warnings.WarningText().find(
               "Block 4 is a vtkImageData, not polydata; passing it through without frames."),
     std::string::npos)
-    << warnings.Text;
+    << warnings.WarningText();
   ASSERT_EQ(output->GetNumberOfBlocks(), 5u);
   auto* outInner = vtkMultiBlockDataSet::SafeDownCast(output->GetBlock(1));
   ASSERT_NE(outInner, nullptr);
@@ -236,7 +218,7 @@ TEST(TangentFramesComposite, BlockWithoutTextureCoordinatesPassesWithAWarning)
 
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputData(input);
-  WarningCounter warnings(filter);
+  Messages warnings(filter);
   int errors = 0;
   vtkNew<vtkCallbackCommand> onError;
   onError->SetClientData(&errors);
@@ -246,11 +228,11 @@ TEST(TangentFramesComposite, BlockWithoutTextureCoordinatesPassesWithAWarning)
   filter->Update();
 
   EXPECT_EQ(errors, 0);
-  EXPECT_EQ(warnings.Warnings, 1) << warnings.Text;
-  EXPECT_NE(warnings.Text.find("Block 2 has no point array texture coordinates (no active "
-                               "TCoords); passing it through without frames."),
+  EXPECT_EQ(warnings.Warnings.size(), 1u) << warnings.WarningText();
+  EXPECT_NE(warnings.WarningText().find("Block 2 has no point array texture coordinates (no active "
+                                        "TCoords); passing it through without frames."),
     std::string::npos)
-    << warnings.Text;
+    << warnings.WarningText();
   auto* output = vtkMultiBlockDataSet::SafeDownCast(filter->GetOutputDataObject(0));
   ASSERT_NE(output, nullptr);
   auto* framed = vtkPolyData::SafeDownCast(output->GetBlock(0));

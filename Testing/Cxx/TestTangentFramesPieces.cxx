@@ -2,6 +2,7 @@
 // A mesh split into pieces, as a parallel pipeline (ParaView's pvserver, pvbatch under MPI)
 // delivers it: the filter asks for one more level of ghost cells, and with them every corner of
 // a piece's own cells gets the frame it gets in the whole mesh.
+#include "NormalMappingMessages.h"
 #include "vtkNormalMappingMeshes.h"
 #include "vtkPolyDataTangentFrames.h"
 
@@ -217,8 +218,11 @@ TEST(TangentFramesPieces, PiecesWithOneGhostLevelGetTheWholeMeshFrames)
       double largest = 0.0;
       for (int piece = 0; piece < pieces; ++piece)
       {
+        Messages messages(filter);
         filter->UpdatePiece(piece, pieces, 0);
         EXPECT_EQ(source->AskedGhostLevels, 1) << "piece " << piece;
+        // No message: the filter cannot tell a piece without ghost cells from a whole mesh.
+        EXPECT_TRUE(messages.Errors.empty() && messages.Warnings.empty()) << messages.WarningText();
         // The ghost cells stay in the output, marked as ghosts.
         vtkDataArray* ghosts =
           filter->GetOutput()->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName());
@@ -254,6 +258,8 @@ TEST(TangentFramesPieces, OnePieceAsksForNoGhostLevels)
   source->Mesh = vtkNormalMapping::MakeTorus(options);
   vtkNew<vtkPolyDataTangentFrames> filter;
   filter->SetInputConnection(source->GetOutputPort());
+  Messages messages(filter);
   filter->Update();
   EXPECT_EQ(source->AskedGhostLevels, 0);
+  EXPECT_TRUE(messages.Warnings.empty()) << messages.WarningText();
 }
