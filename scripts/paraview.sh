@@ -20,7 +20,7 @@ source "$root/scripts/common.sh"
 build="${BUILD_DIR:-$root/build-paraview}"
 prefix="$build/prefix"
 
-packages=(build-essential cmake libglm-dev xvfb xauth paraview paraview-dev
+packages=(build-essential cmake libglm-dev xvfb xauth paraview paraview-dev openmpi-bin
   qtbase5-dev libqt5opengl5-dev libqt5svg5-dev qttools5-dev qtxmlpatterns5-dev-tools)
 install_missing "${packages[@]}"
 
