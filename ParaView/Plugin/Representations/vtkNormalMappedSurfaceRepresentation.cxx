@@ -88,31 +88,27 @@ void vtkNormalMappedSurfaceRepresentation::SetTangentsArray(const char* name)
 
 namespace
 {
-/// Whether a dataset of `data` has the point array `name` with other than 3 components, which
-/// VTK refuses as the active tangents. A name no dataset has (ParaView's "None") is not refused:
-/// it clears the active tangents, as ParaView means it to.
-bool RefusedAsTangents(vtkDataObject* data, const std::string& name)
+/// Clears the active tangents of every dataset of `data`, leaving the arrays in place.
+void ClearActiveTangents(vtkDataObject* data)
 {
-  const auto refused = [&](vtkDataObject* object)
+  const auto clear = [](vtkDataObject* object)
   {
-    auto* dataSet = vtkDataSet::SafeDownCast(object);
-    vtkDataArray* array = dataSet ? dataSet->GetPointData()->GetArray(name.c_str()) : nullptr;
-    return array && array->GetNumberOfComponents() != 3;
+    if (auto* dataSet = vtkDataSet::SafeDownCast(object))
+    {
+      dataSet->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::TANGENTS);
+    }
   };
   auto* composite = vtkCompositeDataSet::SafeDownCast(data);
   if (!composite)
   {
-    return refused(data);
+    clear(data);
+    return;
   }
   auto it = vtk::TakeSmartPointer(composite->NewIterator());
   for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
   {
-    if (refused(it->GetCurrentDataObject()))
-    {
-      return true;
-    }
+    clear(it->GetCurrentDataObject());
   }
-  return false;
 }
 }
 
@@ -120,17 +116,20 @@ int vtkNormalMappedSurfaceRepresentation::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  // What the superclass's SetTangentArray stores, without its MarkModified (this is the update
-  // itself); "" withdraws a name where null would be ignored. The mappers read the array by name
-  // in any case.
-  const bool refused = inputVector[0]->GetNumberOfInformationObjects() == 1 &&
-    RefusedAsTangents(vtkDataObject::GetData(inputVector[0], 0), this->TangentsArrayName);
-  this->MultiBlockMaker->SetInputArrayToProcess(2,
-    0,
-    0,
-    vtkDataObject::FIELD_ASSOCIATION_POINTS,
-    refused ? "" : this->TangentsArrayName.c_str());
-  return this->Superclass::RequestData(request, inputVector, outputVector);
+  // The mappers read the tangents by name (SetTangentsArray), so ParaView is given none to make
+  // the active tangents ("" withdraws a name where null would be ignored).
+  this->MultiBlockMaker->SetInputArrayToProcess(
+    2, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "");
+  const int result = this->Superclass::RequestData(request, inputVector, outputVector);
+  // Nor does the geometry the view delivers keep the input's active tangents, where a name is
+  // set: VTK's legacy data writer, which carries the geometry from pvserver to a client that
+  // renders it, writes every attribute but the tangents and so drops them; a plain array
+  // travels.
+  if (!this->TangentsArrayName.empty())
+  {
+    ClearActiveTangents(this->MultiBlockMaker->GetOutputDataObject(0));
+  }
+  return result;
 }
 
 void vtkNormalMappedSurfaceRepresentation::SetNormalTexture(vtkTexture* texture)

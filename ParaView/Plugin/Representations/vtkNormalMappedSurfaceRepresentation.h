@@ -50,8 +50,8 @@ public:
   /// Point array with the handedness signs (empty or null: none, the tangents are unsigned).
   void SetTangentSignsArray(const char* name);
   /// The point tangents: the mappers' TangentsArrayName (null or empty: the active tangents),
-  /// 3 or 4 components; ParaView makes the array the active tangents of the rendered data only
-  /// when it has 3 components (RequestData).
+  /// 3 or 4 components. The rendered data has no active tangents where a name is set
+  /// (RequestData).
   void SetTangentsArray(const char* name);
   /// ParaView's TangentArray, ignored: the proxy copies it into SetTangentsArray, and the
   /// superclass would make a 4-component array the active tangents, which VTK refuses.
@@ -70,7 +70,7 @@ protected:
   vtkNormalMappedSurfaceRepresentation();
   ~vtkNormalMappedSurfaceRepresentation() override;
 
-  /// Gives ParaView the tangent array name where VTK can make it the active tangents.
+  /// Delivers the geometry without active tangents, so that they reach a client that renders.
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
