@@ -8,7 +8,8 @@ MPI), as a parallel ParaView user runs them:
 - ParaView's Ghost Cells Generator before the filter is measured and printed, not asserted (its
   pieces give wrong frames in ParaView 5.11; the docs say so and quote this test);
 - the representation draws the distributed frames, composited from both processes, as it draws
-  the whole mesh on one; the pieces without ghost cells draw differently (the control).
+  the whole mesh on one, opaque and translucent; the pieces without ghost cells draw differently
+  (the control).
 
 mpiexec -n 2 pvbatch TestTangentFramesInParallel.py <plugin.so> <work dir> <baseline dir>
 """
@@ -136,9 +137,10 @@ view = nm.mirror_view()  # one directional light; the camera is set below
 view.ViewSize = [nm.WIDTH, nm.HEIGHT]
 
 
-def draw(source, name):
+def draw(source, name, opacity=1.0):
     """The source drawn alone with the rivets map, looking at the pieces' meridian at u = 0.5."""
     display = nm.show_mirrored(source, view, "Normal Mapped Surface", texture)
+    display.Opacity = opacity
     view.CameraPosition = [-2.4, -0.3, 0.5]
     view.CameraViewUp = [0.0, 0.0, 1.0]
     Render(view)
@@ -162,4 +164,11 @@ for name, source, same in (("split-after", split_after, True),
         check(largest <= DRAWN_BOUND, name + ": draws the whole mesh's image")
     else:
         check(largest > DRAWN_BOUND, name + ": draws another image (the control)")
+# Translucent, the processes' images are blended in depth order (ParaView's ordered compositing
+# redistributes the geometry for it): still the whole mesh's image.
+fraction, largest = nm.difference(draw(split_after, "split-after-translucent", 0.6),
+                                  draw(whole, "whole-translucent", 0.6), DRAWN_BOUND)
+print("split-after drawn translucent: %.3f%% within %d level of the whole mesh's image, max "
+      "difference %d" % (100 * fraction, DRAWN_BOUND, largest))
+check(largest <= DRAWN_BOUND, "split-after, translucent: draws the whole mesh's image")
 check.finish()
