@@ -87,6 +87,8 @@ vtk_configuration() {
     -DVTK_USE_MPI=OFF
   )
   vtk_module_options vtk_options
+  # VTK's importers, for the test of vtkGLTFImporter through the object factory.
+  vtk_options+=(-DVTK_MODULE_ENABLE_VTK_IOImport=YES)
   add_options "-DVTK_MODULE_USE_EXTERNAL_VTK_%s=ON" doubleconversion eigen expat freetype \
     gl2ps glew hdf5 jpeg jsoncpp libproj libxml2 lz4 lzma netcdf ogg png sqlite theora tiff \
     utf8 zlib
