@@ -19,6 +19,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -475,12 +476,32 @@ std::vector<unsigned char> ReadPixels(vtkRenderWindow* window)
 }
 
 //------------------------------------------------------------------------------
-vtkStandardNewMacro(ErrorCounter);
-
-void ErrorCounter::DisplayErrorText(const char* text)
+namespace
 {
-  ++this->Errors;
-  this->Superclass::DisplayErrorText(text);
+/// An output window that counts the errors it is given and prints them as VTK's does.
+class ErrorCounter : public vtkOutputWindow
+{
+public:
+  static ErrorCounter* New();
+  vtkTypeMacro(ErrorCounter, vtkOutputWindow);
+  void DisplayErrorText(const char* text) override
+  {
+    ++this->Errors;
+    this->Superclass::DisplayErrorText(text);
+  }
+  int Errors = 0;
+};
+vtkStandardNewMacro(ErrorCounter);
+}
+
+int CountErrors(const std::function<void()>& run)
+{
+  vtkNew<ErrorCounter> counter;
+  vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkOutputWindow::SetInstance(counter);
+  run();
+  vtkOutputWindow::SetInstance(previous);
+  return counter->Errors;
 }
 
 //------------------------------------------------------------------------------

@@ -8,7 +8,6 @@
 
 #include "vtkImageData.h"                        // For vtkSmartPointer<vtkImageData>
 #include "vtkNormalMapCompositePolyDataMapper.h" // For StockCompositeMapper
-#include "vtkOutputWindow.h"                     // For ErrorCounter
 #include "vtkPolyData.h"                         // For vtkSmartPointer<vtkPolyData>
 #include "vtkRenderWindow.h"                     // For vtkSmartPointer<vtkRenderWindow>
 #include "vtkSmartPointer.h"
@@ -116,16 +115,9 @@ vtkSmartPointer<vtkImageData> GrabImage(vtkRenderWindow* window);
 /// The window's RGB pixels, bottom row first.
 std::vector<unsigned char> ReadPixels(vtkRenderWindow* window);
 
-/// An output window that counts the errors it is given (shader compile errors, say) and prints
-/// them as VTK's does; installed with vtkOutputWindow::SetInstance around what it watches.
-class ErrorCounter : public vtkOutputWindow
-{
-public:
-  static ErrorCounter* New();
-  vtkTypeMacro(ErrorCounter, vtkOutputWindow);
-  void DisplayErrorText(const char* text) override;
-  int Errors = 0;
-};
+/// The errors VTK reports while run() runs (shader compile errors, say), counted by an output
+/// window installed for that time; they are still printed as VTK prints them.
+int CountErrors(const std::function<void()>& run);
 
 /// Keeps checking after a failure and reports every failed check.
 class Checks

@@ -23,7 +23,6 @@
 #include "vtkNormalMapPolyDataMapper.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkOpaquePass.h"
-#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -445,16 +444,12 @@ int TestNormalMapBadInput(int, char*[])
       vtkNew<vtkCameraPass> camera;
       camera->SetDelegatePass(sequence);
       scene.Renderer->SetPass(camera);
-      vtkNew<nmtest::ErrorCounter> errors;
-      vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
-      vtkOutputWindow::SetInstance(errors);
-      scene.Render();
-      vtkOutputWindow::SetInstance(previous);
+      const int errors = nmtest::CountErrors([&] { scene.Render(); });
       const int applied = composite ? compositeMapper->GetLastAppliedFrame(1)
                                     : scene.NormalMapper->GetLastAppliedFrame();
       const std::string what = composite ? "composite mapper" : "polydata mapper";
-      std::cout << "no lights pass, " << what << ": " << errors->Errors << " errors" << std::endl;
-      check(applied == Mapper::NOT_APPLIED && errors->Errors == 0,
+      std::cout << "no lights pass, " << what << ": " << errors << " errors" << std::endl;
+      check(applied == Mapper::NOT_APPLIED && errors == 0,
         "no lights pass, " + what + ": not applied, no shader error");
     }
   }

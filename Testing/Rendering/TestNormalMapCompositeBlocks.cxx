@@ -17,7 +17,6 @@
 #include "vtkMultiBlockDataSet.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
-#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
@@ -596,7 +595,6 @@ void Changes(nmtest::Checks& check)
     "naming it");
 }
 
-/// Install() registers the override of VTK's composite mapper.
 /**
  * Blocks without texture coordinates, colored by a point array with scalars interpolated before
  * mapping (ParaView's default), where the mapper samples the map at its own copy of the blocks'
@@ -652,12 +650,7 @@ void BlocksWithoutTCoords(nmtest::Checks& check)
       actor.Blocks = blocks;
       actor.InterpolateScalars = interpolate != 0;
       actor.TextureTransform = c.Transform;
-      vtkNew<nmtest::ErrorCounter> counter;
-      vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
-      vtkOutputWindow::SetInstance(counter);
-      out[interpolate] = RenderBlocks(scene.Setup, actor);
-      vtkOutputWindow::SetInstance(previous);
-      errors += counter->Errors;
+      errors += nmtest::CountErrors([&] { out[interpolate] = RenderBlocks(scene.Setup, actor); });
     }
     const nmtest::Difference d = nmtest::Compare(
       out[1].Pixels, out[0].Pixels, nmtest::CoveredPixels(out[1].Pixels, out[0].Pixels), 0);
@@ -684,6 +677,7 @@ void BlocksWithoutTCoords(nmtest::Checks& check)
   }
 }
 
+/// Install() registers the override of VTK's composite mapper.
 void Factory(nmtest::Checks& check)
 {
   const std::string stock = nmtest::StockCompositeName();
