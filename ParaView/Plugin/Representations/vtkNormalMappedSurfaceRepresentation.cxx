@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkNormalMappedSurfaceRepresentation.h"
 
-#include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataSet.h"
@@ -86,38 +85,12 @@ void vtkNormalMappedSurfaceRepresentation::SetTangentsArray(const char* name)
   this->MarkModified();
 }
 
-namespace
-{
-/// Clears the active tangents of every dataset of `data`, leaving the arrays in place.
-void ClearActiveTangents(vtkDataObject* data)
-{
-  const auto clear = [](vtkDataObject* object)
-  {
-    if (auto* dataSet = vtkDataSet::SafeDownCast(object))
-    {
-      dataSet->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::TANGENTS);
-    }
-  };
-  auto* composite = vtkCompositeDataSet::SafeDownCast(data);
-  if (!composite)
-  {
-    clear(data);
-    return;
-  }
-  auto it = vtk::TakeSmartPointer(composite->NewIterator());
-  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-  {
-    clear(it->GetCurrentDataObject());
-  }
-}
-}
-
 int vtkNormalMappedSurfaceRepresentation::RequestData(vtkInformation* request,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  // The mappers read the tangents by name (SetTangentsArray), so ParaView is given none to make
-  // the active tangents ("" withdraws a name where null would be ignored).
+  // The mappers read the tangents by name (SetTangentsArray), so ParaView is given no name to
+  // make the active tangents.
   this->MultiBlockMaker->SetInputArrayToProcess(
     2, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "");
   const int result = this->Superclass::RequestData(request, inputVector, outputVector);
@@ -127,7 +100,11 @@ int vtkNormalMappedSurfaceRepresentation::RequestData(vtkInformation* request,
   // travels.
   if (!this->TangentsArrayName.empty())
   {
-    ClearActiveTangents(this->MultiBlockMaker->GetOutputDataObject(0));
+    for (vtkDataSet* block :
+      vtkCompositeDataSet::GetDataSets(this->MultiBlockMaker->GetOutputDataObject(0)))
+    {
+      block->GetPointData()->SetActiveAttribute(-1, vtkDataSetAttributes::TANGENTS);
+    }
   }
   return result;
 }
