@@ -33,6 +33,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <utility>
 
@@ -472,6 +473,22 @@ double WorstCell(const std::vector<unsigned char>& rgb, int size, int bound, int
     }
   }
   return worst;
+}
+
+//------------------------------------------------------------------------------
+std::string KhronosModelFolder(const std::string& name)
+{
+  const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
+  const std::string folder = std::string(shared ? shared : "") + "/gltf/" + name + "/";
+  if (!std::ifstream(folder + name + ".gltf"))
+  {
+    std::cout << "SKIPPED: " << folder << name
+              << ".gltf not found: the shared data (../shared/data, or the CMake variable "
+                 "NORMALMAPPING_SHARED_DATA) is absent"
+              << std::endl;
+    return std::string();
+  }
+  return folder;
 }
 
 //------------------------------------------------------------------------------

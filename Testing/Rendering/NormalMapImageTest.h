@@ -101,6 +101,13 @@ int RunEncodingTest(int argc, char* argv[], Storage storage, int encoding, int o
 vtkSmartPointer<vtkPolyData> LoadKhronosModel(const std::string& file);
 
 /**
+ * The folder of a Khronos test model (NormalTangentTest, NormalTangentMirrorTest) in the shared
+ * data, $NORMALMAPPING_SHARED_DATA/gltf/<name>/, with <name>.gltf and <name>_Normal.png; or ""
+ * after printing why a test that needs it skips (the shared data is absent).
+ */
+std::string KhronosModelFolder(const std::string& name);
+
+/**
  * A Khronos model's view in `renderer`: one scene light from the upper left, and a head-on
  * parallel camera fit to `bounds` (xmin, xmax, ymin, ymax, zmin, zmax).
  */

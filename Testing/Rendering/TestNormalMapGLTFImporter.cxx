@@ -19,8 +19,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
-#include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -78,17 +76,15 @@ std::vector<unsigned char> RenderImported(const std::string& file,
 
 int TestNormalMapGLTFImporter(int, char*[])
 {
-  const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
-  const std::string root = std::string(shared ? shared : "") + "/gltf";
   nmtest::Checks check;
   for (const char* name : { "NormalTangentTest", "NormalTangentMirrorTest" })
   {
-    const std::string file = root + "/" + name + "/" + name + ".gltf";
-    if (!std::ifstream(file))
+    const std::string folder = nmtest::KhronosModelFolder(name);
+    if (folder.empty())
     {
-      std::cout << "SKIPPED: " << file << " not found (shared data absent)" << std::endl;
       return 125;
     }
+    const std::string file = folder + name + ".gltf";
     const int size = 512;
     const int bound = 12; // TestNormalMapKhronosModels' bound, for the same reasons
     for (bool factory : { true, false })

@@ -10,25 +10,22 @@
 #include "vtkNormalMapPolyDataMapper.h"
 
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 
 int TestNormalMapKhronosImages(int argc, char* argv[])
 {
   using Mapper = vtkNormalMapPolyDataMapper;
-  const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
-  const std::string root = std::string(shared ? shared : "") + "/gltf/";
   vtkSmartPointer<vtkPolyData> models[2], ignoredModels[2];
   vtkSmartPointer<vtkTexture> maps[2];
   int m = 0;
   for (const std::string name : { "NormalTangentTest", "NormalTangentMirrorTest" })
   {
-    const std::string file = root + name + "/" + name + ".gltf";
-    if (!std::ifstream(file))
+    const std::string folder = nmtest::KhronosModelFolder(name);
+    if (folder.empty())
     {
-      std::cout << "SKIPPED: " << file << " not found (shared data absent)" << std::endl;
       return 125;
     }
+    const std::string file = folder + name + ".gltf";
     models[m] = nmtest::LoadKhronosModel(file);
     if (!models[m])
     {
@@ -36,7 +33,7 @@ int TestNormalMapKhronosImages(int argc, char* argv[])
       return EXIT_FAILURE;
     }
     ignoredModels[m] = nmtest::WithTangentLayout(models[m], nmtest::TangentLayout::SignsIgnored);
-    maps[m] = nmtest::LoadKhronosNormalMap(root + name + "/" + name + "_Normal.png");
+    maps[m] = nmtest::LoadKhronosNormalMap(folder + name + "_Normal.png");
     ++m;
   }
   return nmtest::RunImageTest(argc,

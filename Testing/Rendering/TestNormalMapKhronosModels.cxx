@@ -15,8 +15,6 @@
 #include "vtkTestUtilities.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <fstream>
 #include <iostream>
 
 namespace
@@ -45,8 +43,6 @@ std::vector<unsigned char> Render(vtkPolyData* model,
 
 int TestNormalMapKhronosModels(int argc, char* argv[])
 {
-  const char* shared = std::getenv("NORMALMAPPING_SHARED_DATA");
-  const std::string root = std::string(shared ? shared : "") + "/gltf";
   nmtest::Checks check;
   // The renders are also written to the test's temporary folder (-T, as ctest passes it), to be
   // looked at.
@@ -55,11 +51,9 @@ int TestNormalMapKhronosModels(int argc, char* argv[])
   delete[] temporary;
   for (const char* name : { "NormalTangentTest", "NormalTangentMirrorTest" })
   {
-    const std::string dir = root + "/" + name + "/";
-    if (!std::ifstream(dir + name + ".gltf"))
+    const std::string dir = nmtest::KhronosModelFolder(name);
+    if (dir.empty())
     {
-      std::cout << "SKIPPED: " << dir << name << ".gltf not found (shared data absent)"
-                << std::endl;
       return 125;
     }
     auto model = nmtest::LoadKhronosModel(dir + name + ".gltf");
