@@ -148,10 +148,13 @@ protected:
     this->Frames = vtkNormalMapShading::FrameMix();
     bool allUnsigned = true;
     bool allTCoords = true;
+    int components = 2; // the first count of texture-coordinate components other than 2
     this->ForEachBlock(
       [&](BlockData* block)
       {
-        allTCoords = allTCoords && PolyDataOf(block)->GetPointData()->GetTCoords();
+        vtkDataArray* tcoords = PolyDataOf(block)->GetPointData()->GetTCoords();
+        allTCoords = allTCoords && tcoords;
+        components = components == 2 && tcoords ? tcoords->GetNumberOfComponents() : components;
         auto tangents = vtkNormalMapShading::FindTangents(PolyDataOf(block), actor, this->Settings);
         const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
         this->Frames.PointTangents = this->Frames.PointTangents || has;
@@ -162,10 +165,14 @@ protected:
         this->BlockTangents[block] = tangents;
       });
     this->Frames.Unsigned = this->Frames.PointTangents && allUnsigned;
-    // The blocks' own texture coordinates are uploaded only when every block has them: VTK draws
-    // blocks with and without texture coordinates with separate helpers (VTK 9.1 and 9.6 do).
-    // Without them the attribute is absent, and the shader code warns that there are none.
-    this->OwnTCoords = this->TCoords == vtkNormalMapShading::TCoordAttribute && allTCoords;
+    // The blocks' own texture coordinates are uploaded only when every block has them, with 2
+    // components: VTK draws blocks with and without texture coordinates with separate helpers
+    // (VTK 9.1 and 9.6 do), but blocks whose counts differ with one (VTK 9.1 does), and one
+    // vertex buffer cannot hold arrays of different counts. Otherwise the attribute is absent,
+    // and the shader code warns with the count found.
+    this->BlockTCoordComponents = allTCoords ? components : 0;
+    this->OwnTCoords =
+      this->TCoords == vtkNormalMapShading::TCoordAttribute && this->BlockTCoordComponents == 2;
     this->Superclass::BuildBufferObjects(ren, actor);
   }
 
@@ -224,6 +231,18 @@ protected:
     this->Appended[voffset] = arrays;
   }
 
+  /// The components of the texture coordinates the normal texture is sampled with. Where they
+  /// are the blocks' active ones (VTK's or the helper's own copy), blocks whose counts differ give
+  /// the first count other than 2: a vertex buffer of either count misplaces the others' values.
+  int SampledComponents()
+  {
+    const bool active =
+      this->TCoords == vtkNormalMapShading::TCoordAttribute || this->TCoords == "tcoord";
+    return active && this->BlockTCoordComponents != 2
+      ? this->BlockTCoordComponents
+      : this->VBOs->GetNumberOfComponents(this->TCoords.c_str());
+  }
+
   /// Appends a block's array of an attribute, or zeros (for a block without one: they keep the
   /// attribute aligned with the vertices).
   void AppendPoints(const char* attribute,
@@ -246,11 +265,8 @@ protected:
   bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* actor) override
   {
     const bool rebuild = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, actor);
-    const bool mapChanged = this->Shading->NeedsRebuild(&cellBO,
-      actor,
-      this->Frames.Key(),
-      this->TCoords,
-      this->VBOs->GetNumberOfComponents(this->TCoords.c_str()));
+    const bool mapChanged = this->Shading->NeedsRebuild(
+      &cellBO, actor, this->Frames.Key(), this->TCoords, this->SampledComponents());
     return rebuild || mapChanged;
   }
 
@@ -276,7 +292,7 @@ protected:
     context.DrawingVertices = this->DrawingVertices;
     context.LightComplexity = this->PrimitiveInfo[cellBO].LastLightComplexity;
     context.TCoordName = this->TCoords;
-    context.TCoordComponents = this->VBOs->GetNumberOfComponents(context.TCoordName.c_str());
+    context.TCoordComponents = this->SampledComponents();
     context.Frames = this->Frames;
     context.Where = BlockNames(flatIndices);
     this->SurfaceFrame = this->Shading->ReplaceShaderNormal(shaders, context, this->Settings);
@@ -391,9 +407,12 @@ private:
   std::map<vtkIdType, AppendedArrays> Appended;
   /// The attribute the normal texture is sampled with in the current build, and whether it is
   /// the helper's own (vtkNormalMapShading::SampledTCoords) and uploaded (every block has point
-  /// texture coordinates).
+  /// texture coordinates of 2 components).
   std::string TCoords;
   bool OwnTCoords = false;
+  /// The blocks' texture-coordinate components: 0 when a block has none, else the first count
+  /// other than 2, else 2.
+  int BlockTCoordComponents = 0;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;

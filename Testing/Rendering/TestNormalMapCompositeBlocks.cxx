@@ -2,8 +2,9 @@
 // Multiblock data through vtkNormalMapCompositePolyDataMapper: the mirror-symmetry and the
 // CPU-reference checks of the polydata mapper, on datasets whose blocks store their tangents
 // differently (float with a sign array, glTF-style double with the sign in w, none), plus a
-// block without texture coordinates, blocks sharing point arrays but not tangents, per-block
-// display attributes and the object factory.
+// block without texture coordinates, blocks whose texture coordinates have 2 and 3 components,
+// blocks sharing point arrays but not tangents, per-block display attributes and the object
+// factory.
 // VTK's stock composite mapper fails the same checks.
 #include "NormalMapTestScenes.h"
 
@@ -596,6 +597,41 @@ void Changes(nmtest::Checks& check)
 }
 
 /**
+ * A shallow copy of a mesh with 2 texture-coordinate components, with `components` of them (0:
+ * none; 3: a third component of zeros), and constant point scalars when asked for.
+ */
+vtkSmartPointer<vtkPolyData> Colored(vtkPolyData* mesh, int components, bool scalars)
+{
+  auto copy = components ? vtkSmartPointer<vtkPolyData>::New() : nmtest::WithoutTCoords(mesh);
+  if (components)
+  {
+    copy->ShallowCopy(mesh);
+  }
+  if (components == 3)
+  {
+    vtkDataArray* uv = mesh->GetPointData()->GetTCoords();
+    vtkNew<vtkFloatArray> uvw;
+    uvw->SetName(uv->GetName());
+    uvw->SetNumberOfComponents(3);
+    uvw->SetNumberOfTuples(uv->GetNumberOfTuples());
+    for (vtkIdType p = 0; p < uv->GetNumberOfTuples(); ++p)
+    {
+      uvw->SetTuple3(p, uv->GetComponent(p, 0), uv->GetComponent(p, 1), 0.0);
+    }
+    copy->GetPointData()->SetTCoords(uvw);
+  }
+  if (scalars)
+  {
+    vtkNew<vtkFloatArray> values;
+    values->SetName("Value");
+    values->SetNumberOfTuples(copy->GetNumberOfPoints());
+    values->Fill(0.5);
+    copy->GetPointData()->SetScalars(values);
+  }
+  return copy;
+}
+
+/**
  * Blocks without texture coordinates, colored by a point array with scalars interpolated before
  * mapping (ParaView's default), where the mapper samples the map at its own copy of the blocks'
  * texture coordinates: such a block is drawn without the map and named in a warning, next to a
@@ -607,23 +643,6 @@ void Changes(nmtest::Checks& check)
 void BlocksWithoutTCoords(nmtest::Checks& check)
 {
   const Halves scene;
-  const auto colored = [](vtkPolyData* mesh, bool tcoords, bool scalars)
-  {
-    auto copy = tcoords ? vtkSmartPointer<vtkPolyData>::New() : nmtest::WithoutTCoords(mesh);
-    if (tcoords)
-    {
-      copy->ShallowCopy(mesh);
-    }
-    if (scalars)
-    {
-      vtkNew<vtkFloatArray> values;
-      values->SetName("Value");
-      values->SetNumberOfTuples(copy->GetNumberOfPoints());
-      values->Fill(0.5);
-      copy->GetPointData()->SetScalars(values);
-    }
-    return copy;
-  };
   const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
   struct Case
   {
@@ -640,8 +659,8 @@ void BlocksWithoutTCoords(nmtest::Checks& check)
   };
   for (const Case& c : cases)
   {
-    auto blocks = MakeBlocks(
-      { colored(scene.Left, c.LeftTCoords, c.Scalars), colored(scene.Right, false, c.Scalars) });
+    auto blocks = MakeBlocks({ Colored(scene.Left, c.LeftTCoords ? 2 : 0, c.Scalars),
+      Colored(scene.Right, 0, c.Scalars) });
     Rendered out[2];
     int errors = 0;
     for (int interpolate = 0; interpolate < 2; ++interpolate)
@@ -674,6 +693,52 @@ void BlocksWithoutTCoords(nmtest::Checks& check)
                           : "Blocks 1, 2: The normal texture is not applied: the "
                             "input has no texture coordinates."),
       name + ": the blocks without texture coordinates are named in a warning");
+  }
+}
+
+/**
+ * Blocks whose texture coordinates have 2 and 3 components, which VTK draws with one helper:
+ * one vertex buffer cannot hold both counts, and the map needs 2, so it is drawn on neither
+ * block, with a warning naming both, in either order of the blocks: the image is that of the
+ * blocks without the normal texture (0 levels). With scalars interpolated before mapping the map
+ * would be sampled at the helper's own copy of the texture coordinates, which is not made: no
+ * error. Otherwise it would be sampled at VTK's, whose vertex buffer VTK fills with both
+ * (its error is VTK's, printed).
+ */
+void BlocksWithMixedTCoordComponents(nmtest::Checks& check)
+{
+  const Halves scene;
+  for (const bool interpolate : { true, false })
+  {
+    for (const bool threeFirst : { true, false })
+    {
+      auto blocks = MakeBlocks({ Colored(scene.Left, threeFirst ? 3 : 2, true),
+        Colored(scene.Right, threeFirst ? 2 : 3, true) });
+      nmtest::FlatActor actor = scene.Actor;
+      actor.Blocks = blocks;
+      actor.InterpolateScalars = interpolate;
+      Rendered mapped;
+      const int errors = nmtest::CountErrors([&] { mapped = RenderBlocks(scene.Setup, actor); });
+      actor.NormalTexture = nullptr;
+      Rendered plain;
+      nmtest::CountErrors([&] { plain = RenderBlocks(scene.Setup, actor); });
+      const nmtest::Difference d = nmtest::Compare(
+        mapped.Pixels, plain.Pixels, nmtest::CoveredPixels(mapped.Pixels, plain.Pixels), 0);
+      const std::string name = std::string("blocks with 3 and 2 texture-coordinate components, ") +
+        (threeFirst ? "3 first" : "2 first") +
+        (interpolate ? ", scalars interpolated" : ", scalars at the points");
+      std::cout << name << ": " << errors
+                << " errors; vs without the map: " << 100.0 * d.WithinFraction
+                << "% within 0 levels; frames" << FrameNames(mapped.Frames) << std::endl;
+      check(!interpolate || errors == 0, name + ": no error");
+      check(d.Compared > 20000 && d.WithinFraction == 1.0 &&
+          mapped.Frames.at(1) == Mapper::NOT_APPLIED && mapped.Frames.at(2) == Mapper::NOT_APPLIED,
+        name + ": no map on either block");
+      check(Warned(mapped,
+              "Blocks 1, 2: The normal texture is not applied: texture coordinates have 3 "
+              "components (2 needed)."),
+        name + ": a warning names both blocks and the count");
+    }
   }
 }
 
@@ -712,6 +777,7 @@ int TestNormalMapCompositeBlocks(int, char*[])
   DisplayAttributes(check);
   Changes(check);
   BlocksWithoutTCoords(check);
+  BlocksWithMixedTCoordComponents(check);
   Factory(check);
   return check.Result();
 }
