@@ -78,6 +78,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For TCoordsArrayName
+#include <vector> // For BlockInput
 
 class vtkDataArray;
 
@@ -308,6 +309,9 @@ private:
     const unsigned char* KeptPoints = nullptr;
     double ProgressBegin = 0.0;
     double ProgressEnd = 1.0;
+    /// When set, receives the input point that each point appended to the output copies (the
+    /// split points' copies, in output order). Null: not asked for.
+    std::vector<vtkIdType>* SplitSources = nullptr;
   };
 
   /// The frames of one polydata whose inputs ExecuteBlock has checked.

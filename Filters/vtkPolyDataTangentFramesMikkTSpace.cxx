@@ -732,6 +732,10 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
     positions,
     contractNormals,
     assignment);
+  if (block.SplitSources)
+  {
+    *block.SplitSources = std::move(assignment.SplitSource);
+  }
   this->ContinueBlock(block, 1.0);
   return result.NumberOfTriangles;
 }

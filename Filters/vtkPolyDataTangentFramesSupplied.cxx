@@ -10,7 +10,6 @@
 
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -23,10 +22,6 @@
 
 namespace
 {
-/// The point array that carries every output point's input point id through ComputeBlock,
-/// which copies all point data to the points it splits.
-constexpr const char* SourceIdsName = "vtkPolyDataTangentFrames_SourcePointIds";
-
 /// Writes kept frames into the output's frame arrays.
 struct KeptFrameWriter
 {
@@ -68,22 +63,6 @@ vtkIdType CountPointsWith(const vtkNormalMapping::FrameCheck& check, unsigned ch
     [mask](unsigned char defects) { return (defects & mask) != 0; }));
 }
 
-/// `input` with one more point array, SourceIdsName, holding each point's own id.
-vtkSmartPointer<vtkPolyData> WithSourceIds(vtkPolyData* input)
-{
-  auto marked = vtkSmartPointer<vtkPolyData>::New();
-  marked->ShallowCopy(input);
-  vtkNew<vtkIdTypeArray> ids;
-  ids->SetName(SourceIdsName);
-  ids->SetNumberOfTuples(input->GetNumberOfPoints());
-  for (vtkIdType p = 0; p < input->GetNumberOfPoints(); ++p)
-  {
-    ids->SetValue(p, p);
-  }
-  marked->GetPointData()->AddArray(ids);
-  return marked;
-}
-
 /// New frame arrays of `tuples` tuples of class ArrayT in `pd`.
 template<typename ArrayT>
 KeptFrameWriter NewKeptFrameWriter(vtkPointData* pd, bool bitangents, vtkIdType tuples)
@@ -98,28 +77,27 @@ KeptFrameWriter NewKeptFrameWriter(vtkPointData* pd, bool bitangents, vtkIdType 
 }
 
 /**
- * Points `out` at the frame arrays ComputeBlock wrote to `output` from `input` (WithSourceIds),
- * and puts the input point of every output point in `sourceIds`, which leaves the output. False
- * when there are none to write into: after an error ComputeBlock passes the input through (its
- * arrays, shared: never written) and after an abort the output is empty.
+ * Points `out` at the frame arrays ComputeBlock wrote to `output` from `input`, which holds the
+ * input points and a copy of each of `splitSources`. False when there are none to write into:
+ * after an error ComputeBlock passes the input through (its arrays, shared: never written) and
+ * after an abort the output is empty.
  */
 bool FindComputedFrames(vtkPolyData* input,
   vtkPolyData* output,
   bool bitangents,
-  KeptFrameWriter& out,
-  vtkSmartPointer<vtkIdTypeArray>& sourceIds)
+  const std::vector<vtkIdType>& splitSources,
+  KeptFrameWriter& out)
 {
   vtkPointData* outPD = output->GetPointData();
   vtkPointData* inPD = input->GetPointData();
-  sourceIds = vtkIdTypeArray::SafeDownCast(outPD->GetArray(SourceIdsName));
-  outPD->RemoveArray(SourceIdsName);
   out.Tangents = outPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName());
   out.Signs = outPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName());
   // Without ComputeBitangents an array of that name is the input's, passed through.
   out.Bitangents =
     bitangents ? outPD->GetArray(vtkPolyDataTangentFrames::BitangentsArrayName()) : nullptr;
-  return sourceIds && out.Tangents && out.Signs &&
-    sourceIds->GetNumberOfTuples() == output->GetNumberOfPoints() &&
+  return out.Tangents && out.Signs &&
+    output->GetNumberOfPoints() ==
+    input->GetNumberOfPoints() + static_cast<vtkIdType>(splitSources.size()) &&
     out.Tangents != inPD->GetArray(vtkPolyDataTangentFrames::TangentsArrayName()) &&
     out.Signs != inPD->GetArray(vtkPolyDataTangentFrames::SignsArrayName()) &&
     (!out.Bitangents ||
@@ -127,24 +105,26 @@ bool FindComputedFrames(vtkPolyData* input,
 }
 
 /**
- * Output points [0, numOut) keep the supplied frames of their input points (`sourceIds`, or the
- * same id without it), except those whose defects include a bit of `replaced`.
+ * Output points [0, numOut) keep the supplied frames of their input points (the first numIn are
+ * the input points, the others copies of `splitSources`), except those whose defects include a
+ * bit of `replaced`.
  */
 void KeepFrames(const KeptFrameWriter& out,
   const vtkNormalMapping::SuppliedFrameArrays& supplied,
   vtkDataArray* normals,
   const vtkNormalMapping::FrameCheck& check,
   unsigned char replaced,
-  vtkIdTypeArray* sourceIds,
-  vtkIdType numOut)
+  vtkIdType numIn,
+  const std::vector<vtkIdType>& splitSources)
 {
+  const vtkIdType numOut = numIn + static_cast<vtkIdType>(splitSources.size());
   vtkSMPTools::For(0,
     numOut,
     [&](vtkIdType begin, vtkIdType end)
     {
       for (vtkIdType p = begin; p < end; ++p)
       {
-        const vtkIdType source = sourceIds ? sourceIds->GetValue(p) : p;
+        const vtkIdType source = p < numIn ? p : splitSources[static_cast<size_t>(p - numIn)];
         if (!(check.Defects[source] & replaced))
         {
           out.Keep(supplied, normals, source, p);
@@ -159,14 +139,15 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   vtkPolyData* input = block.Input;
   vtkPolyData* output = block.Output;
   vtkDataArray* normals = block.Normals;
-  // Frames computed for `mesh` (the input's points), except that the points of `kept` (null:
-  // none) keep theirs: they are neither split nor counted as conflicts.
-  const auto compute = [&](vtkPolyData* mesh, const unsigned char* kept)
+  // Frames computed for the input's points, except that the points of `kept` (null: none) keep
+  // theirs: they are neither split nor counted as conflicts.
+  std::vector<vtkIdType> splitSources;
+  const auto compute = [&](const unsigned char* kept)
   {
-    BlockInput withMesh = block;
-    withMesh.Input = mesh;
-    withMesh.KeptPoints = kept;
-    this->ComputeBlock(withMesh);
+    BlockInput withKept = block;
+    withKept.KeptPoints = kept;
+    withKept.SplitSources = &splitSources;
+    this->ComputeBlock(withKept);
   };
   std::string problem;
   const vtkNormalMapping::SuppliedFrameArrays supplied =
@@ -178,7 +159,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
                   : "the input has no usable point normals (the tangents are only meaningful "
                     "with the normals they were made for)")
       << "; computing every frame with the " << GetMethodName(this->Method) << " method.");
-    compute(input, nullptr);
+    compute(nullptr);
     return;
   }
 
@@ -201,7 +182,7 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
     vtkNormalMapping::DefectSignNotUnit | vtkNormalMapping::DefectSignAgainstWinding |
       vtkNormalMapping::DefectMixedWinding);
   const unsigned char replaced = keepValid ? 0xff : vtkNormalMapping::DefectNonFinite;
-  const vtkIdType numReplaced = CountPointsWith(check, replaced);
+  const vtkIdType numReplaced = keepValid ? counts.Failed : counts.NonFinite;
   this->NumberOfReplacedTangents += numReplaced;
   if (!keepValid && numReplaced > 0)
   {
@@ -213,7 +194,6 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
 
   // Computed frames first, where some are needed; then the kept frames over them.
   KeptFrameWriter out;
-  vtkSmartPointer<vtkIdTypeArray> sourceIds;
   if (numReplaced > 0 || this->ComputeCellTangents)
   {
     std::vector<unsigned char> kept(check.Defects.size());
@@ -221,8 +201,8 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
       check.Defects.end(),
       kept.begin(),
       [replaced](unsigned char defects) { return (defects & replaced) == 0; });
-    compute(WithSourceIds(input), kept.data());
-    if (!FindComputedFrames(input, output, this->ComputeBitangents, out, sourceIds))
+    compute(kept.data());
+    if (!FindComputedFrames(input, output, this->ComputeBitangents, splitSources, out))
     {
       return;
     }
@@ -237,6 +217,6 @@ void vtkPolyDataTangentFrames::ExecuteSupplied(const BlockInput& block)
   // The weighted methods' signs with GLTFSignConvention follow the v-down coordinates as stored:
   // the opposite of the supplied (glTF) convention.
   out.SignFactor = this->GLTFSignConvention && this->Method != MIKKTSPACE ? -1.0 : 1.0;
-  KeepFrames(out, supplied, normals, check, replaced, sourceIds, output->GetNumberOfPoints());
+  KeepFrames(out, supplied, normals, check, replaced, input->GetNumberOfPoints(), splitSources);
   this->UpdateProgress(block.ProgressEnd);
 }

@@ -1114,6 +1114,10 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     }
     vtkNormalMapping::detail::WriteSplitOutput(
       this->Input, this->Output, splitSource, repoint.Corners, frames, computedNormals);
+    if (this->SplitSources)
+    {
+      *this->SplitSources = std::move(splitSource);
+    }
     if (this->Self->ComputeCellTangents)
     {
       // Per cell, its triangles' area-weighted tangents and normals.
