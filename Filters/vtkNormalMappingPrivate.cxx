@@ -5,7 +5,6 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
-#include <atomic>
 
 bool vtkNormalMapping::detail::MultiversionedLoops()
 {
@@ -46,38 +45,6 @@ vtkDataArray* vtkNormalMapping::detail::PointArray(vtkPolyData* mesh,
     return nullptr;
   }
   return array;
-}
-
-vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::WithPlainCellStorage(vtkPolyData* input)
-{
-#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
-  using Setter = void (vtkPolyData::*)(vtkCellArray*);
-  const std::pair<vtkCellArray*, Setter> cellArrays[] = { { input->GetVerts(),
-                                                            &vtkPolyData::SetVerts },
-    { input->GetLines(), &vtkPolyData::SetLines },
-    { input->GetPolys(), &vtkPolyData::SetPolys },
-    { input->GetStrips(), &vtkPolyData::SetStrips } };
-  vtkSmartPointer<vtkPolyData> plain = input;
-  for (const auto& cells : cellArrays)
-  {
-    if (!cells.first || cells.first->IsStorage64Bit() || cells.first->IsStorage32Bit())
-    {
-      continue;
-    }
-    if (plain == input)
-    {
-      plain = vtkSmartPointer<vtkPolyData>::New();
-      plain->ShallowCopy(input);
-    }
-    vtkNew<vtkCellArray> copy;
-    copy->DeepCopy(cells.first);
-    copy->ConvertTo64BitStorage();
-    (plain->*cells.second)(copy);
-  }
-  return plain;
-#else
-  return input; // VTK 9.1 to 9.5 store cells only as 32- or 64-bit arrays
-#endif
 }
 
 vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArray* cells,
@@ -122,23 +89,6 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   return copy;
 }
 
-vtkIdType vtkNormalMapping::detail::CountUnusableNormals(vtkDataArray* array, vtkIdType n)
-{
-  std::atomic<vtkIdType> count{ 0 };
-  ForEachNormalRange(array,
-    n,
-    [&](vtkIdType begin, vtkIdType end, const auto& normal)
-    {
-      vtkIdType here = 0;
-      for (vtkIdType p = begin; p < end; ++p)
-      {
-        here += vtkNormalMapping::IsUsableNormal(normal(p)) ? 0 : 1;
-      }
-      count += here;
-    });
-  return count;
-}
-
 void vtkNormalMapping::detail::WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter,
   vtkIdType corners)
 {
@@ -151,38 +101,6 @@ void vtkNormalMapping::detail::WarnAboutMixedCorners(vtkPolyDataTangentFrames* f
          "frame there. Split the cells into triangles first (vtkTriangleFilter) to give each its "
          "own.");
   }
-}
-
-bool vtkNormalMapping::detail::PointIdsInRange(vtkPolyDataTangentFrames* filter,
-  vtkPolyData* input,
-  vtkPolyData* output)
-{
-  const vtkIdType numPoints = input->GetNumberOfPoints();
-  std::atomic<bool> bad{ false };
-  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
-  {
-    WithCellStorage(cells,
-      [&](const auto*, const auto* conn)
-      {
-        vtkSMPTools::For(0,
-          cells->GetNumberOfConnectivityIds(),
-          [&](vtkIdType begin, vtkIdType end)
-          {
-            if (!IdsInRange(conn, begin, end, numPoints))
-            {
-              bad = true;
-            }
-          });
-      });
-  }
-  if (bad)
-  {
-    vtkErrorWithObjectMacro(filter,
-      "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
-        << numPoints << "); passing the input through.");
-    output->ShallowCopy(input);
-  }
-  return !bad;
 }
 
 vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(

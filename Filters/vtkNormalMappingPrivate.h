@@ -26,7 +26,6 @@
 
 #include <algorithm>
 #include <cfloat>
-#include <cstdint>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -46,26 +45,6 @@ int UsableThreads();
 /// Whether this build of the module compiled its block loops for several instruction sets
 /// (VTK_NORMALMAPPING_TARGET_CLONES): for the benchmark's description of a build.
 bool MultiversionedLoops();
-
-/**
- * Whether every id of ids[begin, end) is in [0, numPoints), in one pass without an early exit.
- * An id is in range when neither id nor numPoints - 1 - id is negative: in unsigned arithmetic,
- * when neither has its top bit set. One OR per id collects those bits, in a loop that vectorizes
- * with any instruction set (a 64-bit signed comparison does not with SSE2).
- */
-template<typename IdT>
-bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoints)
-{
-  using Bits = std::uint64_t;
-  const Bits last = static_cast<Bits>(numPoints - 1);
-  Bits bits = 0;
-  for (vtkIdType i = begin; i < end; ++i)
-  {
-    const Bits id = static_cast<Bits>(static_cast<vtkIdType>(ids[i]));
-    bits |= id | (last - id);
-  }
-  return (bits >> 63) == 0;
-}
 
 /**
  * `array` when it has `components` components (0: any number) and a tuple for every point of
@@ -161,17 +140,6 @@ void ForEachNormalRange(vtkDataArray* array, vtkIdType n, const F& f)
     });
 }
 
-/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
-vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n);
-
-/**
- * `input` itself when each of its cell arrays stores 32- or 64-bit offsets and connectivity
- * arrays; else a shallow copy of it whose other cell arrays are 64-bit copies. From VTK 9.6 a
- * cell array can also store fixed-size cells (no offsets array) or arrays of other types; the
- * filter reads only the first two storages (WithCellStorage).
- */
-vtkSmartPointer<vtkPolyData> WithPlainCellStorage(vtkPolyData* input);
-
 /// Returns f(offsets, connectivity) with the typed raw storage of a cell array (32 or 64 bit:
 /// see WithPlainCellStorage), so that cells are read without a virtual call per cell.
 template<typename F>
@@ -220,14 +188,6 @@ void CellTriangleStarts(vtkCellArray* cells, T* first)
  * shade with another side's frame.
  */
 void WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter, vtkIdType corners);
-
-/**
- * Whether every point id of the polygons and strips of `input` is in [0, its number of points)
- * (IdsInRange, in parallel); false after an error on `filter` that passes the input through to
- * `output`. Cell arrays must be readable (vtkPolyDataTangentFrames::ExecuteBlock checks both,
- * in that order, before any method runs).
- */
-bool PointIdsInRange(vtkPolyDataTangentFrames* filter, vtkPolyData* input, vtkPolyData* output);
 
 /**
  * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple

@@ -18,9 +18,12 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkVersionMacros.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -30,6 +33,7 @@ vtkStandardNewMacro(vtkPolyDataTangentFrames);
 
 namespace
 {
+using vtkNormalMapping::detail::ForEachNormalRange;
 using vtkNormalMapping::detail::WithCellStorage;
 
 /// `abstract` when it is a numeric array with a tuple per point, else null with `problem` saying
@@ -288,6 +292,118 @@ vtkDataArray* PointNormalsOf(vtkPolyDataTangentFrames* self,
   return nullptr;
 }
 
+/**
+ * Whether every id of ids[begin, end) is in [0, numPoints), in one pass without an early exit.
+ * An id is in range when neither id nor numPoints - 1 - id is negative: in unsigned arithmetic,
+ * when neither has its top bit set. One OR per id collects those bits, in a loop that vectorizes
+ * with any instruction set (a 64-bit signed comparison does not with SSE2).
+ */
+template<typename IdT>
+bool IdsInRange(const IdT* ids, vtkIdType begin, vtkIdType end, vtkIdType numPoints)
+{
+  using Bits = std::uint64_t;
+  const Bits last = static_cast<Bits>(numPoints - 1);
+  Bits bits = 0;
+  for (vtkIdType i = begin; i < end; ++i)
+  {
+    const Bits id = static_cast<Bits>(static_cast<vtkIdType>(ids[i]));
+    bits |= id | (last - id);
+  }
+  return (bits >> 63) == 0;
+}
+
+/**
+ * `input` itself when each of its cell arrays stores 32- or 64-bit offsets and connectivity
+ * arrays; else a shallow copy of it whose other cell arrays are 64-bit copies. From VTK 9.6 a
+ * cell array can also store fixed-size cells (no offsets array) or arrays of other types; the
+ * filter reads only the first two storages (WithCellStorage).
+ */
+vtkSmartPointer<vtkPolyData> WithPlainCellStorage(vtkPolyData* input)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  using Setter = void (vtkPolyData::*)(vtkCellArray*);
+  const std::pair<vtkCellArray*, Setter> cellArrays[] = { { input->GetVerts(),
+                                                            &vtkPolyData::SetVerts },
+    { input->GetLines(), &vtkPolyData::SetLines },
+    { input->GetPolys(), &vtkPolyData::SetPolys },
+    { input->GetStrips(), &vtkPolyData::SetStrips } };
+  vtkSmartPointer<vtkPolyData> plain = input;
+  for (const auto& cells : cellArrays)
+  {
+    if (!cells.first || cells.first->IsStorage64Bit() || cells.first->IsStorage32Bit())
+    {
+      continue;
+    }
+    if (plain == input)
+    {
+      plain = vtkSmartPointer<vtkPolyData>::New();
+      plain->ShallowCopy(input);
+    }
+    vtkNew<vtkCellArray> copy;
+    copy->DeepCopy(cells.first);
+    copy->ConvertTo64BitStorage();
+    (plain->*cells.second)(copy);
+  }
+  return plain;
+#else
+  return input; // VTK 9.1 to 9.5 store cells only as 32- or 64-bit arrays
+#endif
+}
+
+/**
+ * Whether every point id of the polygons and strips of `input` is in [0, its number of points)
+ * (IdsInRange, in parallel); false after an error on `filter` that passes the input through to
+ * `output`. Cell arrays must be readable (vtkPolyDataTangentFrames::ExecuteBlock checks both,
+ * in that order, before any method runs).
+ */
+bool PointIdsInRange(vtkPolyDataTangentFrames* filter, vtkPolyData* input, vtkPolyData* output)
+{
+  const vtkIdType numPoints = input->GetNumberOfPoints();
+  std::atomic<bool> bad{ false };
+  for (vtkCellArray* cells : { input->GetPolys(), input->GetStrips() })
+  {
+    WithCellStorage(cells,
+      [&](const auto*, const auto* conn)
+      {
+        vtkSMPTools::For(0,
+          cells->GetNumberOfConnectivityIds(),
+          [&](vtkIdType begin, vtkIdType end)
+          {
+            if (!IdsInRange(conn, begin, end, numPoints))
+            {
+              bad = true;
+            }
+          });
+      });
+  }
+  if (bad)
+  {
+    vtkErrorWithObjectMacro(filter,
+      "Cannot compute tangent frames: a polygon or strip refers to a point id outside [0, "
+        << numPoints << "); passing the input through.");
+    output->ShallowCopy(input);
+  }
+  return !bad;
+}
+
+/// The number of unusable normals (zero or non-finite, IsUsableNormal) of a 3-component array.
+vtkIdType CountUnusableNormals(vtkDataArray* array, vtkIdType n)
+{
+  std::atomic<vtkIdType> count{ 0 };
+  ForEachNormalRange(array,
+    n,
+    [&](vtkIdType begin, vtkIdType end, const auto& normal)
+    {
+      vtkIdType here = 0;
+      for (vtkIdType p = begin; p < end; ++p)
+      {
+        here += vtkNormalMapping::IsUsableNormal(normal(p)) ? 0 : 1;
+      }
+      count += here;
+    });
+  return count;
+}
+
 } // namespace
 
 vtkPolyDataTangentFrames::vtkPolyDataTangentFrames() = default;
@@ -466,8 +582,7 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   double progressEnd,
   vtkIdType flatIndex)
 {
-  const vtkSmartPointer<vtkPolyData> plain =
-    vtkNormalMapping::detail::WithPlainCellStorage(inputAsGiven);
+  const vtkSmartPointer<vtkPolyData> plain = WithPlainCellStorage(inputAsGiven);
   vtkPolyData* input = plain;
   const auto passThrough = [&]() { output->ShallowCopy(input); };
   // Malformed cell arrays first: nothing below (not even the cell counts) can be trusted.
@@ -491,14 +606,13 @@ void vtkPolyDataTangentFrames::ExecuteBlock(vtkPolyData* inputAsGiven,
   vtkDataArray* cellNormals = nullptr;
   vtkDataArray* normals = PointNormalsOf(this, input, cellNormals);
   // Checked once here for every method, and for kept supplied frames, which list no triangles.
-  if (!vtkNormalMapping::detail::PointIdsInRange(this, input, output))
+  if (!PointIdsInRange(this, input, output))
   {
     return;
   }
   // Counted once here, whether the frames are computed or kept.
-  const vtkIdType unusable = normals
-    ? vtkNormalMapping::detail::CountUnusableNormals(normals, input->GetNumberOfPoints())
-    : 0;
+  const vtkIdType unusable =
+    normals ? CountUnusableNormals(normals, input->GetNumberOfPoints()) : 0;
   this->NumberOfInvalidNormals += unusable;
   const BlockInput block{ input,
     output,
