@@ -22,6 +22,7 @@
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -57,6 +58,33 @@ vtkSmartPointer<vtkPolyData> WithOwnPointArray(vtkPolyData* poly)
   vtkNew<vtkPoints> points;
   points->SetData(data);
   copy->SetPoints(points);
+  return copy;
+}
+
+/// `poly` when its texture coordinates have 2 components or none, else a shallow copy whose
+/// texture coordinates are the first two components of its own (a second of zeros for one).
+vtkSmartPointer<vtkPolyData> WithTwoComponentTCoords(vtkPolyData* poly)
+{
+  vtkDataArray* tcoords = poly->GetPointData()->GetTCoords();
+  if (!tcoords || tcoords->GetNumberOfComponents() == 2)
+  {
+    return poly;
+  }
+  vtkNew<vtkFloatArray> uv;
+  uv->SetName(tcoords->GetName());
+  uv->SetNumberOfComponents(2);
+  uv->SetNumberOfTuples(tcoords->GetNumberOfTuples());
+  const bool hasV = tcoords->GetNumberOfComponents() > 1;
+  for (vtkIdType p = 0; p < tcoords->GetNumberOfTuples(); ++p)
+  {
+    uv->SetTypedTuple(p,
+      std::array<float, 2>{ static_cast<float>(tcoords->GetComponent(p, 0)),
+        hasV ? static_cast<float>(tcoords->GetComponent(p, 1)) : 0.0f }
+        .data());
+  }
+  auto copy = vtkSmartPointer<vtkPolyData>::New();
+  copy->ShallowCopy(poly);
+  copy->GetPointData()->SetTCoords(uv);
   return copy;
 }
 
@@ -149,12 +177,17 @@ protected:
     bool allUnsigned = true;
     bool allTCoords = true;
     int components = 2; // the first count of texture-coordinate components other than 2
+    int firstCount = 0; // the first block's count
+    this->MixedTCoordCounts = false;
     this->ForEachBlock(
       [&](BlockData* block)
       {
         vtkDataArray* tcoords = PolyDataOf(block)->GetPointData()->GetTCoords();
+        const int count = tcoords ? tcoords->GetNumberOfComponents() : 0;
         allTCoords = allTCoords && tcoords;
-        components = components == 2 && tcoords ? tcoords->GetNumberOfComponents() : components;
+        components = components == 2 && tcoords ? count : components;
+        firstCount = firstCount ? firstCount : count;
+        this->MixedTCoordCounts = this->MixedTCoordCounts || (tcoords && count != firstCount);
         auto tangents = vtkNormalMapShading::FindTangents(PolyDataOf(block), actor, this->Settings);
         const bool has = tangents.Use != vtkNormalMapShading::TangentUse::Derivatives;
         this->Frames.PointTangents = this->Frames.PointTangents || has;
@@ -194,6 +227,13 @@ protected:
     // sees a copy without them unless its shader reads them.
     vtkSmartPointer<vtkPolyData> forVTK =
       vtkNormalMapShading::WithoutUnusedVTKTangents(block, actor);
+    // VTK fills one vertex buffer with every block's texture coordinates, with the first
+    // block's count of components for all, reading past the end of a shorter array: blocks
+    // whose counts differ give it theirs with 2 components.
+    if (this->MixedTCoordCounts)
+    {
+      forVTK = WithTwoComponentTCoords(forVTK ? forVTK.Get() : block);
+    }
     // VTK lets a block reuse the vertices appended for an earlier block with the same point,
     // normal and texture-coordinate arrays. With other tangents, or other texture coordinates of
     // the mapper's own, it must not: a new array over the same points makes VTK append the
@@ -413,6 +453,8 @@ private:
   /// The blocks' texture-coordinate components: 0 when a block has none, else the first count
   /// other than 2, else 2.
   int BlockTCoordComponents = 0;
+  /// Whether blocks' texture coordinates have different counts of components.
+  bool MixedTCoordCounts = false;
   vtkNormalMapShading::FrameMix Frames;
   /// The frame of the last surface shader built.
   int SurfaceFrame = vtkNormalMapPolyDataMapper::NOT_APPLIED;
