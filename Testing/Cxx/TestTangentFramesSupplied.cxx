@@ -801,8 +801,8 @@ TEST(TangentFramesSupplied, AnErrorPassesTheInputThroughUnchanged)
       EXPECT_EQ(signs.Get(), run.Output->GetPointData()->GetArray("TangentSigns"));
       EXPECT_EQ(-1.0, signs->GetValue(0));
       EXPECT_EQ(1.0, signs->GetValue(1));
-      EXPECT_EQ(mesh->GetPointData()->GetNumberOfArrays(),
-        run.Output->GetPointData()->GetNumberOfArrays());
+      EXPECT_EQ(
+        mesh->GetPointData()->GetNumberOfArrays(), run.Output->GetPointData()->GetNumberOfArrays());
     }
   }
 }
