@@ -5,6 +5,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <numeric>
 
 bool vtkNormalMapping::detail::MultiversionedLoops()
 {
@@ -89,18 +90,62 @@ vtkSmartPointer<vtkCellArray> vtkNormalMapping::detail::RepointCells(vtkCellArra
   return copy;
 }
 
-void vtkNormalMapping::detail::WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter,
-  vtkIdType corners)
+vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::CutIntoTriangles(vtkPolyData* input,
+  const std::vector<vtkIdType>& cells)
 {
-  if (corners > 0)
+  auto cut = vtkSmartPointer<vtkPolyData>::New();
+  cut->ShallowCopy(input);
+  // Per output cell, the input cell whose cell data it takes: vertices and lines unchanged.
+  vtkNew<vtkIdList> source;
+  const vtkIdType firstSurfaceCell = input->GetNumberOfVerts() + input->GetNumberOfLines();
+  for (vtkIdType c = 0; c < firstSurfaceCell; ++c)
   {
-    vtkWarningWithObjectMacro(filter,
-      << corners
-      << " polygon or strip corners lie on a seam where the cell's triangles need different "
-         "frames; a corner has one point, so some of those triangles shade with the other side's "
-         "frame there. Split the cells into triangles first (vtkTriangleFilter) to give each its "
-         "own.");
+    source->InsertNextId(c);
   }
+  auto next = cells.begin();
+  vtkIdType index = 0; // over the polygons, then the strips
+  for (int kind = 0; kind < 2; ++kind)
+  {
+    const bool strip = kind == 1;
+    vtkCellArray* in = strip ? input->GetStrips() : input->GetPolys();
+    vtkNew<vtkCellArray> out;
+    out->AllocateEstimate(in->GetNumberOfCells(), 3);
+    vtkIdType n;
+    const vtkIdType* pts;
+    for (in->InitTraversal(); in->GetNextCell(n, pts); ++index)
+    {
+      if (next == cells.end() || *next != index)
+      {
+        out->InsertNextCell(n, pts);
+        source->InsertNextId(firstSurfaceCell + index);
+        continue;
+      }
+      ++next;
+      for (vtkIdType j = 0; j + 2 < n; ++j)
+      {
+        vtkIdType tri[3];
+        CellTriangle(pts, j, strip, tri);
+        out->InsertNextCell(3, tri);
+        source->InsertNextId(firstSurfaceCell + index);
+      }
+    }
+    if (strip)
+    {
+      cut->SetStrips(out);
+    }
+    else
+    {
+      cut->SetPolys(out);
+    }
+  }
+  vtkCellData* outCD = cut->GetCellData();
+  outCD->Initialize();
+  outCD->CopyAllocate(input->GetCellData(), source->GetNumberOfIds());
+  vtkNew<vtkIdList> target;
+  target->SetNumberOfIds(source->GetNumberOfIds());
+  std::iota(target->begin(), target->end(), 0);
+  outCD->CopyData(input->GetCellData(), source, target);
+  return cut;
 }
 
 vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(

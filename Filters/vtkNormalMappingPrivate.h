@@ -183,11 +183,13 @@ void CellTriangleStarts(vtkCellArray* cells, T* first)
 }
 
 /**
- * Warns on `filter` when `corners` (a count) corners of split points belong to cells whose
- * triangles there have different frames: a corner has one point id, so some of those triangles
- * shade with another side's frame.
+ * A shallow copy of `input` in which each cell of `cells` (ascending indices over the polygons,
+ * then the strips) is replaced, in place, by its triangles (CellTriangle) as cells of its kind
+ * with 3 points each, so that the triangles keep their order. The cell data of a replaced cell
+ * repeats for each of its triangles.
  */
-void WarnAboutMixedCorners(vtkPolyDataTangentFrames* filter, vtkIdType corners);
+vtkSmartPointer<vtkPolyData> CutIntoTriangles(vtkPolyData* input,
+  const std::vector<vtkIdType>& cells);
 
 /**
  * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple

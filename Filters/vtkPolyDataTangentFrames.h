@@ -21,8 +21,10 @@
  * Mirror seams: a point whose triangles disagree on handedness cannot hold both frames. With
  * Splitting on (the default) such a point is duplicated with all its point data, and the
  * cells on its mirrored (-1) side are re-pointed to the copy; the copies are appended after
- * the input points and the cells keep their order. With Splitting off the point takes the frame
- * of the side with the larger total weight and is counted in NumberOfHandednessConflicts.
+ * the input points and the cells keep their order. A strip crossing a seam, or a polygon folded
+ * in UV, has triangles of both sides at one corner: it is replaced, in place, by its triangles,
+ * each with the cell's cell data, at the cost of a second run. With Splitting off the point takes
+ * the frame of the side with the larger total weight and is counted in NumberOfHandednessConflicts.
  *
  * Cells: triangles, polygons (fan-triangulated on the fly: corner 0 with i, i+1) and triangle
  * strips give frames; vertex and line cells pass through untouched.
@@ -312,10 +314,18 @@ private:
     /// When set, receives the input point that each point appended to the output copies (the
     /// split points' copies, in output order). Null: not asked for.
     std::vector<vtkIdType>* SplitSources = nullptr;
+    /// When set (Splitting), receives the cells (over the polygons, then the strips) that hold a
+    /// corner of a split point whose triangles need frames of both sides; the method then
+    /// writes no output, and ComputeBlock runs it again with those cells cut into triangles.
+    std::vector<vtkIdType>* MixedCells = nullptr;
   };
 
   /// The frames of one polydata whose inputs ExecuteBlock has checked.
   void ComputeBlock(const BlockInput& block);
+
+  /// One run of the method on a block (ComputeBlock); returns the number of triangles it
+  /// computed frames for.
+  vtkIdType RunBlock(const BlockInput& block);
 
   /// Reports `fraction` of a block's execution as the filter's progress; false, with the
   /// block's output emptied, when the execution is to stop (AbortExecute).

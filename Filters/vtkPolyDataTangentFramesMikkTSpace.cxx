@@ -366,9 +366,10 @@ struct Assignment
   std::vector<CornerFrame> SplitFrame; // per new point: its frame
   std::vector<std::pair<vtkIdType, vtkIdType>> Repoint; // (output corner, new point id)
   vtkIdType Conflicts = 0;
-  /// With splitting: strip corners whose strip triangles carry different frames, which their one
-  /// point cannot all take (kept points left out).
-  vtkIdType MixedCorners = 0;
+  /// With splitting: the strips (numbered after the polygons) with a corner whose strip
+  /// triangles carry different frames, which its one point cannot all take (kept points left
+  /// out).
+  std::vector<vtkIdType> MixedCells;
 };
 
 /**
@@ -486,7 +487,12 @@ void Assign(const Surface& s,
         if (!SameFrame(kernelFrames[slotIn(later)], kernelFrames[slot]))
         {
           markConflict(conn[slot]);
-          a.MixedCorners += splitting && !(kept && kept[conn[slot]]) ? 1 : 0;
+          const vtkIdType cell = s.NumPolys + k;
+          if (splitting && !(kept && kept[conn[slot]]) &&
+            (a.MixedCells.empty() || a.MixedCells.back() != cell))
+          {
+            a.MixedCells.push_back(cell);
+          }
           break;
         }
       }
@@ -714,7 +720,11 @@ vtkIdType vtkPolyDataTangentFrames::ComputeMikkTSpace(const BlockInput& block,
   Assignment assignment;
   Assign(surface, result.Corners, numPoints, this->Splitting, block.KeptPoints, assignment);
   this->NumberOfHandednessConflicts += assignment.Conflicts;
-  vtkNormalMapping::detail::WarnAboutMixedCorners(this, assignment.MixedCorners);
+  if (block.MixedCells && !assignment.MixedCells.empty())
+  {
+    *block.MixedCells = std::move(assignment.MixedCells);
+    return result.NumberOfTriangles;
+  }
   this->NumberOfSplitPoints += static_cast<vtkIdType>(assignment.SplitSource.size());
   if (!this->ContinueBlock(block, 0.9))
   {

@@ -495,14 +495,17 @@ struct Repointing
   /// (connectivity position, copy id): polygon positions first, then strip positions after the
   /// polygons' connectivity.
   std::vector<std::pair<vtkIdType, vtkIdType>> Corners;
-  /// Corners of split points whose cell's triangles there have both handednesses: one point id
-  /// cannot give each its side's frame (a strip crossing a mirror seam, a polygon folded in UV).
-  vtkIdType Mixed = 0;
+  /// The cells (over the polygons, then the strips) with a corner of a split point whose
+  /// triangles there have both handednesses: one point id cannot give each its side's frame (a
+  /// strip crossing a mirror seam, a polygon folded in UV).
+  std::vector<vtkIdType> MixedCells;
 };
 
 /**
- * Re-pointing of the corners on the mirrored side of split points. A corner's side is the
- * majority handedness of its cell's triangles that hold it.
+ * Re-pointing of the corners on the mirrored side of split points: the corners whose cell's
+ * triangles there have the -1 handedness (or none). A corner whose triangles have both is not
+ * re-pointed; its cell is listed in MixedCells instead. So, once no cell is mixed, every split
+ * point's copy takes the corners of the triangles that gave the point its -1 sum.
  */
 Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
@@ -555,8 +558,14 @@ Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
             positive += h > 0 ? 1 : 0;
             negative += h < 0 ? 1 : 0;
           }
-          repoint.Mixed += positive > 0 && negative > 0 ? 1 : 0;
-          if (negative > positive)
+          if (positive > 0 && negative > 0)
+          {
+            if (repoint.MixedCells.empty() || repoint.MixedCells.back() != firstCell + c)
+            {
+              repoint.MixedCells.push_back(firstCell + c);
+            }
+          }
+          else if (negative > 0)
           {
             const auto it = std::lower_bound(splits.begin(),
               splits.end(),
@@ -571,36 +580,6 @@ Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
     base += cells->GetNumberOfConnectivityIds();
   }
   return repoint;
-}
-
-/**
- * Leaves out the split points whose copy no corner moves to (a polygon corner whose triangles tie
- * on handedness stays with the point): they stay conflicts, unsplit. The copies of the others
- * are renumbered in order.
- */
-void DropUnusedCopies(std::vector<SplitPoint>& splits,
-  std::vector<std::pair<vtkIdType, vtkIdType>>& repoint,
-  vtkIdType numPoints)
-{
-  std::vector<vtkIdType> copyId(splits.size(), -1);
-  for (const auto& r : repoint)
-  {
-    copyId[r.second - numPoints] = 0;
-  }
-  vtkIdType used = 0;
-  for (size_t i = 0; i < splits.size(); ++i)
-  {
-    if (copyId[i] == 0)
-    {
-      copyId[i] = numPoints + used;
-      splits[used++] = splits[i];
-    }
-  }
-  splits.resize(static_cast<size_t>(used));
-  for (auto& r : repoint)
-  {
-    r.second = copyId[r.second - numPoints];
-  }
 }
 
 /**
@@ -1088,8 +1067,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
 
   /**
    * The output (WriteSplitOutput): the split points' -1 frames after the input points', the
-   * corners on their mirrored side re-pointed to them (split points whose copy no corner takes
-   * stay unsplit), and the cell tangents when asked for.
+   * corners on their mirrored side re-pointed to them, and the cell tangents when asked for; or,
+   * when cells are mixed (MirroredCorners) and MixedCells asks for them, only those cells.
    */
   template<typename OutT>
   void WriteOutput(std::vector<SplitPoint> splits,
@@ -1098,9 +1077,12 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   {
     Repointing repoint =
       MirroredCorners(this->Cells, this->Tris, *this->Handedness, splits, this->NumberOfPoints);
-    DropUnusedCopies(splits, repoint.Corners, this->NumberOfPoints);
+    if (this->MixedCells && !repoint.MixedCells.empty())
+    {
+      *this->MixedCells = std::move(repoint.MixedCells);
+      return;
+    }
     this->Self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
-    vtkNormalMapping::detail::WarnAboutMixedCorners(this->Self, repoint.Mixed);
     frames.Truncate(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
     const FrameStorage<OutT> out = frames.Storage();
     std::vector<vtkIdType> splitSource(splits.size());
@@ -1230,10 +1212,9 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   this->Continue(1.0);
 }
 
-void vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
+vtkIdType vtkPolyDataTangentFrames::RunBlock(const BlockInput& block)
 {
   Internals run(block, this);
-  const vtkIdType degenerateBefore = this->NumberOfDegenerateTriangles;
   if (this->DoubleOutput(block.Input))
   {
     run.Run<double>();
@@ -1242,7 +1223,38 @@ void vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
   {
     run.Run<float>();
   }
-  const vtkIdType triangles = run.NumberOfTriangles;
+  return run.NumberOfTriangles;
+}
+
+void vtkPolyDataTangentFrames::ComputeBlock(const BlockInput& block)
+{
+  vtkIdType* const counts[] = { &this->NumberOfDegenerateTriangles,
+    &this->NumberOfFallbackPoints,
+    &this->NumberOfHandednessConflicts,
+    &this->NumberOfSplitPoints };
+  const vtkIdType before[] = { *counts[0], *counts[1], *counts[2], *counts[3] };
+  std::vector<vtkIdType> mixedCells;
+  BlockInput first = block;
+  first.MixedCells = this->Splitting ? &mixedCells : nullptr;
+  vtkIdType triangles = this->RunBlock(first);
+  if (!mixedCells.empty())
+  {
+    // A corner has one point id, so a cell whose triangles need both sides' frames at a corner
+    // is cut into its triangles, each of which can then take its own side's point. The triangles
+    // keep their order, so every frame is the one the first run computed.
+    for (int i = 0; i < 4; ++i)
+    {
+      *counts[i] = before[i];
+    }
+    const vtkSmartPointer<vtkPolyData> cut =
+      vtkNormalMapping::detail::CutIntoTriangles(block.Input, mixedCells);
+    BlockInput again = block;
+    again.Input = cut;
+    again.CellNormals = block.CellNormals ? cut->GetCellData()->GetNormals() : nullptr;
+    again.ProgressBegin = block.ProgressEnd;
+    triangles = this->RunBlock(again);
+  }
+  const vtkIdType degenerateBefore = before[0];
   if (triangles > 0 && this->NumberOfDegenerateTriangles - degenerateBefore == triangles)
   {
     // Not an error (the output is complete), but no frame came from the texture coordinates.

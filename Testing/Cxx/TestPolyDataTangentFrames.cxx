@@ -465,6 +465,45 @@ void ForEachTriangle(vtkPolyData* mesh,
   }
 }
 
+/**
+ * For a mesh in the xy plane (winding normal +z up to the triangles' orientation): at each corner
+ * of each triangle, the tangent is along the triangle's own dP/du and the sign is that of its UV
+ * winding. Returns the number of triangles.
+ */
+int ExpectEachTriangleSeesItsOwnFrame(vtkPolyData* out)
+{
+  vtkDataArray* t = out->GetPointData()->GetTangents();
+  vtkDataArray* sign = out->GetPointData()->GetArray("TangentSigns");
+  vtkDataArray* tc = out->GetPointData()->GetTCoords();
+  int triangleCount = 0;
+  ForEachTriangle(out,
+    [&](vtkIdType a, vtkIdType b, vtkIdType c)
+    {
+      ++triangleCount;
+      Vec pa, pb, pc;
+      out->GetPoint(a, pa.data());
+      out->GetPoint(b, pb.data());
+      out->GetPoint(c, pc.data());
+      const Vec e1{ pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+      const Vec e2{ pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
+      const double du1 = tc->GetComponent(b, 0) - tc->GetComponent(a, 0);
+      const double dv1 = tc->GetComponent(b, 1) - tc->GetComponent(a, 1);
+      const double du2 = tc->GetComponent(c, 0) - tc->GetComponent(a, 0);
+      const double dv2 = tc->GetComponent(c, 1) - tc->GetComponent(a, 1);
+      const double det = du1 * dv2 - du2 * dv1;
+      // dP/du = (dv2 e1 - dv1 e2) / det; the winding normal is +z.
+      const Vec dPdu{ (dv2 * e1[0] - dv1 * e2[0]) / det, (dv2 * e1[1] - dv1 * e2[1]) / det, 0 };
+      const double winding = Cross(e1, e2)[2] > 0 ? 1.0 : -1.0;
+      for (vtkIdType p : { a, b, c })
+      {
+        // The frames are exact up to float rounding of the output.
+        EXPECT_LT(AngleDeg(Get3(t, p), dPdu), 1e-4) << "point " << p;
+        EXPECT_EQ(sign->GetComponent(p, 0), det * winding > 0 ? 1.0 : -1.0) << "point " << p;
+      }
+    });
+  return triangleCount;
+}
+
 TEST(PolyDataTangentFrames, SplitCornersOfPolygonsAndStripsSeeTheirOwnFrame)
 {
   // A plane over [-0.5, 0.5]^2 whose texture is mirrored at x = 0 (u = |2x|): u grows towards -x
@@ -502,91 +541,138 @@ TEST(PolyDataTangentFrames, SplitCornersOfPolygonsAndStripsSeeTheirOwnFrame)
       vtkSmartPointer<vtkPolyData> out =
         RunFrames(mesh, [&](vtkPolyDataTangentFrames* f) { f->SetMethod(method); });
       EXPECT_EQ(out->GetNumberOfPoints(), mesh->GetNumberOfPoints() + 5); // the seam column
-      vtkDataArray* t = out->GetPointData()->GetTangents();
-      vtkDataArray* sign = out->GetPointData()->GetArray("TangentSigns");
-      vtkDataArray* tc = out->GetPointData()->GetTCoords();
-      int triangleCount = 0;
-      ForEachTriangle(out,
-        [&](vtkIdType a, vtkIdType b, vtkIdType c)
-        {
-          ++triangleCount;
-          Vec pa, pb, pc;
-          out->GetPoint(a, pa.data());
-          out->GetPoint(b, pb.data());
-          out->GetPoint(c, pc.data());
-          const Vec e1{ pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
-          const Vec e2{ pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
-          const double du1 = tc->GetComponent(b, 0) - tc->GetComponent(a, 0);
-          const double dv1 = tc->GetComponent(b, 1) - tc->GetComponent(a, 1);
-          const double du2 = tc->GetComponent(c, 0) - tc->GetComponent(a, 0);
-          const double dv2 = tc->GetComponent(c, 1) - tc->GetComponent(a, 1);
-          const double det = du1 * dv2 - du2 * dv1;
-          // dP/du = (dv2 e1 - dv1 e2) / det; the winding normal is +z.
-          const Vec dPdu{ (dv2 * e1[0] - dv1 * e2[0]) / det, (dv2 * e1[1] - dv1 * e2[1]) / det, 0 };
-          const double winding = Cross(e1, e2)[2] > 0 ? 1.0 : -1.0;
-          for (vtkIdType p : { a, b, c })
-          {
-            // The plane's frames are exact up to float rounding of the output.
-            EXPECT_LT(AngleDeg(Get3(t, p), dPdu), 1e-4) << "point " << p;
-            EXPECT_EQ(sign->GetComponent(p, 0), det * winding > 0 ? 1.0 : -1.0) << "point " << p;
-          }
-        });
-      EXPECT_EQ(triangleCount, 64);
+      EXPECT_EQ(ExpectEachTriangleSeesItsOwnFrame(out), 64);
     }
 }
 
-TEST(PolyDataTangentFrames, CornersThatCannotSplitAreWarnedAboutAndMakeNoCopy)
+/// The values of a point or cell array, as doubles, for exact comparison.
+std::vector<double> ValuesOf(vtkDataArray* array)
 {
-  // 1. One strip across a mirror seam (u = |x - 2|, points in pairs along x): at the seam points
-  //    strip triangles of both handednesses share a strip corner, which has one point id. Every
-  //    method warns and names the number of such corners; without splitting there is nothing to
-  //    warn about (the points take one side's frame, as conflicts).
-  vtkNew<vtkPolyData> strip;
+  std::vector<double> values;
+  for (vtkIdType i = 0; array && i < array->GetNumberOfValues(); ++i)
+  {
+    values.push_back(array->GetVariantValue(i).ToDouble());
+  }
+  return values;
+}
+
+/// The point ids of every polygon, then every strip, each cell prefixed by its size.
+std::vector<vtkIdType> ConnectivityOf(vtkPolyData* mesh)
+{
+  std::vector<vtkIdType> ids;
+  for (vtkCellArray* cells : { mesh->GetPolys(), mesh->GetStrips() })
+  {
+    vtkIdType n;
+    const vtkIdType* pts;
+    for (cells->InitTraversal(); cells->GetNextCell(n, pts);)
+    {
+      ids.push_back(n);
+      ids.insert(ids.end(), pts, pts + n);
+    }
+  }
+  return ids;
+}
+
+TEST(PolyDataTangentFrames, CellsWhoseCornersNeedBothSidesAreCutIntoTriangles)
+{
+  // 1. One strip across a mirror seam (u = |x - 2|, points in pairs along x), with a cell array:
+  //    at the seam points, strip triangles of both handednesses share a strip corner, which has
+  //    one point id. The strip winds counterclockwise about its normals (+z). With splitting, every
+  //    method cuts the strip into its 8 triangles, as one-triangle strips in strip order, and
+  //    splits the 2 seam points, so that each triangle sees its own frame at each corner. The
+  //    output is the one for those one-triangle strips given as input, bit for bit; each takes the
+  //    strip's cell data. Without splitting the strip stays whole (its seam points take one side's
+  //    frame, as conflicts).
+  const auto makeStrip = [](bool cut)
   {
     vtkNew<vtkPoints> points;
     vtkNew<vtkFloatArray> uv, normals;
     uv->SetNumberOfComponents(2);
     normals->SetNumberOfComponents(3);
-    vtkNew<vtkIdList> ids;
+    std::vector<vtkIdType> ids;
     for (int i = 0; i <= 4; ++i)
     {
-      for (int j = 0; j < 2; ++j)
+      for (int j : { 1, 0 })
       {
-        ids->InsertNextId(points->InsertNextPoint(i, j, 0));
+        ids.push_back(points->InsertNextPoint(i, j, 0));
         uv->InsertNextTuple2(std::abs(i - 2.0), j);
         normals->InsertNextTuple3(0, 0, 1);
       }
     }
     vtkNew<vtkCellArray> strips;
-    strips->InsertNextCell(ids);
+    vtkNew<vtkIntArray> tag;
+    tag->SetName("Tag");
+    if (!cut)
+    {
+      strips->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+      tag->InsertNextValue(7);
+    }
+    for (vtkIdType j = 0; cut && j + 2 < static_cast<vtkIdType>(ids.size()); ++j)
+    {
+      // Strip triangle j as a strip of its own, every odd one reversed to keep the winding.
+      const vtkIdType tri[3] = { ids[j % 2 ? j + 1 : j], ids[j % 2 ? j : j + 1], ids[j + 2] };
+      strips->InsertNextCell(3, tri);
+      tag->InsertNextValue(7);
+    }
+    vtkNew<vtkPolyData> strip;
     strip->SetPoints(points);
     strip->SetStrips(strips);
     strip->GetPointData()->SetTCoords(uv);
     strip->GetPointData()->SetNormals(normals);
-  }
-  const std::string warning = "polygon or strip corners lie on a seam";
+    strip->GetCellData()->AddArray(tag);
+    return vtkSmartPointer<vtkPolyData>(strip);
+  };
+  const vtkSmartPointer<vtkPolyData> strip = makeStrip(false);
+  const vtkSmartPointer<vtkPolyData> triangles = makeStrip(true);
   for (int method :
     { vtkPolyDataTangentFrames::ANGLE_WEIGHTED, vtkPolyDataTangentFrames::MIKKTSPACE })
   {
     SCOPED_TRACE(vtkPolyDataTangentFrames::GetMethodName(method));
     for (bool splitting : { true, false })
     {
-      vtkNew<vtkPolyDataTangentFrames> filter;
-      Messages messages(filter);
-      filter->SetInputData(strip);
-      filter->SetMethod(method);
-      filter->SetSplitting(splitting);
-      filter->Update();
-      ExpectValidFrames(filter->GetOutput());
-      EXPECT_EQ(messages.Has(messages.Warnings, "2 " + warning), splitting);
-      EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
+      SCOPED_TRACE(splitting ? "splitting" : "no splitting");
+      const auto run = [&](vtkPolyData* input)
+      {
+        vtkNew<vtkPolyDataTangentFrames> filter;
+        Messages messages(filter);
+        filter->SetInputData(input);
+        filter->SetMethod(method);
+        filter->SetSplitting(splitting);
+        filter->ComputeCellTangentsOn();
+        filter->Update();
+        EXPECT_TRUE(messages.Warnings.empty()) << messages.Warnings.front();
+        EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
+        EXPECT_EQ(filter->GetNumberOfSplitPoints(), splitting ? 2 : 0);
+        vtkSmartPointer<vtkPolyData> out = filter->GetOutput();
+        ExpectValidFrames(out);
+        return out;
+      };
+      vtkSmartPointer<vtkPolyData> out = run(strip);
+      EXPECT_EQ(out->GetNumberOfStrips(), splitting ? 8 : 1);
+      EXPECT_EQ(out->GetCellData()->GetTangents()->GetNumberOfTuples(), splitting ? 8 : 1);
+      EXPECT_EQ(
+        ValuesOf(out->GetCellData()->GetArray("Tag")), std::vector<double>(splitting ? 8 : 1, 7.0));
+      if (!splitting)
+      {
+        continue;
+      }
+      EXPECT_EQ(ExpectEachTriangleSeesItsOwnFrame(out), 8);
+      vtkSmartPointer<vtkPolyData> expected = run(triangles);
+      EXPECT_EQ(ConnectivityOf(out), ConnectivityOf(expected));
+      for (const char* name : { "Tangents", "TangentSigns", "Normals" })
+      {
+        EXPECT_EQ(ValuesOf(out->GetPointData()->GetArray(name)),
+          ValuesOf(expected->GetPointData()->GetArray(name)))
+          << name;
+      }
+      EXPECT_EQ(ValuesOf(out->GetCellData()->GetTangents()),
+        ValuesOf(expected->GetCellData()->GetTangents()));
     }
   }
 
   // 2. A quad folded in UV: its fan triangles (0, 1, 2) and (0, 2, 3) have opposite handedness
-  //    and tie at corners 0 and 2. Those points are conflicts, but no corner moves to a copy, so
-  //    none is made (none would be used) and none is counted as split; the corners are warned
-  //    about.
+  //    and tie at corners 0 and 2. With splitting (the default) the quad becomes those two
+  //    triangles, and points 0 and 2 are split between them.
   vtkNew<vtkPolyData> quad;
   {
     vtkNew<vtkPoints> points;
@@ -613,11 +699,14 @@ TEST(PolyDataTangentFrames, CornersThatCannotSplitAreWarnedAboutAndMakeNoCopy)
   Messages messages(filter);
   filter->SetInputData(quad);
   filter->Update();
-  ExpectValidFrames(filter->GetOutput());
-  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 4);
-  EXPECT_EQ(filter->GetNumberOfSplitPoints(), 0);
+  vtkPolyData* out = filter->GetOutput();
+  ExpectValidFrames(out);
+  EXPECT_TRUE(messages.Warnings.empty());
+  EXPECT_EQ(out->GetNumberOfPolys(), 2);
+  EXPECT_EQ(out->GetNumberOfPoints(), 6);
+  EXPECT_EQ(filter->GetNumberOfSplitPoints(), 2);
   EXPECT_EQ(filter->GetNumberOfHandednessConflicts(), 2);
-  EXPECT_TRUE(messages.Has(messages.Warnings, "2 " + warning));
+  EXPECT_EQ(ExpectEachTriangleSeesItsOwnFrame(out), 2);
 }
 
 TEST(PolyDataTangentFrames, SplitPointsTakeEveryPointArrayWithItsMetadata)
@@ -1534,7 +1623,8 @@ TEST(PolyDataTangentFrames, SplitCornersAfterCellsWithoutPointsFindTheirCells)
   // before each of its cells. The corners of split points are found among the connectivity
   // entries and traced back to their cell, which must pass over the cells without points (they
   // start where the next cell does). Every method gives the points, the frames and the
-  // re-pointed cells of the mesh without the short cells.
+  // re-pointed cells of the mesh without the short cells (strips across the seams cut into
+  // triangles in both).
   auto polygons = vtkNormalMapping::MakeTorus(MirroredTorusOptions(16, 4));
   vtkNew<vtkStripper> stripper;
   stripper->SetInputData(polygons);
@@ -1588,19 +1678,29 @@ TEST(PolyDataTangentFrames, SplitCornersAfterCellsWithoutPointsFindTheirCells)
           ASSERT_EQ(got->GetVariantValue(i), want->GetVariantValue(i)) << name << " value " << i;
         }
       }
+      // The short cells pass through, two before each cell of the reference's (or before the
+      // triangles a cut cell became).
       vtkCellArray* got = strips ? out->GetStrips() : out->GetPolys();
       vtkCellArray* want = strips ? reference->GetStrips() : reference->GetPolys();
-      ASSERT_EQ(got->GetNumberOfCells(), 3 * want->GetNumberOfCells());
+      std::vector<std::vector<vtkIdType>> gotCells;
+      vtkIdType shortCells = 0;
       vtkNew<vtkIdList> a, b;
+      for (vtkIdType c = 0; c < got->GetNumberOfCells(); ++c)
+      {
+        got->GetCellAtId(c, b);
+        if (b->GetNumberOfIds() < 3)
+        {
+          ++shortCells;
+          continue;
+        }
+        gotCells.emplace_back(b->begin(), b->end());
+      }
+      EXPECT_EQ(shortCells, 2 * original->GetNumberOfCells());
+      ASSERT_EQ(static_cast<vtkIdType>(gotCells.size()), want->GetNumberOfCells());
       for (vtkIdType c = 0; c < want->GetNumberOfCells(); ++c)
       {
         want->GetCellAtId(c, a);
-        got->GetCellAtId(3 * c + 2, b);
-        ASSERT_EQ(a->GetNumberOfIds(), b->GetNumberOfIds());
-        for (vtkIdType k = 0; k < a->GetNumberOfIds(); ++k)
-        {
-          ASSERT_EQ(a->GetId(k), b->GetId(k)) << "cell " << c << ", corner " << k;
-        }
+        EXPECT_EQ(std::vector<vtkIdType>(a->begin(), a->end()), gotCells[c]) << "cell " << c;
       }
     }
   }

@@ -510,6 +510,28 @@ TestMesh MirroredStrip(int n)
   return m;
 }
 
+/// The mesh with each strip of 3 or more points replaced by its triangles as one-triangle strips,
+/// in strip order, every odd one reversed to keep the strip's winding: what the filter cuts a
+/// strip into when its triangles need different frames at a corner.
+TestMesh WithStripsCut(TestMesh m)
+{
+  std::vector<std::vector<vtkIdType>> cut;
+  for (const std::vector<vtkIdType>& s : m.Strips)
+  {
+    if (s.size() < 3)
+    {
+      cut.push_back(s);
+    }
+    for (size_t j = 0; j + 2 < s.size(); ++j)
+    {
+      const bool odd = (j & 1) != 0;
+      cut.push_back({ s[odd ? j + 1 : j], s[odd ? j : j + 1], s[j + 2] });
+    }
+  }
+  m.Strips = cut;
+  return m;
+}
+
 /// Torus of nu x nv quads with u mirrored on half of it, some quads split, a band of strips
 /// (or, with strips false, quads there too) and a seam; big enough to spread over several
 /// threads.
@@ -895,14 +917,16 @@ TEST(PolyDataTangentFramesMikkTSpace, Strips)
   const FilterRun run = RunFilter(input);
   ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
   vtkPolyData* out = run.Output;
-  // Strip corners 2 and 3 (x = 1) are in triangles of both halves: they take the frame of
-  // their first strip triangle (left half, mirrored) and their points are conflicts. Every
-  // point has one strip corner, so nothing can be split.
+  // Strip corners 2 and 3 (x = 1) are in triangles of both halves, whose frames one strip corner
+  // cannot carry: the strip is cut into its triangles (one-triangle strips), and points 2 and 3
+  // are conflicts split between them. Their first triangle (left half, mirrored) keeps them.
   EXPECT_EQ(run.Conflicts, 2);
-  EXPECT_EQ(run.SplitPoints, 0);
-  EXPECT_EQ(out->GetNumberOfPoints(), input->GetNumberOfPoints());
-  ExpectCornersCarryOwnFrames(input, out);
-  // Left half (x < 1, u = 1 - x) with the strip's clockwise winding: T = -x; right: T = +x.
+  EXPECT_EQ(run.SplitPoints, 2);
+  EXPECT_EQ(out->GetNumberOfPoints(), input->GetNumberOfPoints() + 2);
+  const vtkSmartPointer<vtkPolyData> cut = WithStripsCut(m).Build();
+  ExpectCornersCarryOwnFrames(cut, out);
+  // Left half (x < 1, u = 1 - x) with the strip's clockwise winding: T = -x; right: T = +x, also
+  // at the copies of points 2 and 3.
   for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
   {
     const mikk::CornerFrame f = PointFrame(out, p);
@@ -912,18 +936,15 @@ TEST(PolyDataTangentFramesMikkTSpace, Strips)
   }
   EXPECT_EQ(PointFrame(out, 2).Sign, PointFrame(out, 0).Sign);
   EXPECT_EQ(PointFrame(out, 4).Sign, -PointFrame(out, 0).Sign);
+  EXPECT_EQ(PointFrame(out, 8).Sign, PointFrame(out, 4).Sign);
 
-  // The same strip as explicit triangles gives the same frames at the non-seam points.
-  TestMesh tris = MirroredStrip(3);
-  const std::vector<vtkIdType> s = tris.Strips[0];
+  // The same triangles as polygons give the same frames, bit for bit, split points included.
+  TestMesh tris = WithStripsCut(MirroredStrip(3));
+  tris.Polys = tris.Strips;
   tris.Strips.clear();
-  for (size_t j = 0; j + 2 < s.size(); ++j)
-  {
-    const bool odd = (j & 1) != 0;
-    tris.Polys.push_back({ s[odd ? j + 1 : j], s[odd ? j : j + 1], s[j + 2] });
-  }
   const FilterRun polyRun = RunFilter(tris.Build());
-  for (vtkIdType p : { 0, 1, 6, 7 })
+  ASSERT_EQ(polyRun.Output->GetNumberOfPoints(), out->GetNumberOfPoints());
+  for (vtkIdType p = 0; p < out->GetNumberOfPoints(); ++p)
   {
     EXPECT_TRUE(BitEqual(PointFrame(out, p), PointFrame(polyRun.Output, p))) << "point " << p;
   }
@@ -967,7 +988,9 @@ TEST(PolyDataTangentFramesMikkTSpace, MixedCellTypes)
     });
   ASSERT_TRUE(run.Errors.empty()) << Join(run.Errors);
   vtkPolyData* out = run.Output;
-  ExpectCornersCarryOwnFrames(input, out);
+  // The strip crosses the mirror seam at x = 1: it is cut into its 6 triangles.
+  const vtkSmartPointer<vtkPolyData> cut = WithStripsCut(m).Build();
+  ExpectCornersCarryOwnFrames(cut, out);
   // Verts and lines untouched.
   ASSERT_EQ(out->GetVerts()->GetNumberOfCells(), 2);
   EXPECT_EQ(CellIds(out->GetVerts(), 1), std::vector<vtkIdType>{ 5 });
@@ -975,13 +998,16 @@ TEST(PolyDataTangentFramesMikkTSpace, MixedCellTypes)
   EXPECT_EQ(CellIds(out->GetLines(), 0), m.Lines[0]);
   // Strip re-pointed where the polygons (first in corner order) took a point's first frame.
   EXPECT_GT(run.SplitPoints, 0);
-  // Cell data passed through; cell tangents: zero for verts/lines, unit and perpendicular to
-  // the cell plane (z = 0) for the polygons and the strip.
-  ASSERT_EQ(out->GetNumberOfCells(), numCells);
-  EXPECT_EQ(Values<int>(out->GetCellData()->GetArray("CellTag")), Values<int>(cellTag));
+  // Cell data passed through, the strip's repeated for each of its triangles; cell tangents:
+  // zero for verts/lines, unit and perpendicular to the cell plane (z = 0) for the polygons and
+  // the strip's triangles.
+  ASSERT_EQ(out->GetNumberOfCells(), numCells + 5);
+  std::vector<int> tags = Values<int>(cellTag);
+  tags.insert(tags.end(), 5, tags.back());
+  EXPECT_EQ(Values<int>(out->GetCellData()->GetArray("CellTag")), tags);
   vtkDataArray* ct = out->GetCellData()->GetTangents();
   ASSERT_NE(ct, nullptr);
-  for (vtkIdType c = 0; c < numCells; ++c)
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
   {
     double t[3];
     ct->GetTuple(c, t);
