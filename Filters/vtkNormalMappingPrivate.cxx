@@ -138,26 +138,41 @@ vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::CutIntoTriangles(vtkPolyD
       cut->SetPolys(out);
     }
   }
+  vtkCellData* inCD = input->GetCellData();
   vtkCellData* outCD = cut->GetCellData();
   outCD->Initialize();
-  outCD->CopyAllocate(input->GetCellData(), source->GetNumberOfIds());
   vtkNew<vtkIdList> target;
   target->SetNumberOfIds(source->GetNumberOfIds());
   std::iota(target->begin(), target->end(), 0);
-  outCD->CopyData(input->GetCellData(), source, target);
+  for (int k = 0; k < inCD->GetNumberOfArrays(); ++k)
+  {
+    const int attribute = inCD->IsArrayAnAttribute(k);
+    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+    {
+      continue;
+    }
+    vtkAbstractArray* array = inCD->GetAbstractArray(k);
+    if (array->GetNumberOfTuples() < input->GetNumberOfCells())
+    {
+      outCD->AddArray(array);
+    }
+    else
+    {
+      vtkSmartPointer<vtkAbstractArray> copy = EmptyCopyOf(array);
+      copy->SetNumberOfTuples(source->GetNumberOfIds());
+      copy->InsertTuples(target, source, array);
+      outCD->AddArray(copy);
+    }
+    if (attribute >= 0)
+    {
+      outCD->SetActiveAttribute(outCD->GetNumberOfArrays() - 1, attribute);
+    }
+  }
   return cut;
 }
 
-vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(
-  vtkAbstractArray* array,
-  vtkIdType numIn,
-  const std::vector<vtkIdType>& source)
+vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::EmptyCopyOf(vtkAbstractArray* array)
 {
-  if (array->GetNumberOfTuples() < numIn)
-  {
-    return array;
-  }
-  const vtkIdType extra = static_cast<vtkIdType>(source.size());
   vtkSmartPointer<vtkAbstractArray> copy = vtk::TakeSmartPointer(array->NewInstance());
   copy->SetNumberOfComponents(array->GetNumberOfComponents());
   copy->SetName(array->GetName());
@@ -171,6 +186,20 @@ vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(
   {
     vtkDataArray::SafeDownCast(copy)->SetLookupTable(values->GetLookupTable());
   }
+  return copy;
+}
+
+vtkSmartPointer<vtkAbstractArray> vtkNormalMapping::detail::ExtendPointArray(
+  vtkAbstractArray* array,
+  vtkIdType numIn,
+  const std::vector<vtkIdType>& source)
+{
+  if (array->GetNumberOfTuples() < numIn)
+  {
+    return array;
+  }
+  const vtkIdType extra = static_cast<vtkIdType>(source.size());
+  vtkSmartPointer<vtkAbstractArray> copy = EmptyCopyOf(array);
   copy->SetNumberOfTuples(numIn + extra);
   copy->InsertTuples(0, numIn, 0, array);
   vtkNew<vtkIdList> src, dst;

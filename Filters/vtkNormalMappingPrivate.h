@@ -186,10 +186,15 @@ void CellTriangleStarts(vtkCellArray* cells, T* first)
  * A shallow copy of `input` in which each cell of `cells` (ascending indices over the polygons,
  * then the strips) is replaced, in place, by its triangles (CellTriangle) as cells of its kind
  * with 3 points each, so that the triangles keep their order. The cell data of a replaced cell
- * repeats for each of its triangles.
+ * repeats for each of its triangles; cell arrays shorter than the cells pass as they are, and
+ * global cell ids are dropped (the triangles of a cell would repeat its id).
  */
 vtkSmartPointer<vtkPolyData> CutIntoTriangles(vtkPolyData* input,
   const std::vector<vtkIdType>& cells);
+
+/// An empty array of the class of `array` with its name, components, component names,
+/// information and lookup table.
+vtkSmartPointer<vtkAbstractArray> EmptyCopyOf(vtkAbstractArray* array);
 
 /**
  * A copy of a point array cut to its first numIn tuples, with source.size() more: tuple

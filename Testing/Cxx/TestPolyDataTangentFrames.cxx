@@ -581,8 +581,8 @@ TEST(PolyDataTangentFrames, CellsWhoseCornersNeedBothSidesAreCutIntoTriangles)
   //    method cuts the strip into its 8 triangles, as one-triangle strips in strip order, and
   //    splits the 2 seam points, so that each triangle sees its own frame at each corner. The
   //    output is the one for those one-triangle strips given as input, bit for bit; each takes the
-  //    strip's cell data. Without splitting the strip stays whole (its seam points take one side's
-  //    frame, as conflicts).
+  //    strip's cell data but for its global id. Without splitting the strip stays whole (its seam
+  //    points take one side's frame, as conflicts).
   const auto makeStrip = [](bool cut)
   {
     vtkNew<vtkPoints> points;
@@ -620,6 +620,16 @@ TEST(PolyDataTangentFrames, CellsWhoseCornersNeedBothSidesAreCutIntoTriangles)
     strip->GetPointData()->SetTCoords(uv);
     strip->GetPointData()->SetNormals(normals);
     strip->GetCellData()->AddArray(tag);
+    vtkNew<vtkIdTypeArray> globalIds; // one id per cell
+    globalIds->SetName("GlobalIds");
+    for (vtkIdType c = 0; c < strips->GetNumberOfCells(); ++c)
+    {
+      globalIds->InsertNextValue(100 + c);
+    }
+    strip->GetCellData()->SetGlobalIds(globalIds);
+    vtkNew<vtkIntArray> empty; // shorter than the cells
+    empty->SetName("Empty");
+    strip->GetCellData()->AddArray(empty);
     return vtkSmartPointer<vtkPolyData>(strip);
   };
   const vtkSmartPointer<vtkPolyData> strip = makeStrip(false);
@@ -652,6 +662,12 @@ TEST(PolyDataTangentFrames, CellsWhoseCornersNeedBothSidesAreCutIntoTriangles)
       EXPECT_EQ(out->GetCellData()->GetTangents()->GetNumberOfTuples(), splitting ? 8 : 1);
       EXPECT_EQ(
         ValuesOf(out->GetCellData()->GetArray("Tag")), std::vector<double>(splitting ? 8 : 1, 7.0));
+      // The triangles of a cut cell would repeat its global id: dropped. An array shorter than
+      // the cells cannot follow them and passes as it is.
+      EXPECT_EQ(ValuesOf(out->GetCellData()->GetGlobalIds()),
+        splitting ? std::vector<double>() : std::vector<double>{ 100 });
+      ASSERT_NE(out->GetCellData()->GetArray("Empty"), nullptr);
+      EXPECT_EQ(out->GetCellData()->GetArray("Empty")->GetNumberOfTuples(), 0);
       if (!splitting)
       {
         continue;

@@ -494,9 +494,25 @@ double Length(const double v[3])
   return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
+/// The point ids of cell c, read through the arrays' generic API.
+std::vector<vtkIdType> CellAt(vtkCellArray* cells, vtkIdType c)
+{
+  const vtkIdType begin = static_cast<vtkIdType>(cells->GetOffsetsArray()->GetComponent(c, 0));
+  const vtkIdType end = static_cast<vtkIdType>(cells->GetOffsetsArray()->GetComponent(c + 1, 0));
+  std::vector<vtkIdType> ids;
+  for (vtkIdType i = begin; i < end; ++i)
+  {
+    ids.push_back(static_cast<vtkIdType>(cells->GetConnectivityArray()->GetComponent(i, 0)));
+  }
+  return ids;
+}
+
 /// Cells of `out` against `in`: vertices and lines identical; polygons and strips the same
-/// cells with every id either the input id or (splitting) an appended copy of it. Returns, per
-/// appended point, the input point it copies (-1 where no corner tells).
+/// cells, in order, with every id either the input id or (splitting) an appended copy of it,
+/// except that with splitting a cell of 4 or more points may come out as its triangles
+/// (3-point cells of its kind, in the filter's order: fans of polygons, strip triangles with
+/// every odd one reversed). Returns, per appended point, the input point it copies (-1 where no
+/// corner tells).
 std::vector<vtkIdType> CheckCells(vtkPolyData* in,
   vtkPolyData* out,
   bool splitting,
@@ -513,28 +529,49 @@ std::vector<vtkIdType> CheckCells(vtkPolyData* in,
   {
     vtkCellArray* a = inCells[kind];
     vtkCellArray* b = outCells[kind];
-    Require(a->GetNumberOfCells() == b->GetNumberOfCells(), context + ": cell count changed");
-    Require(a->GetNumberOfConnectivityIds() == b->GetNumberOfConnectivityIds(),
-      context + ": cell sizes changed");
-    for (vtkIdType c = 0; c <= a->GetNumberOfCells(); ++c)
+    vtkIdType next = 0; // the output cell where the next input cell's cells start
+    for (vtkIdType c = 0; c < a->GetNumberOfCells(); ++c)
     {
-      Require(a->GetOffsetsArray()->GetComponent(c, 0) == b->GetOffsetsArray()->GetComponent(c, 0),
-        context + ": cell sizes changed");
-    }
-    for (vtkIdType i = 0; i < a->GetNumberOfConnectivityIds(); ++i)
-    {
-      const vtkIdType p = a->GetConnectivityArray()->GetComponent(i, 0);
-      const vtkIdType q = b->GetConnectivityArray()->GetComponent(i, 0);
-      if (p == q)
+      const std::vector<vtkIdType> cell = CellAt(a, c);
+      Require(next < b->GetNumberOfCells(), context + ": cells lost");
+      std::vector<std::vector<vtkIdType>> expected;
+      if (CellAt(b, next).size() == cell.size())
       {
-        continue;
+        expected.push_back(cell);
       }
-      Require(splitting && kind >= 2 && p >= 0 && p < numIn && q >= numIn && q < numOut,
-        context + ": a corner moved to a point that is not a copy of its own");
-      vtkIdType& s = source[static_cast<size_t>(q - numIn)];
-      Require(s < 0 || s == p, context + ": one copy stands for two input points");
-      s = p;
+      else
+      {
+        Require(splitting && kind >= 2 && cell.size() > 3, context + ": cell sizes changed");
+        const size_t n = cell.size();
+        for (size_t j = 0; j + 2 < n; ++j)
+        {
+          const bool odd = kind == 3 && (j & 1) != 0;
+          expected.push_back(
+            { cell[kind == 3 ? (odd ? j + 1 : j) : 0], cell[odd ? j : j + 1], cell[j + 2] });
+        }
+      }
+      for (const std::vector<vtkIdType>& want : expected)
+      {
+        Require(next < b->GetNumberOfCells(), context + ": cells lost");
+        const std::vector<vtkIdType> got = CellAt(b, next++);
+        Require(got.size() == want.size(), context + ": cell sizes changed");
+        for (size_t k = 0; k < want.size(); ++k)
+        {
+          const vtkIdType p = want[k];
+          const vtkIdType q = got[k];
+          if (p == q)
+          {
+            continue;
+          }
+          Require(splitting && kind >= 2 && p >= 0 && p < numIn && q >= numIn && q < numOut,
+            context + ": a corner moved to a point that is not a copy of its own");
+          vtkIdType& s = source[static_cast<size_t>(q - numIn)];
+          Require(s < 0 || s == p, context + ": one copy stands for two input points");
+          s = p;
+        }
+      }
     }
+    Require(next == b->GetNumberOfCells(), context + ": cells added");
   }
   return source;
 }
@@ -599,10 +636,11 @@ void CheckFrames(vtkPolyData* in,
   Require(numOut == numIn + filter->GetNumberOfSplitPoints(), context + ": point count");
   Require(filter->GetSplitting() || filter->GetNumberOfSplitPoints() == 0,
     context + ": split points without splitting");
-  // A conflict point is split unless no corner would take its copy (a polygon folded in UV).
+  // With splitting, every conflict point of the weighted methods is split (cells whose corners
+  // need both sides are cut into triangles first).
   Require(mikk || !filter->GetSplitting() ||
-      filter->GetNumberOfSplitPoints() <= filter->GetNumberOfHandednessConflicts(),
-    context + ": more split points than conflicts");
+      filter->GetNumberOfSplitPoints() == filter->GetNumberOfHandednessConflicts(),
+    context + ": split points other than the conflicts");
   std::vector<char> used(static_cast<size_t>(std::max<vtkIdType>(numOut - numIn, 0)), 0);
   for (vtkCellArray* cells : { out->GetPolys(), out->GetStrips() })
   {

@@ -4,7 +4,8 @@
 
 Each seed is a small mesh in the byte layout that FuzzTangentFrames.cxx documents at its top:
 good meshes (so that mutations start from inputs that reach the frame code) and one example of
-each kind of hostile input. Run it from anywhere; it rewrites the corpus directory.
+each kind of hostile input. Run it from anywhere; it rewrites its seeds in the corpus directory
+and leaves the other files there (inputs the fuzzer found, kept as it wrote them).
 """
 import math
 import pathlib
@@ -164,10 +165,18 @@ def main():
     # out-of-range id (no error, the broken cells passed on).
     seeds["supplied_keep_out_of_range_id"] = mesh(tri, tri_uv, [(2, [0, 1, 7])], up,
                                                   supplied=(1, False, [(1, 0, 0)] * 3, [1] * 3))
+    # Cells whose triangles need both sides of a mirror seam at one corner, which splitting cuts
+    # into triangles: a strip across the seam, with cell normals and cell tangents (cell data
+    # that follows the cut), and a quad folded in UV.
+    seam_points = [(i // 2, i % 2, 0) for i in range(8)]  # 8: the largest cell the decoder makes
+    seam_uv = [(abs(i // 2 - 2) / 4, i % 2 / 2) for i in range(8)]
+    seeds["strip_across_mirror_seam"] = mesh(seam_points, seam_uv, [(3, list(range(8)))],
+                                             normal_mode=4, normals=[(0, 0, 1)], flags=16)
+    seeds["quad_folded_in_uv"] = mesh([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)],
+                                      [(0, 0), (1, 0), (1, 1), (1.5, 0.25)],
+                                      [(2, [0, 1, 2, 3])], up + [(0, 0, 1)])
     out = pathlib.Path(__file__).resolve().parent / "corpus"
     out.mkdir(exist_ok=True)
-    for old in out.glob("*.bin"):
-        old.unlink()
     for name, data in seeds.items():
         (out / (name + ".bin")).write_bytes(data)
 
