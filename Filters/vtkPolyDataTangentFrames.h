@@ -130,7 +130,8 @@ public:
   ///@}
 
   ///@{
-  /// Duplicate points on mirror seams so both frames survive (default on).
+  /// Duplicate points on mirror seams so both frames survive, cutting into triangles the strips
+  /// and polygons that cross a seam at a corner (default on).
   vtkSetMacro(Splitting, bool);
   vtkGetMacro(Splitting, bool);
   vtkBooleanMacro(Splitting, bool);
