@@ -7,6 +7,32 @@
 #include <algorithm>
 #include <numeric>
 
+namespace
+{
+/**
+ * Adds copy(array) to `out` for each array of `in`, with its attribute, except the global ids:
+ * the copies of a point or of a cell's triangles would repeat their source's id (VTK's filters
+ * drop them too).
+ */
+template<typename F>
+void CopyArraysButGlobalIds(vtkDataSetAttributes* in, vtkDataSetAttributes* out, F&& copy)
+{
+  for (int k = 0; k < in->GetNumberOfArrays(); ++k)
+  {
+    const int attribute = in->IsArrayAnAttribute(k);
+    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+    {
+      continue;
+    }
+    out->AddArray(copy(in->GetAbstractArray(k)));
+    if (attribute >= 0)
+    {
+      out->SetActiveAttribute(out->GetNumberOfArrays() - 1, attribute);
+    }
+  }
+}
+}
+
 bool vtkNormalMapping::detail::MultiversionedLoops()
 {
   return VTK_NORMALMAPPING_MULTIVERSIONED != 0;
@@ -144,30 +170,19 @@ vtkSmartPointer<vtkPolyData> vtkNormalMapping::detail::CutIntoTriangles(vtkPolyD
   vtkNew<vtkIdList> target;
   target->SetNumberOfIds(source->GetNumberOfIds());
   std::iota(target->begin(), target->end(), 0);
-  for (int k = 0; k < inCD->GetNumberOfArrays(); ++k)
-  {
-    const int attribute = inCD->IsArrayAnAttribute(k);
-    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+  CopyArraysButGlobalIds(inCD,
+    outCD,
+    [&](vtkAbstractArray* array) -> vtkSmartPointer<vtkAbstractArray>
     {
-      continue;
-    }
-    vtkAbstractArray* array = inCD->GetAbstractArray(k);
-    if (array->GetNumberOfTuples() < input->GetNumberOfCells())
-    {
-      outCD->AddArray(array);
-    }
-    else
-    {
+      if (array->GetNumberOfTuples() < input->GetNumberOfCells())
+      {
+        return array;
+      }
       vtkSmartPointer<vtkAbstractArray> copy = EmptyCopyOf(array);
       copy->SetNumberOfTuples(source->GetNumberOfIds());
       copy->InsertTuples(target, source, array);
-      outCD->AddArray(copy);
-    }
-    if (attribute >= 0)
-    {
-      outCD->SetActiveAttribute(outCD->GetNumberOfArrays() - 1, attribute);
-    }
-  }
+      return copy;
+    });
   return cut;
 }
 
@@ -234,24 +249,16 @@ void vtkNormalMapping::detail::CopyWithAppendedPoints(vtkPolyData* input,
     vtkDataArray::SafeDownCast(ExtendPointArray(input->GetPoints()->GetData(), numIn, source)));
   output->SetPoints(points);
   outPD->Initialize();
-  for (int k = 0; k < inPD->GetNumberOfArrays(); ++k)
-  {
-    const int attribute = inPD->IsArrayAnAttribute(k);
-    if (attribute == vtkDataSetAttributes::GLOBALIDS)
+  CopyArraysButGlobalIds(inPD,
+    outPD,
+    [&](vtkAbstractArray* array) -> vtkSmartPointer<vtkAbstractArray>
     {
-      continue; // copies would repeat their source's id (VTK's filters drop them too)
-    }
-    vtkAbstractArray* array = inPD->GetAbstractArray(k);
-    const char* name = array->GetName();
-    const bool isReplaced =
-      name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
-    outPD->AddArray(isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
-                               : ExtendPointArray(array, numIn, source));
-    if (attribute >= 0)
-    {
-      outPD->SetActiveAttribute(outPD->GetNumberOfArrays() - 1, attribute);
-    }
-  }
+      const char* name = array->GetName();
+      const bool isReplaced =
+        name && std::find(replaced.begin(), replaced.end(), name) != replaced.end();
+      return isReplaced ? vtkSmartPointer<vtkAbstractArray>(array)
+                        : ExtendPointArray(array, numIn, source);
+    });
 }
 
 void vtkNormalMapping::detail::AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array)
