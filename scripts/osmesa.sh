@@ -9,7 +9,7 @@
 #   ${NORMALMAPPING_CACHE:-/var/cache/normalmapping}/vtk-9.1-osmesa
 # It is reused while the key recorded there (source versions and configure options) matches,
 # and rebuilt otherwise. Then the module is built against it in ${OSMESA_BUILD_DIR:-build-osmesa}
-# and ctest runs all its tests.
+# and ctest runs its tests.
 #
 # The machine may be shared: every compile runs under `nice -n 19` with at most
 # ${OSMESA_JOBS:-2} jobs, so interactive work and other builds come first. The tests run at
@@ -67,9 +67,10 @@ add_options() {
 vtk_configuration() {
   vtk_options=(
     -DCMAKE_BUILD_TYPE=Release
-    # -O2, as Debian compiles its VTK: CMake's Release default (-O3) takes longer to compile.
-    "-DCMAKE_C_FLAGS_RELEASE=-O2 -DNDEBUG"
-    "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG"
+    # -O1: this VTK only runs the tests, and compiling it is most of a fresh machine's test
+    # run; -O1 compiles in clearly less time than -O2 (Debian's level) or -O3 (CMake's).
+    "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG"
+    "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
     -DBUILD_SHARED_LIBS=ON
     -DCMAKE_INSTALL_LIBDIR=lib
     -DCMAKE_INSTALL_RPATH="$prefix/lib"
@@ -179,9 +180,13 @@ run_tests() {
   printf '#!/bin/sh\necho "Xvfb called in the OSMesa job: a test took the X path" >&2\nexit 1\n' \
     >"$guard/Xvfb"
   chmod +x "$guard/Xvfb"
-  echo "== every test, with DISPLAY unset and no X server"
+  # Every test but the packaging tests, which configure and compile the sources again in
+  # nested projects: they check the CMake packaging, which does not depend on how VTK renders,
+  # and the X job runs them.
+  echo "== every test but the packaging tests, with DISPLAY unset and no X server"
   local status=0
-  (cd "$build" && PATH="$guard:$PATH" ctest --output-on-failure -j "$jobs") || status=$?
+  (cd "$build" && PATH="$guard:$PATH" ctest --output-on-failure -j "$jobs" \
+    -E '^(InstalledPackageExample|RemoteModuleBuild)$') || status=$?
   rm -rf "$guard"
 
   # LastTest.log holds every test's output, passed or failed.
