@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# The OSMesa test job (bash scripts/bootstrap.sh osmesa): every test of the module, rendering
-# and image tests included, against a VTK that renders through OSMesa, with DISPLAY unset and
-# no X server, the way build servers with an OSMesa (or EGL) VTK run them.
+# The OSMesa test job (bash scripts/bootstrap.sh osmesa): the module's tests, rendering and
+# image tests included (the packaging tests run in the X job only), against a VTK that renders
+# through OSMesa, with DISPLAY unset and no X server, the way build servers with an OSMesa (or
+# EGL) VTK run them.
 #
 # Debian's VTK 9.1 is built for X only, so this job builds a minimal VTK 9.1 with OSMesa from
 # Debian's own vtk9 source package, once, into a cache folder outside the checkout:
@@ -67,8 +68,8 @@ add_options() {
 vtk_configuration() {
   vtk_options=(
     -DCMAKE_BUILD_TYPE=Release
-    # -O1: this VTK only runs the tests, and compiling it is most of a fresh machine's test
-    # run; -O1 compiles in clearly less time than -O2 (Debian's level) or -O3 (CMake's).
+    # -O1: this VTK only runs the tests, and compiling it is about half of a fresh machine's
+    # test run; -O1 compiles in clearly less time than -O2 (Debian's level) or -O3 (CMake's).
     "-DCMAKE_C_FLAGS_RELEASE=-O1 -DNDEBUG"
     "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
     -DBUILD_SHARED_LIBS=ON
