@@ -16,15 +16,16 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numeric>
-#include <optional>
 #include <type_traits>
 #include <unordered_map>
 #include <utility>
@@ -42,9 +43,10 @@
  *    corner, its weight signed with the handedness it gives that corner's point (the triangle's
  *    orientation, flipped where its winding disagrees with the point's normal).
  * 4. Every point sums the weighted tangents of its triangles per handedness, in triangle order
- *    whatever thread computed them (SumFrames). A point then takes the frame of its one
- *    handedness (a block of points at a time), or on a mirror seam the +1 frame (the -1 frame
- *    goes to the point's copy) or the heavier side (KindOf).
+ *    whatever thread computed them, a range of points (a chunk) at a time (ComputePointFrames).
+ *    A point then takes the frame of its one handedness (a block of points at a time), or on a
+ *    mirror seam the +1 frame (the -1 frame goes to the point's copy) or the heavier side
+ *    (KindOf).
  * 5. Points without a usable triangle take their neighbours' frames; split points are appended
  *    and the corners on their mirrored side re-pointed; cell tangents are per-cell sums.
  */
@@ -271,16 +273,16 @@ void ComputeFrameBlock(TriangleBlock& block,
 }
 
 /**
- * Every point's weighted tangent sums, in half the memory of two per point: per point the sum of
- * the handedness its first corner gave it (Weight signed with that handedness; 0 before any
- * corner), and the other handedness, which only points on mirror seams have, aside. A corner
- * whose triangle has a frame adds a weight with the sign of its handedness (its angle, its area
- * clamped to DBL_MAX, or 1), non-zero unless an area underflows; other corners add zero (Add).
- * So a Sum with a corner of non-zero weight has a non-zero Weight. Each Sum adds its corners in
- * the order they come (SumFrames: triangle order). The points are split into contiguous ranges,
- * one per owner; Add may run concurrently for points of different owners.
+ * The weighted tangent sums of a range of points (a chunk), in half the memory of two per point:
+ * per point the sum of the handedness its first corner gave it (Weight signed with that
+ * handedness; 0 before any corner), and the other handedness, which only points on mirror seams
+ * have, aside. A corner whose triangle has a frame adds a weight with the sign of its handedness
+ * (its angle, its area clamped to DBL_MAX, or 1), non-zero unless an area underflows; other
+ * corners add zero (Add). So a Sum with a corner of non-zero weight has a non-zero Weight. Each
+ * Sum adds its corners in the order they come (triangle order). Points are indexed from the
+ * chunk's first point.
  */
-struct ScatteredSums
+struct ChunkSums
 {
   /// One handedness' sums of a point: 32 bytes, aligned to 32 so that adding a corner reads and
   /// writes one cache line, not two.
@@ -295,50 +297,26 @@ struct ScatteredSums
     }
   };
   static_assert(sizeof(Sum) == 32, "a Sum fills half a cache line");
+  vtkIdType Begin = 0;
   std::vector<Sum> First;
-  std::vector<unsigned char> HasOther; // bytes, not bits: owners write them concurrently
-  std::vector<std::unordered_map<vtkIdType, Sum>> Other; // per owner
-  vtkIdType PointsPerOwner = 1;
+  std::vector<unsigned char> HasOther;
+  std::unordered_map<vtkIdType, Sum> Other;
 
-  /// `owners` owners (at least one) of about equal ranges of points.
-  ScatteredSums(vtkIdType numPoints, int owners)
-    : First(static_cast<size_t>(numPoints))
-    , HasOther(static_cast<size_t>(numPoints), 0)
-    , Other(static_cast<size_t>(std::max(owners, 1)))
+  /// Empty sums for the points [begin, end), in the memory of the previous chunk's.
+  void Reset(vtkIdType begin, vtkIdType end)
   {
-    const vtkIdType count = static_cast<vtkIdType>(this->Other.size());
-    this->PointsPerOwner = std::max<vtkIdType>((numPoints + count - 1) / count, 1);
+    this->Begin = begin;
+    this->First.assign(static_cast<size_t>(end - begin), Sum());
+    this->HasOther.assign(static_cast<size_t>(end - begin), 0);
+    this->Other.clear();
   }
 
-  int Owners() const { return static_cast<int>(this->Other.size()); }
-  int OwnerOf(vtkIdType p) const { return static_cast<int>(p / this->PointsPerOwner); }
-  /// The first point of an owner, or the number of points for Owners().
-  vtkIdType FirstPointOf(int owner) const
+  /// Adds a corner of the chunk's point i: its triangle's tangent with the corner's signed
+  /// weight. A corner of zero weight (its triangle has no frame) goes to the first Sum and
+  /// changes none of its bits: it adds zeros to sums that are never -0.
+  void Add(vtkIdType i, double signedWeight, const dvec3& tangent)
   {
-    return std::min(owner * this->PointsPerOwner, static_cast<vtkIdType>(this->First.size()));
-  }
-
-  /// The number of points with both handednesses (mirror seams), those of `kept` (non-zero
-  /// per kept point, or null) left out.
-  vtkIdType SeamPoints(const unsigned char* kept) const
-  {
-    vtkIdType count = 0;
-    for (const auto& other : this->Other)
-    {
-      for (const auto& entry : other)
-      {
-        count += kept && kept[entry.first] ? 0 : 1;
-      }
-    }
-    return count;
-  }
-
-  /// Adds a corner of point p: its triangle's tangent with the corner's signed weight. A corner
-  /// of zero weight (its triangle has no frame) goes to the first Sum and changes none of its
-  /// bits: it adds zeros to sums that are never -0.
-  void Add(vtkIdType p, double signedWeight, const dvec3& tangent)
-  {
-    Sum& first = this->First[p];
+    Sum& first = this->First[i];
     // One branch, taken only on mirror seams: whether the point's first handedness is already
     // set and differs from this corner's.
     const bool other = (first.Weight != 0.0) & (signedWeight != 0.0) &
@@ -348,60 +326,65 @@ struct ScatteredSums
       first.Add(signedWeight, tangent);
       return;
     }
-    this->AddOther(p, signedWeight, tangent);
+    this->AddOther(i, signedWeight, tangent);
   }
 
   /// Add's path for a corner of the other handedness, kept out of the loops that call Add, so
   /// that Add is small enough for any compiler to inline (compilers other than GCC and Clang
   /// ignore these attributes).
-  [[gnu::noinline, gnu::cold]] void AddOther(vtkIdType p, double signedWeight, const dvec3& tangent)
+  [[gnu::noinline, gnu::cold]] void AddOther(vtkIdType i, double signedWeight, const dvec3& tangent)
   {
-    this->HasOther[p] = 1;
-    this->Other[this->OwnerOf(p)][p].Add(signedWeight, tangent);
+    this->HasOther[i] = 1;
+    this->Other[i].Add(signedWeight, tangent);
   }
 
-  /// Adds the corners of a block's `count` triangles, whose point ids start at `ids`, in order:
-  /// those of `owner`'s points, or every corner when there is one owner.
-  template<bool OneOwner>
-  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count, int owner)
+  /// Adds the corners of the chunk's points among a block's `count` triangles, whose point ids
+  /// start at `ids`, in order.
+  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count)
   {
     using Unsigned = std::make_unsigned<vtkIdType>::type;
-    const vtkIdType firstPoint = this->FirstPointOf(owner);
-    const Unsigned points = static_cast<Unsigned>(this->FirstPointOf(owner + 1) - firstPoint);
-    for (int i = 0; i < count; ++i)
+    const Unsigned points = static_cast<Unsigned>(this->First.size());
+    for (int t = 0; t < count; ++t)
     {
-      const dvec3 tangent(b.Tangent[0][i], b.Tangent[1][i], b.Tangent[2][i]);
+      const dvec3 tangent(b.Tangent[0][t], b.Tangent[1][t], b.Tangent[2][t]);
       for (int k = 0; k < 3; ++k)
       {
-        const vtkIdType p = ids[3 * i + k];
-        if (OneOwner || static_cast<Unsigned>(p - firstPoint) < points) // p is owner's
+        const Unsigned i = static_cast<Unsigned>(ids[3 * t + k] - this->Begin);
+        if (i < points) // the point is the chunk's
         {
-          this->Add(p, b.SignedWeight[k][i], tangent);
+          this->Add(static_cast<vtkIdType>(i), b.SignedWeight[k][t], tangent);
         }
       }
     }
   }
 
-  /// The +1 or the -1 (`negative`) Sum of a point on a mirror seam (HasOther), whose
-  /// two Sums have opposite signs; safe to call from several threads.
-  const Sum& SeamSum(vtkIdType p, bool negative) const
+  /// The +1 or the -1 (`negative`) Sum of the chunk's point i on a mirror seam (HasOther), whose
+  /// two Sums have opposite signs.
+  const Sum& SeamSum(vtkIdType i, bool negative) const
   {
-    const Sum& first = this->First[p];
-    return (first.Weight < 0.0) == negative ? first : this->Other[this->OwnerOf(p)].at(p);
+    const Sum& first = this->First[i];
+    return (first.Weight < 0.0) == negative ? first : this->Other.at(i);
   }
 };
 
-/// The smallest and the largest of some point ids.
+/**
+ * A range that holds the point ids of a tile: the AND and the OR of its ids, between which each
+ * id lies (the ids are not negative: PointIdsInRange). It is exact about the chunks a tile
+ * reaches where all its ids lie in one chunk: a chunk holds the ids that share their bits above
+ * the chunk's size, a power of two (Chunks). Where they do not, it can reach more chunks than
+ * the ids do; those compute the tile for nothing.
+ */
 struct IdRange
 {
   vtkIdType First;
   vtkIdType Last;
 };
 
-/// Consecutive triangles that SumFrames computes and adds together.
+/// Consecutive triangles that ComputePointFrames computes and adds together.
 constexpr vtkIdType TileSize = 256;
 
-/// Per tile of TileSize consecutive triangles, the range of its point ids.
+/// Per tile of TileSize consecutive triangles, its IdRange, in a loop that vectorizes with any
+/// instruction set.
 std::vector<IdRange> TileBounds(const Triangles& tris)
 {
   const vtkIdType tiles = (tris.Count + TileSize - 1) / TileSize;
@@ -414,12 +397,88 @@ std::vector<IdRange> TileBounds(const Triangles& tris)
       {
         const vtkIdType* first = tris.Ids + 3 * tile * TileSize;
         const vtkIdType* last = tris.Ids + 3 * std::min(tris.Count, (tile + 1) * TileSize);
-        const auto range = std::minmax_element(first, last);
-        bounds[tile] = IdRange{ *range.first, *range.second };
+        vtkIdType all = ~vtkIdType(0);
+        vtkIdType any = 0;
+        for (const vtkIdType* id = first; id < last; ++id)
+        {
+          all &= *id;
+          any |= *id;
+        }
+        bounds[tile] = IdRange{ all, any };
       }
     });
   return bounds;
 }
+
+/**
+ * The points split into consecutive ranges (chunks) of 2^Shift points, the last one shorter. A
+ * chunk's sums (ChunkSums, 32 bytes a point) stay in cache while its tiles add to them: at most
+ * 2^16 points, 2 MiB.
+ */
+struct Chunks
+{
+  static constexpr int LargestShift = 16;
+  /// Four chunks per thread where chunks of 2^SmallestShift points or more allow it, so that a
+  /// thread that finishes early takes another chunk.
+  static constexpr int SmallestShift = 10;
+  static constexpr int ChunksPerThread = 4;
+
+  int Shift = LargestShift;
+  vtkIdType NumberOfPoints = 0;
+
+  vtkIdType Count() const
+  {
+    return this->NumberOfPoints > 0 ? ((this->NumberOfPoints - 1) >> this->Shift) + 1 : 0;
+  }
+  vtkIdType First(vtkIdType chunk) const { return chunk << this->Shift; }
+  vtkIdType End(vtkIdType chunk) const
+  {
+    return std::min(this->First(chunk + 1), this->NumberOfPoints);
+  }
+  /// The chunks a tile reaches, as far as its IdRange tells.
+  vtkIdType FirstReached(const IdRange& r) const { return r.First >> this->Shift; }
+  vtkIdType LastReached(const IdRange& r) const
+  {
+    return std::min(r.Last >> this->Shift, this->Count() - 1);
+  }
+
+  /// How many times tiles are computed more than once: once per chunk they reach.
+  vtkIdType Recomputed(const std::vector<IdRange>& bounds) const
+  {
+    vtkIdType extra = 0;
+    for (const IdRange& r : bounds)
+    {
+      extra += this->LastReached(r) - this->FirstReached(r);
+    }
+    return extra;
+  }
+
+  /**
+   * Chunks for the points of tiles with these bounds (empty: one chunk, one thread). Where the
+   * triangles' point ids spread, so that more than one tile in eight would be computed again,
+   * fewer and larger chunks are used, down to one per thread.
+   */
+  static Chunks For(vtkIdType numPoints, int threads, const std::vector<IdRange>& bounds)
+  {
+    Chunks chunks;
+    chunks.NumberOfPoints = numPoints;
+    if (bounds.empty())
+    {
+      chunks.Shift = std::numeric_limits<vtkIdType>::digits - 1;
+      return chunks;
+    }
+    while (chunks.Shift > SmallestShift && chunks.Count() < ChunksPerThread * threads)
+    {
+      --chunks.Shift;
+    }
+    while (chunks.Count() > threads &&
+      8 * chunks.Recomputed(bounds) > static_cast<vtkIdType>(bounds.size()))
+    {
+      ++chunks.Shift;
+    }
+    return chunks;
+  }
+};
 
 /// What the sums of a point show.
 enum class PointKind : unsigned char
@@ -587,35 +646,35 @@ Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
  * on a tie). Kept out of KindOf, so that KindOf is small enough for any compiler to inline in
  * the loop over the points.
  */
-PointKind SeamKindOf(const ScatteredSums& sums,
-  vtkIdType p,
+PointKind SeamKindOf(const ChunkSums& sums,
+  vtkIdType i,
   bool splitting,
   double& sign,
   dvec3& tangent)
 {
-  const ScatteredSums::Sum& positive = sums.SeamSum(p, false);
-  const ScatteredSums::Sum& negative = sums.SeamSum(p, true);
+  const ChunkSums::Sum& positive = sums.SeamSum(i, false);
+  const ChunkSums::Sum& negative = sums.SeamSum(i, true);
   sign = splitting || !(std::abs(negative.Weight) > std::abs(positive.Weight)) ? 1.0 : -1.0;
   tangent = (sign > 0.0 ? positive : negative).Tangent;
   return PointKind::Conflict;
 }
 
 /**
- * What point p's sums make of it, the handedness (+1 or -1) whose frame it takes, and that
- * handedness' tangent sum: its one handedness (Framed), none (Fallback: no usable triangle, it
- * takes its neighbours' frames later), or both, on a mirror seam (SeamKindOf).
+ * What the sums of the chunk's point i make of it, the handedness (+1 or -1) whose frame it
+ * takes, and that handedness' tangent sum: its one handedness (Framed), none (Fallback: no usable
+ * triangle, it takes its neighbours' frames later), or both, on a mirror seam (SeamKindOf).
  */
-inline PointKind KindOf(const ScatteredSums& sums,
-  vtkIdType p,
+inline PointKind KindOf(const ChunkSums& sums,
+  vtkIdType i,
   bool splitting,
   double& sign,
   dvec3& tangent)
 {
-  if (sums.HasOther[p])
+  if (sums.HasOther[i])
   {
-    return SeamKindOf(sums, p, splitting, sign, tangent);
+    return SeamKindOf(sums, i, splitting, sign, tangent);
   }
-  const ScatteredSums::Sum& first = sums.First[p];
+  const ChunkSums::Sum& first = sums.First[i];
   sign = first.Weight > 0.0 ? 1.0 : -1.0;
   tangent = first.Tangent;
   return std::abs(first.Weight) > 0.0 ? PointKind::Framed : PointKind::Fallback;
@@ -629,44 +688,67 @@ void ComputeUnitFrames(vtkNormalMapping::PointBlock& block, int count, bool norm
 }
 
 /**
- * Every point's frame from its sums (KindOf): the tangent of its handedness made perpendicular to
- * its unit normal, a block of points at a time (ComputeUnitFrames). Fallback points are only marked
- * in `kinds`.
+ * The frames of a chunk's points from their sums (KindOf): the tangent of its handedness made
+ * perpendicular to its unit normal, a block of points at a time (ComputeUnitFrames). Fallback
+ * points are only marked in `kinds`.
  */
 template<typename OutT, typename NormalT>
-void WriteFrames(vtkIdType numPoints,
-  const ScatteredSums& sums,
+void WriteChunkFrames(const ChunkSums& sums,
   const ShadingNormals<NormalT>& normals,
   bool splitting,
   const FrameStorage<OutT>& out,
   PointKind* kinds)
 {
   using vtkNormalMapping::PointBlock;
-  vtkSMPTools::For(0,
-    numPoints,
-    [&](vtkIdType begin, vtkIdType end)
+  PointBlock b; // not initialized: each point's entries are written before use
+  double signs[PointBlock::Size];
+  const vtkIdType size = static_cast<vtkIdType>(sums.First.size());
+  for (vtkIdType first = 0; first < size; first += PointBlock::Size)
+  {
+    const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, size - first));
+    for (int i = 0; i < count; ++i)
     {
-      PointBlock b; // not initialized: each point's entries are written before use
-      double signs[PointBlock::Size];
-      for (vtkIdType first = begin; first < end; first += PointBlock::Size)
+      dvec3 tangent;
+      kinds[sums.Begin + first + i] = KindOf(sums, first + i, splitting, signs[i], tangent);
+      b.Set(i, normals.Stored(sums.Begin + first + i), tangent);
+    }
+    ComputeUnitFrames(b, count, !normals.Unit);
+    for (int i = 0; i < count; ++i)
+    {
+      const vtkIdType p = sums.Begin + first + i;
+      if (kinds[p] != PointKind::Fallback)
       {
-        const int count = static_cast<int>(std::min<vtkIdType>(PointBlock::Size, end - first));
-        for (int i = 0; i < count; ++i)
-        {
-          dvec3 tangent;
-          kinds[first + i] = KindOf(sums, first + i, splitting, signs[i], tangent);
-          b.Set(i, normals.Stored(first + i), tangent);
-        }
-        ComputeUnitFrames(b, count, !normals.Unit);
-        for (int i = 0; i < count; ++i)
-        {
-          if (kinds[first + i] != PointKind::Fallback)
-          {
-            out.Write(first + i, b.Normal(i), b.Tangent(i), signs[i]);
-          }
-        }
+        out.Write(p, b.Normal(i), b.Tangent(i), signs[i]);
       }
-    });
+    }
+  }
+}
+
+/**
+ * The -1 frames of a chunk's points on mirror seams (Conflict in `kinds`), those of `kept`
+ * (non-zero per kept point, or null) left out, for their copies.
+ */
+template<typename NormalT>
+std::vector<SplitPoint> ChunkSplitFrames(const ChunkSums& sums,
+  const ShadingNormals<NormalT>& normals,
+  const PointKind* kinds,
+  const unsigned char* kept)
+{
+  std::vector<SplitPoint> splits;
+  for (const auto& entry : sums.Other)
+  {
+    const vtkIdType p = sums.Begin + entry.first;
+    if (kinds[p] == PointKind::Conflict && !(kept && kept[p]))
+    {
+      const dvec3 n = normals.UnitOf(p);
+      splits.push_back(
+        SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSum(entry.first, true).Tangent) });
+    }
+  }
+  std::sort(splits.begin(),
+    splits.end(),
+    [](const SplitPoint& a, const SplitPoint& b) { return a.Id < b.Id; });
+  return splits;
 }
 
 /// The points of one kind, in ascending order.
@@ -731,27 +813,6 @@ void FillFallbacks(const Triangles& tris,
     });
 }
 
-/// The -1 frames of the seam points, for their copies.
-template<typename NormalT>
-std::vector<SplitPoint> SplitFrames(const ScatteredSums& sums,
-  const ShadingNormals<NormalT>& normals,
-  const std::vector<vtkIdType>& conflicts)
-{
-  std::vector<SplitPoint> splits(conflicts.size());
-  vtkSMPTools::For(0,
-    static_cast<vtkIdType>(conflicts.size()),
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const vtkIdType p = conflicts[i];
-        const dvec3 n = normals.UnitOf(p);
-        splits[i] = SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSum(p, true).Tangent) };
-      }
-    });
-  return splits;
-}
-
 /// The output arrays' concrete class for OutT, so that users' SafeDownCasts work.
 template<typename OutT>
 using OutArray =
@@ -780,8 +841,8 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   /// The triangles this execution computed frames for (the weighted methods' Tris, or
   /// MikkTSpace's), for the warning when none has a frame.
   vtkIdType NumberOfTriangles = 0;
-  /// What SumFrames keeps per triangle: the handedness it gives each corner, and its frame when
-  /// cell tangents are asked for.
+  /// What ComputePointFrames keeps per triangle: the handedness it gives each corner, and its frame
+  /// when cell tangents are asked for.
   std::unique_ptr<CornerHandedness> Handedness;
   std::unique_ptr<TriangleFrames> Frames;
 
@@ -917,50 +978,57 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   }
 
   /**
-   * Every point's sums, added in triangle order (ScatteredSums), so that each point adds the same
-   * terms in the same order, hence the same bits, for any number of threads. Each owner of a
-   * range of points goes through the triangles in order, computes the frames of the tiles that
-   * reach its points (TileBounds) and adds the corners of its points: no thread reads what
-   * another wrote, and only the tiles at the edges of the ranges are computed twice. A tile's
-   * first owner stores the handedness of its corners in Handedness and, with cell tangents, its
-   * frames. Counts the triangles without a frame in `degenerate`.
+   * Every point's frame from its weighted tangent sums (ChunkSums), written to `out`, and its
+   * kind to `kinds`; returns the -1 frames of the mirror-seam points that the caller does not
+   * keep, in ascending order. The points go in chunks (Chunks::For), one chunk per thread at a
+   * time. A chunk's thread goes through the triangles in order, computes the frames of the tiles
+   * that reach its points (TileBounds) and adds the corners of its points, so that each point
+   * adds the same terms in the same order, hence the same bits, for any number of threads; it
+   * then writes its points' frames while their sums are in cache. A tile's first chunk stores
+   * the handedness of its corners in Handedness and, with cell tangents, its frames. Counts the
+   * triangles without a frame in NumberOfDegenerateTriangles.
    */
-  template<typename NormalT>
-  ScatteredSums SumFrames(TangentMethod method,
+  template<typename OutT, typename NormalT>
+  std::vector<SplitPoint> ComputePointFrames(TangentMethod method,
     const ShadingNormals<NormalT>& normals,
-    bool cellTangents,
-    vtkIdType& degenerate)
+    const FrameStorage<OutT>& out,
+    PointKind* kinds)
   {
+    vtkPolyDataTangentFrames* self = this->Self;
+    const vtkIdType numPoints = this->NumberOfPoints;
     const vtkIdType count = this->Tris.Count;
     const vtkIdType* ids = this->Tris.Ids;
     const vtkIdType tiles = (count + TileSize - 1) / TileSize;
     // A mesh of a few tiles does not pay for starting the threads.
     const int threads = tiles > 16 ? vtkNormalMapping::detail::UsableThreads() : 1;
-    ScatteredSums sums(this->NumberOfPoints, threads);
-    const int owners = sums.Owners();
-    const std::vector<IdRange> bounds =
-      owners > 1 ? TileBounds(this->Tris) : std::vector<IdRange>();
+    // One thread sums a mesh of up to one chunk's points in one chunk, without tile bounds.
+    const bool chunked = threads > 1 || numPoints > (vtkIdType(1) << Chunks::LargestShift);
+    const std::vector<IdRange> bounds = chunked ? TileBounds(this->Tris) : std::vector<IdRange>();
+    const Chunks chunks = Chunks::For(numPoints, threads, bounds);
     this->Handedness.reset(new CornerHandedness(count));
-    if (cellTangents)
+    if (self->ComputeCellTangents)
     {
       this->Frames.reset(new TriangleFrames(count));
     }
+    std::vector<std::vector<SplitPoint>> splits(static_cast<size_t>(chunks.Count()));
     std::atomic<vtkIdType> withoutFrame{ 0 };
-    const auto sumOwner = [&](int owner, const auto& visitRange)
+    vtkSMPThreadLocal<ChunkSums> localSums;
+    const auto computeChunk = [&](vtkIdType chunk, const auto& visitRange)
     {
-      const vtkIdType firstPoint = sums.FirstPointOf(owner);
-      const vtkIdType endPoint = sums.FirstPointOf(owner + 1);
+      ChunkSums& sums = localSums.Local();
+      sums.Reset(chunks.First(chunk), chunks.End(chunk));
       vtkIdType none = 0;
       for (vtkIdType tile = 0; tile < tiles; ++tile)
       {
-        // The owners whose points a tile reaches compute it; the first of them also stores what
-        // is per triangle.
-        const IdRange reach = owners > 1 ? bounds[tile] : IdRange{ firstPoint, endPoint - 1 };
-        if (reach.Last < firstPoint || reach.First >= endPoint)
+        // The chunks a tile reaches compute it; the first of them also stores what is per
+        // triangle.
+        const vtkIdType firstChunk = bounds.empty() ? chunk : chunks.FirstReached(bounds[tile]);
+        const vtkIdType lastChunk = bounds.empty() ? chunk : chunks.LastReached(bounds[tile]);
+        if (chunk < firstChunk || chunk > lastChunk)
         {
           continue;
         }
-        const bool first = reach.First >= firstPoint;
+        const bool first = chunk == firstChunk;
         visitRange(tile * TileSize,
           std::min(count, (tile + 1) * TileSize),
           [&](vtkIdType firstTriangle, const TriangleBlock& b, int n)
@@ -980,36 +1048,36 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
                 this->Frames->Set(firstTriangle, b, n);
               }
             }
-            if (owners == 1)
-            {
-              sums.AddBlock<true>(ids + 3 * firstTriangle, b, n, owner);
-            }
-            else
-            {
-              sums.AddBlock<false>(ids + 3 * firstTriangle, b, n, owner);
-            }
+            sums.AddBlock(ids + 3 * firstTriangle, b, n);
           });
       }
       withoutFrame += none;
+      WriteChunkFrames(sums, normals, self->Splitting, out, kinds);
+      splits[chunk] = ChunkSplitFrames(sums, normals, kinds, this->KeptPoints);
     };
     this->WithFrames(
       [&](const auto& visitRange)
       {
         vtkSMPTools::For(0,
-          owners,
+          chunks.Count(),
           1,
-          [&](vtkIdType firstOwner, vtkIdType lastOwner)
+          [&](vtkIdType firstChunk, vtkIdType lastChunk)
           {
-            for (vtkIdType owner = firstOwner; owner < lastOwner; ++owner)
+            for (vtkIdType chunk = firstChunk; chunk < lastChunk; ++chunk)
             {
-              sumOwner(static_cast<int>(owner), visitRange);
+              computeChunk(chunk, visitRange);
             }
           });
       },
       &normals,
       method);
-    degenerate += withoutFrame;
-    return sums;
+    self->NumberOfDegenerateTriangles += withoutFrame;
+    std::vector<SplitPoint> all;
+    for (const std::vector<SplitPoint>& chunkSplits : splits)
+    {
+      all.insert(all.end(), chunkSplits.begin(), chunkSplits.end());
+    }
+    return all;
   }
 
   /**
@@ -1083,7 +1151,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
       return;
     }
     this->Self->NumberOfSplitPoints += static_cast<vtkIdType>(splits.size());
-    frames.Truncate(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
+    frames.Resize(this->NumberOfPoints + static_cast<vtkIdType>(splits.size()));
     const FrameStorage<OutT> out = frames.Storage();
     std::vector<vtkIdType> splitSource(splits.size());
     for (size_t i = 0; i < splits.size(); ++i)
@@ -1171,23 +1239,19 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  std::optional<ScatteredSums> sums(
-    this->SumFrames(method, normals, self->ComputeCellTangents, self->NumberOfDegenerateTriangles));
-
-  // Room for the split points' frames too: with splitting, each mirror-seam point (a Conflict
-  // point) gets one copy, unless the caller keeps its frame.
+  // The input points' frames, with room for a copy of each point (a bound on the split points,
+  // which WriteOutput adds).
   OutputFrames<OutArray<OutT>> frames(
-    numPoints + (self->Splitting ? sums->SeamPoints(this->KeptPoints) : 0),
-    self->ComputeBitangents);
+    numPoints, self->ComputeBitangents, self->Splitting ? numPoints : 0);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
-  WriteFrames(numPoints, *sums, normals, self->Splitting, frames.Storage(), kinds.get());
-  // Points whose supplied frames the caller keeps are neither split nor counted.
-  const auto kept = [&](vtkIdType p) { return this->KeptPoints && this->KeptPoints[p] != 0; };
-  std::vector<vtkIdType> conflicts = PointsOfKind(kinds.get(), numPoints, PointKind::Conflict);
-  conflicts.erase(std::remove_if(conflicts.begin(), conflicts.end(), kept), conflicts.end());
+  // With splitting, each mirror-seam point (a Conflict point) gets one copy, unless the caller
+  // keeps its frame; kept points are neither split nor counted.
+  std::vector<SplitPoint> splits =
+    this->ComputePointFrames(method, normals, frames.Storage(), kinds.get());
+  self->NumberOfHandednessConflicts += static_cast<vtkIdType>(splits.size());
   const std::vector<vtkIdType> fallbacks =
     PointsOfKind(kinds.get(), numPoints, PointKind::Fallback);
-  self->NumberOfHandednessConflicts += static_cast<vtkIdType>(conflicts.size());
+  const auto kept = [&](vtkIdType p) { return this->KeptPoints && this->KeptPoints[p] != 0; };
   self->NumberOfFallbackPoints += static_cast<vtkIdType>(
     fallbacks.size() - std::count_if(fallbacks.begin(), fallbacks.end(), kept));
   if (!this->Continue(0.7))
@@ -1198,15 +1262,16 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   {
     FillFallbacks(this->Tris, *this->Handedness, normals, kinds.get(), fallbacks, frames.Storage());
   }
-  std::vector<SplitPoint> splits =
-    self->Splitting ? SplitFrames(*sums, normals, conflicts) : std::vector<SplitPoint>();
+  if (!self->Splitting)
+  {
+    splits.clear();
+  }
   if (!this->Continue(0.85))
   {
     return;
   }
-  // Freed before the output copies the point data and the connectivity, the sums' and kinds'
-  // memory can hold those copies.
-  sums.reset();
+  // Freed before the output copies the point data and the connectivity, the kinds' memory can
+  // hold those copies.
   kinds.reset();
   this->WriteOutput<OutT>(std::move(splits), frames, computedNormals);
   this->Continue(1.0);

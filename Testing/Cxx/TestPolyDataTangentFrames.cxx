@@ -2185,12 +2185,14 @@ TEST(PolyDataTangentFrames, VTKSourcesAndTextureMappersGoThroughCleanly)
 
 TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
 {
-  // One thread adds every triangle to its points; several threads each own a range of points
-  // and add the triangles of the tiles that reach them: both must give the same bits, and the
-  // same counts. Two mirrored tori of different sizes; the first again with its quads written as
-  // quads, strips and triangle pairs in turn, so that cells that are not all triangles take both
-  // paths too; and again with its points in a random order, so that every tile reaches every
-  // owner, and with triangles that have no frame.
+  // The weighted methods sum the points in ranges (chunks) of point ids, as many as the threads
+  // or more; each chunk adds the triangles of the tiles that reach its points. One, two and
+  // eight threads must give the same bits, and the same counts. Two mirrored tori of different
+  // sizes: the first fits one chunk on one thread, the second needs several. The first again
+  // with its quads written as quads, strips and triangle pairs in turn, so that cells that are
+  // not all triangles take every path too; and the second with its points in a random order, so
+  // that every tile reaches every chunk (fewer chunks are then used), and with triangles that
+  // have no frame.
   std::vector<vtkSmartPointer<vtkPolyData>> meshes;
   for (int u : { 300, 521 })
   {
@@ -2235,9 +2237,9 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
     meshes.push_back(mixed);
   }
   {
-    // The first torus with shuffled points, whose first tenth of ids take one texture
+    // The second torus with shuffled points, whose first tenth of ids take one texture
     // coordinate: the triangles with all three points among them have no frame.
-    auto shuffled = NormalMappingTesting::ShuffledPoints(meshes[0], 7);
+    auto shuffled = NormalMappingTesting::ShuffledPoints(meshes[1], 7);
     for (vtkIdType p = 0; p < shuffled->GetNumberOfPoints() / 10; ++p)
     {
       shuffled->GetPointData()->GetTCoords()->SetTuple2(p, 0.5, 0.5);
@@ -2261,7 +2263,7 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
           {
             // A backend may grant fewer threads than asked (VTK's STDThread backend caps the
             // count at the core count), but a run asked for several must get several, so that
-            // the gather path is compared with the one-thread scatter path.
+            // chunks summed on several threads are compared with those of one.
             const int granted = vtkSMPTools::GetEstimatedNumberOfThreads();
             EXPECT_LE(granted, threads);
             EXPECT_EQ(granted > 1, threads > 1);
@@ -2294,7 +2296,7 @@ TEST(PolyDataTangentFrames, BitIdenticalForAnyNumberOfThreads)
       EXPECT_EQ(counts[0], counts[1]);
       EXPECT_EQ(counts[0], counts[2]);
       // The shuffled mesh has more triangles without a frame than the torus it comes from.
-      if (mesh == meshes.front())
+      if (mesh == meshes[1])
       {
         torusDegenerate[method] = counts[0][0];
       }
