@@ -234,18 +234,13 @@ void AddFrameArray(vtkDataSetAttributes* attributes, vtkDataArray* array);
  */
 void AddActiveTangents(vtkDataSetAttributes* attributes, vtkDataArray* tangents);
 
-/// A new array of class ArrayT with the given name, components and tuples (values not set), and
-/// room for `spare` more tuples (memory that is never written is never touched).
+/// A new array of class ArrayT with the given name, components and tuples (values not set).
 template<typename ArrayT>
-vtkSmartPointer<ArrayT> NewArray(const char* name,
-  int components,
-  vtkIdType tuples,
-  vtkIdType spare = 0)
+vtkSmartPointer<ArrayT> NewArray(const char* name, int components, vtkIdType tuples)
 {
   auto array = vtkSmartPointer<ArrayT>::New();
   array->SetName(name);
   array->SetNumberOfComponents(components);
-  array->Allocate((tuples + spare) * components);
   array->SetNumberOfTuples(tuples);
   return array;
 }
@@ -311,8 +306,8 @@ struct FrameStorage
 };
 
 /**
- * The output's point frame arrays, `tuples` long with room for `spare` more, of one array class
- * (vtkFloatArray or vtkDoubleArray): tangents, signs and, when asked for, bitangents, named as
+ * The output's point frame arrays, `tuples` long, of one array class (vtkFloatArray or
+ * vtkDoubleArray): tangents, signs and, when asked for, bitangents, named as
  * vtkPolyDataTangentFrames names them. The one place the filter's paths make them.
  */
 template<typename ArrayT>
@@ -322,11 +317,11 @@ struct OutputFrames
   vtkSmartPointer<ArrayT> Signs;
   vtkSmartPointer<ArrayT> Bitangents; // null when not asked for
 
-  OutputFrames(vtkIdType tuples, bool bitangents, vtkIdType spare = 0)
-    : Tangents(NewArray<ArrayT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples, spare))
-    , Signs(NewArray<ArrayT>(vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples, spare))
+  OutputFrames(vtkIdType tuples, bool bitangents)
+    : Tangents(NewArray<ArrayT>(vtkPolyDataTangentFrames::TangentsArrayName(), 3, tuples))
+    , Signs(NewArray<ArrayT>(vtkPolyDataTangentFrames::SignsArrayName(), 1, tuples))
     , Bitangents(bitangents
-          ? NewArray<ArrayT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples, spare)
+          ? NewArray<ArrayT>(vtkPolyDataTangentFrames::BitangentsArrayName(), 3, tuples)
           : nullptr)
   {
   }
@@ -353,16 +348,16 @@ struct OutputFrames
     return names;
   }
 
-  /// Gives them `tuples` tuples, at most as many as they have room for, keeping the values of
-  /// the first ones, and gives back the room beyond.
+  /// Gives them `tuples` tuples, keeping the values of the first ones.
   void Resize(vtkIdType tuples) const
   {
     for (ArrayT* array : { this->Tangents.Get(), this->Signs.Get(), this->Bitangents.Get() })
     {
       if (array)
       {
-        array->SetNumberOfTuples(tuples); // within the room: keeps the values
-        array->Squeeze();
+        array->Resize(tuples); // keeps the values, and can leave room beyond
+        array->SetNumberOfTuples(tuples);
+        array->Squeeze(); // gives that room back
       }
     }
   }

@@ -1239,10 +1239,8 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   vtkPolyDataTangentFrames* self = this->Self;
   const vtkIdType numPoints = this->NumberOfPoints;
 
-  // The input points' frames, with room for a copy of each point (a bound on the split points,
-  // which WriteOutput adds).
-  OutputFrames<OutArray<OutT>> frames(
-    numPoints, self->ComputeBitangents, self->Splitting ? numPoints : 0);
+  // The input points' frames; WriteOutput adds the split points'.
+  OutputFrames<OutArray<OutT>> frames(numPoints, self->ComputeBitangents);
   Buffer<PointKind> kinds(new PointKind[numPoints]);
   // With splitting, each mirror-seam point (a Conflict point) gets one copy, unless the caller
   // keeps its frame; kept points are neither split nor counted.

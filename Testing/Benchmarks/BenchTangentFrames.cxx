@@ -8,6 +8,7 @@
 //
 //   BenchTangentFrames [--out DIR] [--smoke] [--sizes N,N,...] [--repetitions N]
 //                      [--paired-only PAIRS] [--build-variant] [google benchmark flags]
+//   BenchTangentFrames --first-update MESH vtk|default THREADS [--smoke]
 //
 // Writes DIR/filter.md (the markdown section of docs/benchmarks.md) and DIR/filter.tsv (one
 // tab-separated line per configuration, read by BenchChart). --smoke: one 10,000-triangle size, one
@@ -16,7 +17,9 @@
 // --build-variant: only the default method paired with VTK's filter, one thread, as one row of
 // DIR/variants.md (written with its section header when it does not exist yet), which describes
 // this program's build: its compiler and whether the module's loops are multiversioned.
-// scripts/bench.sh runs it, also from builds of other kinds.
+// scripts/bench.sh runs it, also from builds of other kinds. --first-update: one Update of a new
+// filter on pairing mesh MESH (0, 1, 2) in this process, its seconds and page faults printed
+// (MeasureFirstUpdates starts this program again in this mode for each run).
 //
 // Timing: Google Benchmark, wall-clock time, repetitions randomly interleaved across all
 // configurations (so a burst of load from other processes does not hit one configuration's
@@ -28,7 +31,8 @@
 // threads, the median and quartiles of the per-pair ratios; and every method against VTK's filter
 // on the million-triangle torus, one thread. Scaling (MeasureScaling): each filter
 // alone, updated alternately with one and with two threads, on the million-triangle torus; VTK's
-// filter and the default method also on every other size.
+// filter and the default method also on every other size. First updates (MeasureFirstUpdates):
+// the default method and VTK's filter each updated once in a new process, alternately.
 // Peak memory: see BenchMemory.h; one Update per configuration, after the timing.
 #include "BenchCommon.h"
 #include "BenchMemory.h"
@@ -62,6 +66,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -418,6 +423,82 @@ Bench::TangentFilter DefaultMethod()
     vtkPolyDataTangentFrames::ANGLE_WEIGHTED };
 }
 
+/**
+ * The --first-update mode: the first Update on pairing mesh `index` in this process, of a new
+ * filter (VTK's with `vtk`, else the default method) with `threads` threads; prints its seconds
+ * and page faults. The thread pool has started and the same filter has updated a small torus
+ * before, which loads its code: the time is that of the mesh's own memory coming fresh from the
+ * system.
+ */
+int PrintFirstUpdate(int index, bool vtk, int threads, bool smoke)
+{
+  std::string note;
+  const std::vector<PairingMesh> meshes = PairingMeshes(smoke, note);
+  if (index < 0 || index >= static_cast<int>(meshes.size()))
+  {
+    std::cerr << "--first-update: there is no pairing mesh " << index << std::endl;
+    return 1;
+  }
+  NormalMappingTesting::WithThreads(threads,
+    [&]()
+    {
+      const Bench::TangentFilter which = vtk
+        ? Bench::TangentFilter{ "vtkPolyDataTangents", Bench::TangentFilter::VTKFilter }
+        : DefaultMethod();
+      {
+        auto warmUp = Bench::MakeTangentFilter(which);
+        warmUp->SetInputData(Torus(10000, false));
+        warmUp->Update();
+      }
+      auto filter = Bench::MakeTangentFilter(which);
+      filter->SetInputData(meshes[index].Mesh);
+      const double faults = Bench::MinorPageFaults();
+      const double seconds = TimedUpdate(filter);
+      std::cout << seconds << " " << Bench::MinorPageFaults() - faults << std::endl;
+    });
+  return 0;
+}
+
+/**
+ * `runs` pairs of first updates (PrintFirstUpdate) of VTK's filter and the default method on
+ * pairing mesh `index`, each in a new process of `program` (this one), the order within a pair
+ * alternating: VTK's time / the method's, in `result`. False when a run fails.
+ */
+bool MeasureFirstUpdates(const std::string& program,
+  int index,
+  int threads,
+  int runs,
+  bool smoke,
+  Paired& result)
+{
+  Bench::Rounds rounds;
+  rounds.Seconds.resize(2);
+  rounds.Faults.resize(2);
+  for (int i = 0; i < runs; ++i)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      const int which = (i + j) % 2; // 0: VTK's filter
+      const std::string command = "'" + program + "' --first-update " + std::to_string(index) +
+        (which == 0 ? " vtk " : " default ") + std::to_string(threads) + (smoke ? " --smoke" : "");
+      FILE* pipe = popen(command.c_str(), "r");
+      double seconds = 0.0;
+      double faults = 0.0;
+      const bool read = pipe && std::fscanf(pipe, "%lf %lf", &seconds, &faults) == 2;
+      if (!pipe || pclose(pipe) != 0 || !read)
+      {
+        std::cerr << "failed: " << command << std::endl;
+        return false;
+      }
+      rounds.Seconds[which].push_back(seconds);
+      rounds.Faults[which].push_back(faults);
+    }
+  }
+  result = Bench::PairedRatios(rounds, 0, 1);
+  result.Threads = threads;
+  return true;
+}
+
 /// The paired runs alone, `pairs` pairs per mesh and thread count, printed to the console.
 int PrintPairedRuns(int pairs)
 {
@@ -613,6 +694,14 @@ int main(int argc, char** argv)
     {
       buildVariant = true;
     }
+    else if (arg == "--first-update" && i + 3 < argc)
+    {
+      const bool smokeMeshes = i + 4 < argc && std::string(argv[i + 4]) == "--smoke";
+      return PrintFirstUpdate(std::atoi(argv[i + 1]),
+        std::string(argv[i + 2]) == "vtk",
+        std::max(1, std::atoi(argv[i + 3])),
+        smokeMeshes);
+    }
     else
     {
       args.push_back(argv[i]);
@@ -705,6 +794,25 @@ int main(int argc, char** argv)
   }
   std::cout << "paired runs in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
+            << " s" << std::endl;
+  // First updates, each in a new process: per mesh, one thread and two.
+  const int firstRuns = smoke ? 2 : 10;
+  std::vector<std::vector<Paired>> firstUpdates(pairingMeshes.size());
+  const auto firstStart = std::chrono::steady_clock::now();
+  for (size_t i = 0; i < pairingMeshes.size(); ++i)
+  {
+    for (int threads : { 1, 2 })
+    {
+      Paired p;
+      if (!MeasureFirstUpdates(argv[0], static_cast<int>(i), threads, firstRuns, smoke, p))
+      {
+        return 1;
+      }
+      firstUpdates[i].push_back(p);
+    }
+  }
+  std::cout << "first updates in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - firstStart).count()
             << " s" << std::endl;
   // Every method against VTK's filter on the summary torus, one thread: the ratios of the
   // summary table come from separate repetitions, which the machine's load moves more.
@@ -903,6 +1011,31 @@ int main(int argc, char** argv)
     md << "\n" << pairingNote << "\n";
   }
 
+  md << "\n### First update in a new process: AngleWeighted (the default) against VTK's filter\n\n"
+     << "Each run is a new process that builds the meshes above and updates a new filter on a "
+        "10,000-triangle torus (which starts the thread pool and loads the filter's code), then "
+        "times the first Update of another new filter on the mesh: the memory that Update "
+        "allocates comes fresh from the system and is faulted in, as in a script that runs a "
+        "pipeline once. VTK's filter and AngleWeighted in turn, "
+     << firstRuns
+     << " runs each, the order within a pair alternating. Each cell: the median over the pairs "
+        "of `vtkPolyDataTangents`' time / AngleWeighted's (above 1: faster than VTK's), with the "
+        "first and third quartiles; then each filter's median time and page faults.\n\n"
+     << "| mesh | threads | x VTK: median [quartiles] | VTK's filter: median, page faults | "
+        "AngleWeighted: median, page faults |\n"
+     << "|---|---:|---:|---:|---:|\n";
+  for (size_t i = 0; i < pairingMeshes.size(); ++i)
+  {
+    for (const Paired& p : firstUpdates[i])
+    {
+      md << "| " << pairingMeshes[i].Name << " | " << p.Threads << " | " << p.MedianCell() << " | "
+         << Bench::Format(p.MedianMilliseconds(0), 3) << " ms, "
+         << Bench::FaultCount(p.MedianFaults(0)) << " | "
+         << Bench::Format(p.MedianMilliseconds(1), 3) << " ms, "
+         << Bench::FaultCount(p.MedianFaults(1)) << " |\n";
+    }
+  }
+
   md << "\n### Two threads against one: paired runs, "
      << Bench::Count(find({ {}, false, 1, summarySize }, "floor").Triangles)
      << " triangles, float input\n\n"
@@ -952,10 +1085,10 @@ int main(int argc, char** argv)
      << "As above for VTK's filter and AngleWeighted (the default), " << pairs << " pairs, on the "
      << pairingMeshes.front().Name
      << " of the paired runs: as VTK makes it, and with its point ids shuffled (the same points, "
-        "point data and triangles in the same order, the points numbered at random). Each "
-        "thread of AngleWeighted owns a range of point ids and computes the triangles that reach "
-        "them: with point ids in random order, that is nearly every triangle for every "
-        "thread.\n\n"
+        "point data and triangles in the same order, the points numbered at random). "
+        "AngleWeighted sums the points in ranges of point ids, each on one thread, which "
+        "computes the triangles that reach its range: with point ids in random order, that is "
+        "nearly every triangle for every range, and it uses one range per thread.\n\n"
      << "| point ids";
   for (const Paired& p : scalingByOrder.front())
   {
