@@ -22,7 +22,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -301,6 +300,10 @@ struct ChunkSums
   std::vector<Sum> First;
   std::vector<unsigned char> HasOther;
   std::unordered_map<vtkIdType, Sum> Other;
+  /// The corners (3 t + k) of the chunk's points that have no handedness (zero weight), and
+  /// those of the other handedness, in the order they came (CornerSigns).
+  std::vector<vtkIdType> ZeroCorners;
+  std::vector<vtkIdType> OtherCorners;
 
   /// Empty sums for the points [begin, end), in the memory of the previous chunk's.
   void Reset(vtkIdType begin, vtkIdType end)
@@ -309,41 +312,54 @@ struct ChunkSums
     this->First.assign(static_cast<size_t>(end - begin), Sum());
     this->HasOther.assign(static_cast<size_t>(end - begin), 0);
     this->Other.clear();
+    this->ZeroCorners.clear();
+    this->OtherCorners.clear();
   }
 
-  /// Adds a corner of the chunk's point i: its triangle's tangent with the corner's signed
-  /// weight. A corner of zero weight (its triangle has no frame) goes to the first Sum and
-  /// changes none of its bits: it adds zeros to sums that are never -0.
-  void Add(vtkIdType i, double signedWeight, const dvec3& tangent)
+  /// Adds corner `corner` of the chunk's point i: its triangle's tangent with the corner's
+  /// signed weight. A corner of zero weight (its triangle has no frame) is only listed: adding
+  /// it would add zeros to sums that are never -0, which changes none of their bits.
+  void Add(vtkIdType i, vtkIdType corner, double signedWeight, const dvec3& tangent)
   {
     Sum& first = this->First[i];
-    // One branch, taken only on mirror seams: whether the point's first handedness is already
-    // set and differs from this corner's.
-    const bool other = (first.Weight != 0.0) & (signedWeight != 0.0) &
-      (std::signbit(first.Weight) != std::signbit(signedWeight));
-    if (!other)
+    // One branch, taken only on mirror seams and for triangles without a frame: whether the
+    // point's first handedness is already set and differs from this corner's, or the corner has
+    // none.
+    const bool other =
+      (first.Weight != 0.0) & (std::signbit(first.Weight) != std::signbit(signedWeight));
+    if ((signedWeight != 0.0) & !other)
     {
       first.Add(signedWeight, tangent);
       return;
     }
-    this->AddOther(i, signedWeight, tangent);
+    this->AddRare(i, corner, signedWeight, tangent);
   }
 
-  /// Add's path for a corner of the other handedness, kept out of the loops that call Add, so
-  /// that Add is small enough for any compiler to inline (compilers other than GCC and Clang
-  /// ignore these attributes).
-  [[gnu::noinline, gnu::cold]] void AddOther(vtkIdType i, double signedWeight, const dvec3& tangent)
+  /// Add's path for a corner without handedness or of the other handedness, kept out of the
+  /// loops that call Add, so that Add is small enough for any compiler to inline (compilers
+  /// other than GCC and Clang ignore these attributes).
+  [[gnu::noinline, gnu::cold]] void AddRare(vtkIdType i,
+    vtkIdType corner,
+    double signedWeight,
+    const dvec3& tangent)
   {
+    if (signedWeight == 0.0)
+    {
+      this->ZeroCorners.push_back(corner);
+      return;
+    }
     this->HasOther[i] = 1;
     this->Other[i].Add(signedWeight, tangent);
+    this->OtherCorners.push_back(corner);
   }
 
-  /// Adds the corners of the chunk's points among a block's `count` triangles, whose point ids
-  /// start at `ids`, in order.
-  void AddBlock(const vtkIdType* ids, const TriangleBlock& b, int count)
+  /// Adds the corners of the chunk's points among the block's `count` triangles, triangles
+  /// [first, first + count) of `tris`, in order.
+  void AddBlock(const vtkIdType* tris, vtkIdType first, const TriangleBlock& b, int count)
   {
     using Unsigned = std::make_unsigned<vtkIdType>::type;
     const Unsigned points = static_cast<Unsigned>(this->First.size());
+    const vtkIdType* ids = tris + 3 * first;
     for (int t = 0; t < count; ++t)
     {
       const dvec3 tangent(b.Tangent[0][t], b.Tangent[1][t], b.Tangent[2][t]);
@@ -352,7 +368,7 @@ struct ChunkSums
         const Unsigned i = static_cast<Unsigned>(ids[3 * t + k] - this->Begin);
         if (i < points) // the point is the chunk's
         {
-          this->Add(static_cast<vtkIdType>(i), b.SignedWeight[k][t], tangent);
+          this->Add(static_cast<vtkIdType>(i), 3 * (first + t) + k, b.SignedWeight[k][t], tangent);
         }
       }
     }
@@ -489,62 +505,40 @@ enum class PointKind : unsigned char
 };
 
 /// A point on a mirror seam with splitting: its normal and the frame of its -1 side, which goes
-/// to its copy.
+/// to its copy, and the handedness of its first corner (+1 or -1).
 struct SplitPoint
 {
   vtkIdType Id;
   dvec3 Normal;
   dvec3 Tangent;
+  int FirstHandedness;
 };
 
 /**
- * Per corner, the handedness its triangle gives it (TriangleBlock::Handedness: +1, -1, or 0
- * without a frame or weight), one array per corner index k, so that each block of triangles
- * stores its handedness as three runs.
+ * The corners (3 t + k) whose handedness differs from their point's first corner's, in
+ * ascending order: those without handedness (a zero TriangleBlock::SignedWeight), and
+ * those of the other handedness, which only points on mirror seams have (ChunkSums).
  */
-struct CornerHandedness
+struct CornerSigns
 {
-  vtkIdType Count = 0; // triangles
-  Buffer<signed char> Values;
+  std::vector<vtkIdType> Zero;
+  std::vector<vtkIdType> Other;
 
-  explicit CornerHandedness(vtkIdType count)
-    : Count(count)
-    , Values(new signed char[3 * count])
+  /// The handedness triangle t gives its corner at point id, whose first corner's is `first`.
+  int At(const Triangles& tris, vtkIdType t, vtkIdType id, int first) const
   {
-  }
-  /// Corner k of the triangles, from triangle `first` on.
-  signed char* Corner(int k, vtkIdType first)
-  {
-    return this->Values.get() + k * this->Count + first;
-  }
-
-  /// The handedness triangle t gives its corner at point id.
-  int At(const Triangles& tris, vtkIdType t, vtkIdType id) const
-  {
-    for (int k = 0; k < 3; ++k)
+    for (vtkIdType c = 3 * t; c < 3 * t + 3; ++c)
     {
-      if (tris.Ids[3 * t + k] == id)
+      if (tris.Ids[c] == id)
       {
-        return this->Values[k * this->Count + t];
+        if (std::binary_search(this->Zero.begin(), this->Zero.end(), c))
+        {
+          return 0;
+        }
+        return std::binary_search(this->Other.begin(), this->Other.end(), c) ? -first : first;
       }
     }
     return 0;
-  }
-
-  /// The corners without handedness, as 3 t + k, in ascending order (memchr finds them).
-  std::vector<vtkIdType> Without() const
-  {
-    std::vector<vtkIdType> corners;
-    const signed char* const begin = this->Values.get();
-    const signed char* const end = begin + 3 * this->Count;
-    for (const void* at = std::memchr(begin, 0, end - begin); at;)
-    {
-      const vtkIdType j = static_cast<const signed char*>(at) - begin;
-      corners.push_back(3 * (j % this->Count) + j / this->Count);
-      at = std::memchr(begin + j + 1, 0, end - begin - j - 1);
-    }
-    std::sort(corners.begin(), corners.end());
-    return corners;
   }
 };
 
@@ -568,7 +562,7 @@ struct Repointing
  */
 Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
   const Triangles& tris,
-  const CornerHandedness& handedness,
+  const CornerSigns& signs,
   const std::vector<SplitPoint>& splits,
   vtkIdType numPoints)
 {
@@ -609,11 +603,15 @@ Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
           const vtkIdType firstTriangle = tris.FirstTriangle(firstCell + c);
           vtkIdType first, last;
           vtkNormalMapping::detail::TrianglesAtCorner(k, n, strip, first, last);
+          const auto split = std::lower_bound(splits.begin(),
+            splits.end(),
+            id,
+            [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
           int positive = 0;
           int negative = 0;
           for (vtkIdType j = first; j <= last; ++j)
           {
-            const int h = handedness.At(tris, firstTriangle + j, id);
+            const int h = signs.At(tris, firstTriangle + j, id, split->FirstHandedness);
             positive += h > 0 ? 1 : 0;
             negative += h < 0 ? 1 : 0;
           }
@@ -626,12 +624,8 @@ Repointing MirroredCorners(vtkCellArray* const cellArrays[2],
           }
           else if (negative > 0)
           {
-            const auto it = std::lower_bound(splits.begin(),
-              splits.end(),
-              id,
-              [](const SplitPoint& s, vtkIdType value) { return s.Id < value; });
             repoint.Corners.emplace_back(
-              base + pos, numPoints + static_cast<vtkIdType>(it - splits.begin()));
+              base + pos, numPoints + static_cast<vtkIdType>(split - splits.begin()));
           }
         }
       });
@@ -741,8 +735,10 @@ std::vector<SplitPoint> ChunkSplitFrames(const ChunkSums& sums,
     if (kinds[p] == PointKind::Conflict && !(kept && kept[p]))
     {
       const dvec3 n = normals.UnitOf(p);
-      splits.push_back(
-        SplitPoint{ p, n, PerpendicularTangent(n, sums.SeamSum(entry.first, true).Tangent) });
+      splits.push_back(SplitPoint{ p,
+        n,
+        PerpendicularTangent(n, sums.SeamSum(entry.first, true).Tangent),
+        sums.First[entry.first].Weight > 0.0 ? 1 : -1 });
     }
   }
   std::sort(splits.begin(),
@@ -769,11 +765,11 @@ std::vector<vtkIdType> PointsOfKind(const PointKind* kinds, vtkIdType numPoints,
  * Fallback points: the mean of their framed neighbours' tangents (as written) on their own
  * tangent plane, and their neighbours' majority sign (+1 when none). One pass over the triangle
  * corners in order collects, per fallback point, its neighbours in triangle order. A fallback
- * point's corners have no handedness (`handedness`), so only those corners are looked at.
+ * point's corners have no handedness (`signs.Zero`), so only those corners are looked at.
  */
 template<typename OutT, typename NormalT>
 void FillFallbacks(const Triangles& tris,
-  const CornerHandedness& handedness,
+  const CornerSigns& signs,
   const ShadingNormals<NormalT>& normals,
   const PointKind* kinds,
   const std::vector<vtkIdType>& fallbacks,
@@ -781,7 +777,7 @@ void FillFallbacks(const Triangles& tris,
 {
   std::vector<dvec3> sums(fallbacks.size(), dvec3(0.0));
   std::vector<int> votes(fallbacks.size(), 0);
-  for (const vtkIdType c : handedness.Without())
+  for (const vtkIdType c : signs.Zero)
   {
     const vtkIdType p = tris.Ids[c];
     if (kinds[p] != PointKind::Fallback)
@@ -841,9 +837,9 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
   /// The triangles this execution computed frames for (the weighted methods' Tris, or
   /// MikkTSpace's), for the warning when none has a frame.
   vtkIdType NumberOfTriangles = 0;
-  /// What ComputePointFrames keeps per triangle: the handedness it gives each corner, and its frame
-  /// when cell tangents are asked for.
-  std::unique_ptr<CornerHandedness> Handedness;
+  /// What ComputePointFrames keeps: the corners whose handedness is not their point's first's,
+  /// and each triangle's frame when cell tangents are asked for.
+  CornerSigns Signs;
   std::unique_ptr<TriangleFrames> Frames;
 
   /// Progress as a fraction of this execution; false (output emptied) when aborted.
@@ -984,9 +980,10 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
    * time. A chunk's thread goes through the triangles in order, computes the frames of the tiles
    * that reach its points (TileBounds) and adds the corners of its points, so that each point
    * adds the same terms in the same order, hence the same bits, for any number of threads; it
-   * then writes its points' frames while their sums are in cache. A tile's first chunk stores
-   * the handedness of its corners in Handedness and, with cell tangents, its frames. Counts the
-   * triangles without a frame in NumberOfDegenerateTriangles.
+   * then writes its points' frames while their sums are in cache, and lists in Signs its corners
+   * whose handedness is not their point's first's. A tile's first chunk stores its frames when
+   * cell tangents are asked for. Counts the triangles without a frame in
+   * NumberOfDegenerateTriangles.
    */
   template<typename OutT, typename NormalT>
   std::vector<SplitPoint> ComputePointFrames(TangentMethod method,
@@ -1005,12 +1002,12 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     const bool chunked = threads > 1 || numPoints > (vtkIdType(1) << Chunks::LargestShift);
     const std::vector<IdRange> bounds = chunked ? TileBounds(this->Tris) : std::vector<IdRange>();
     const Chunks chunks = Chunks::For(numPoints, threads, bounds);
-    this->Handedness.reset(new CornerHandedness(count));
     if (self->ComputeCellTangents)
     {
       this->Frames.reset(new TriangleFrames(count));
     }
     std::vector<std::vector<SplitPoint>> splits(static_cast<size_t>(chunks.Count()));
+    std::vector<CornerSigns> signs(static_cast<size_t>(chunks.Count()));
     std::atomic<vtkIdType> withoutFrame{ 0 };
     vtkSMPThreadLocal<ChunkSums> localSums;
     const auto computeChunk = [&](vtkIdType chunk, const auto& visitRange)
@@ -1035,10 +1032,6 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
           {
             if (first)
             {
-              for (int k = 0; k < 3; ++k)
-              {
-                std::memcpy(this->Handedness->Corner(k, firstTriangle), b.Handedness[k], n);
-              }
               for (int i = 0; i < n; ++i)
               {
                 none += b.Orientation[i] == 0.0 ? 1 : 0;
@@ -1048,12 +1041,13 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
                 this->Frames->Set(firstTriangle, b, n);
               }
             }
-            sums.AddBlock(ids + 3 * firstTriangle, b, n);
+            sums.AddBlock(ids, firstTriangle, b, n);
           });
       }
       withoutFrame += none;
       WriteChunkFrames(sums, normals, self->Splitting, out, kinds);
       splits[chunk] = ChunkSplitFrames(sums, normals, kinds, this->KeptPoints);
+      signs[chunk] = CornerSigns{ sums.ZeroCorners, sums.OtherCorners };
     };
     this->WithFrames(
       [&](const auto& visitRange)
@@ -1077,6 +1071,14 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     {
       all.insert(all.end(), chunkSplits.begin(), chunkSplits.end());
     }
+    CornerSigns& merged = this->Signs;
+    for (const CornerSigns& chunkSigns : signs)
+    {
+      merged.Zero.insert(merged.Zero.end(), chunkSigns.Zero.begin(), chunkSigns.Zero.end());
+      merged.Other.insert(merged.Other.end(), chunkSigns.Other.begin(), chunkSigns.Other.end());
+    }
+    std::sort(merged.Zero.begin(), merged.Zero.end());
+    std::sort(merged.Other.begin(), merged.Other.end());
     return all;
   }
 
@@ -1144,7 +1146,7 @@ struct vtkPolyDataTangentFrames::Internals : vtkPolyDataTangentFrames::BlockInpu
     vtkDataArray* computedNormals)
   {
     Repointing repoint =
-      MirroredCorners(this->Cells, this->Tris, *this->Handedness, splits, this->NumberOfPoints);
+      MirroredCorners(this->Cells, this->Tris, this->Signs, splits, this->NumberOfPoints);
     if (this->MixedCells && !repoint.MixedCells.empty())
     {
       *this->MixedCells = std::move(repoint.MixedCells);
@@ -1258,7 +1260,7 @@ void vtkPolyDataTangentFrames::Internals::RunWeighted(TangentMethod method,
   }
   if (!fallbacks.empty())
   {
-    FillFallbacks(this->Tris, *this->Handedness, normals, kinds.get(), fallbacks, frames.Storage());
+    FillFallbacks(this->Tris, this->Signs, normals, kinds.get(), fallbacks, frames.Storage());
   }
   if (!self->Splitting)
   {

@@ -415,7 +415,7 @@ inline TriangleFrame ComputeTriangleFrame(const glm::dvec3& p0,
  * The triangles of a block, as separate arrays per component (triangle i at index i), so that
  * loops over them vectorize: their edges, UV deltas and largest coordinates (SetCorners), and
  * after ComputeTriangleBlock their frames and corner angles; with their corners' shading normals
- * (SetCornerNormal), after SignCornerWeights their signed corner weights and handedness.
+ * (SetCornerNormal), after SignCornerWeights their signed corner weights.
  */
 struct TriangleBlock
 {
@@ -431,10 +431,9 @@ struct TriangleBlock
   double Rare[Size];        ///< 1 where the edges or UV deltas need rescaling or are not finite
   /// For SignCornerWeights: component c of the shading normal at corner k at CornerNormal[k][c][i]
   double CornerNormal[3][3][Size];
-  double SignedWeight[3][Size]; ///< after SignCornerWeights: corner k's signed weight
-  /// After SignCornerWeights: the sign of corner k's signed weight (+1, -1, or 0 without a frame
-  /// or weight), its handedness.
-  signed char Handedness[3][Size];
+  /// After SignCornerWeights: corner k's signed weight, whose sign (+1, -1, or 0 without a frame
+  /// or weight) is the corner's handedness.
+  double SignedWeight[3][Size];
 
   /// Triangle i's input, from its corners.
   void SetCorners(int i, const glm::dvec3 p[3], const glm::dvec2 uv[3])
@@ -600,12 +599,6 @@ VTK_ALWAYS_INLINE void SignCornerWeightsFor(TriangleBlock& b, int count)
       b.SignedWeight[k][i] =
         CornerSign(b.Orientation[i], normal, n) * CornerWeight(Method, b.Area[i], b.Angle[k][i]);
     }
-    // A loop of its own: compilers vectorize a conversion to bytes apart from the doubles.
-    for (int i = 0; i < count; ++i)
-    {
-      const double weight = b.SignedWeight[k][i];
-      b.Handedness[k][i] = static_cast<signed char>((weight > 0.0) - (weight < 0.0));
-    }
   }
 }
 } // namespace detail
@@ -613,8 +606,8 @@ VTK_ALWAYS_INLINE void SignCornerWeightsFor(TriangleBlock& b, int count)
 /**
  * For the first `count` triangles of a block whose frames ComputeTriangleBlock gave (with their
  * corner angles for AngleWeighted) and whose corner normals are set: each corner's CornerWeight,
- * signed with the handedness its triangle gives its shading normal (CornerSign), and that sign,
- * in plain loops the compiler vectorizes.
+ * signed with the handedness its triangle gives its shading normal (CornerSign), in plain loops
+ * the compiler vectorizes.
  */
 VTK_ALWAYS_INLINE void SignCornerWeights(TriangleBlock& b, int count, TangentMethod method)
 {

@@ -359,8 +359,8 @@ TEST(TangentFrameKernels, BlockGivesTheBitsOfComputeTriangleFrame)
 
 TEST(TangentFrameKernels, SignedCornerWeightsOfABlockAreThoseOfCornerSignAndCornerWeight)
 {
-  // SignCornerWeights computes a block's signed corner weights, and their signs (Handedness), in
-  // a vectorized loop: each must have the bits of
+  // SignCornerWeights computes a block's signed corner weights in a vectorized loop: each must
+  // have the bits of
   // CornerSign(frame, normal) * CornerWeight(method, area, angle), for every
   // method, with shading normals that agree with the triangle's winding, oppose it, are
   // perpendicular to it or zero, and triangles without a frame (orientation 0).
@@ -409,8 +409,6 @@ TEST(TangentFrameKernels, SignedCornerWeightsOfABlockAreThoseOfCornerSignAndCorn
         const double expected =
           CornerSign(f, normals[i][k]) * CornerWeight(method, f.Area, block.Angle[k][i]);
         EXPECT_EQ(block.SignedWeight[k][i], expected)
-          << "corner " << k << " of triangle " << i << ", method " << static_cast<int>(method);
-        EXPECT_EQ(block.Handedness[k][i], (expected > 0.0) - (expected < 0.0))
           << "corner " << k << " of triangle " << i << ", method " << static_cast<int>(method);
         negative += expected < 0.0 ? 1 : 0;
       }
