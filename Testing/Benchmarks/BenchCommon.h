@@ -24,7 +24,8 @@ namespace Bench
 struct TangentFilter
 {
   std::string Name;
-  int Method; // a vtkPolyDataTangentFrames::Methods value, or VTKFilter
+  int Method;            // a vtkPolyDataTangentFrames::Methods value, or VTKFilter
+  bool Splitting = true; // ours: vtkPolyDataTangentFrames::Splitting
   static constexpr int VTKFilter = -1;
   bool IsVTK() const { return this->Method == VTKFilter; }
 };
@@ -42,7 +43,7 @@ inline std::vector<TangentFilter> TangentFilters()
   return filters;
 }
 
-/// The filter with its default settings (ours: splitting on, output precision of the input).
+/// The filter with its default settings (ours: output precision of the input), but Splitting.
 inline vtkSmartPointer<vtkPolyDataAlgorithm> MakeTangentFilter(const TangentFilter& filter)
 {
   if (filter.IsVTK())
@@ -51,6 +52,7 @@ inline vtkSmartPointer<vtkPolyDataAlgorithm> MakeTangentFilter(const TangentFilt
   }
   auto ours = vtkSmartPointer<vtkPolyDataTangentFrames>::New();
   ours->SetMethod(filter.Method);
+  ours->SetSplitting(filter.Splitting);
   return ours;
 }
 

@@ -28,8 +28,9 @@
 // alternately on three meshes that are not ours: vtkTexturedSphereSource and vtkParametricTorus
 // (through vtkParametricFunctionSource and vtkTriangleFilter) at 1024 x 512, and the largest glTF
 // model of ../shared/data/gltf-external (skipped with a note when the data is absent); 1 and 2
-// threads, the median and quartiles of the per-pair ratios; and every method against VTK's filter
-// on the million-triangle torus, one thread. Scaling (MeasureScaling): each filter
+// threads, the median and quartiles of the per-pair ratios; on the same meshes, one thread, the
+// default method with Splitting against without; and every method against VTK's filter on the
+// million-triangle torus, one thread. Scaling (MeasureScaling): each filter
 // alone, updated alternately with one and with two threads, on the million-triangle torus; VTK's
 // filter and the default method also on every other size. First updates (MeasureFirstUpdates):
 // the default method and VTK's filter each updated once in a new process, alternately.
@@ -361,18 +362,22 @@ std::string ConfigurationRows(const std::vector<long long>& sizes,
   return rows.str();
 }
 
-/// `pairs` pairs of Updates of VTK's filter and `filter` on the same mesh in this process, with
-/// `threads` threads (Bench::RunRounds): VTK's time / the filter's.
-Paired MeasurePaired(const Bench::TangentFilter& filter, vtkPolyData* mesh, int threads, int pairs)
+/// `pairs` pairs of Updates of `reference` (VTK's filter unless given) and `filter` on the same
+/// mesh in this process, with `threads` threads (Bench::RunRounds): the reference's time / the
+/// filter's.
+Paired MeasurePaired(const Bench::TangentFilter& filter,
+  vtkPolyData* mesh,
+  int threads,
+  int pairs,
+  const Bench::TangentFilter& reference = { "vtkPolyDataTangents",
+    Bench::TangentFilter::VTKFilter })
 {
   Paired result;
   NormalMappingTesting::WithThreads(threads,
     [&]()
     {
-      vtkSmartPointer<vtkPolyDataAlgorithm> run[2] = {
-        Bench::MakeTangentFilter({ "vtkPolyDataTangents", Bench::TangentFilter::VTKFilter }),
-        Bench::MakeTangentFilter(filter)
-      };
+      vtkSmartPointer<vtkPolyDataAlgorithm> run[2] = { Bench::MakeTangentFilter(reference),
+        Bench::MakeTangentFilter(filter) };
       for (auto& f : run)
       {
         f->SetInputData(mesh);
@@ -786,11 +791,23 @@ int main(int argc, char** argv)
   std::string pairingNote;
   const std::vector<PairingMesh> pairingMeshes = PairingMeshes(smoke, pairingNote);
   std::vector<std::vector<Paired>> paired; // per mesh: 1 thread, 2 threads
+  // And per mesh, one thread: the default method without splitting against with it, and the
+  // points it splits.
+  Bench::TangentFilter withoutSplitting = angleWeighted;
+  withoutSplitting.Name += " without splitting";
+  withoutSplitting.Splitting = false;
+  std::vector<Paired> splittingCost;
+  std::vector<vtkIdType> splitPoints;
   const auto pairedStart = std::chrono::steady_clock::now();
   for (const PairingMesh& m : pairingMeshes)
   {
     paired.push_back({ MeasurePaired(angleWeighted, m.Mesh, 1, pairs),
       MeasurePaired(angleWeighted, m.Mesh, 2, pairs) });
+    splittingCost.push_back(MeasurePaired(withoutSplitting, m.Mesh, 1, pairs, angleWeighted));
+    vtkNew<vtkPolyDataTangentFrames> frames;
+    frames->SetInputData(m.Mesh);
+    frames->Update();
+    splitPoints.push_back(frames->GetNumberOfSplitPoints());
   }
   std::cout << "paired runs in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - pairedStart).count()
@@ -1009,6 +1026,26 @@ int main(int argc, char** argv)
   if (!pairingNote.empty())
   {
     md << "\n" << pairingNote << "\n";
+  }
+
+  md << "\n### What splitting costs: AngleWeighted with Splitting on and off\n\n"
+     << "The meshes above, one thread: AngleWeighted with its default Splitting on and with it "
+        "off updated alternately as in the paired runs, "
+     << pairs
+     << " pairs. Splitting gives each point on a mirror seam a copy, so that both sides keep "
+        "their frames: the output then copies every point array and the re-pointed cells' "
+        "connectivity. Each cell: the median over the pairs of the time with splitting / the "
+        "time without (1 where no point is split), with the first and third quartiles, and the "
+        "ratio of the fastest runs; then the two median times.\n\n"
+     << "| mesh | split points | with / without: median [quartiles] | fastest runs | with: "
+        "median | without: median |\n"
+     << "|---|---:|---:|---:|---:|---:|\n";
+  for (size_t i = 0; i < pairingMeshes.size(); ++i)
+  {
+    const Paired& p = splittingCost[i];
+    md << "| " << pairingMeshes[i].Name << " | " << Bench::Count(splitPoints[i]) << " | "
+       << p.Cells() << " | " << Bench::Format(p.MedianMilliseconds(0), 3) << " ms | "
+       << Bench::Format(p.MedianMilliseconds(1), 3) << " ms |\n";
   }
 
   md << "\n### First update in a new process: AngleWeighted (the default) against VTK's filter\n\n"
