@@ -43,7 +43,7 @@ inline std::vector<TangentFilter> TangentFilters()
   return filters;
 }
 
-/// The filter with its default settings (ours: output precision of the input), but Splitting.
+/// The filter with its default settings (ours: output precision of the input), and its Splitting.
 inline vtkSmartPointer<vtkPolyDataAlgorithm> MakeTangentFilter(const TangentFilter& filter)
 {
   if (filter.IsVTK())

@@ -66,8 +66,8 @@ endforeach()
 # and the floor, one mesh size in the smoke run: summary 6 rows; every method paired with VTK's
 # filter 4; paired runs 3 (VTK's sphere and
 # torus, and the largest glTF model when the shared data is there: else 2 and a note), then
-# their page faults as many, and what splitting costs as many; first updates in new processes twice as many (1 and 2 threads);
-# two threads against one 5 (the tangent filters), by mesh size 1
+# their page faults as many, and what splitting costs as many; first updates in new processes
+# twice as many (1 and 2 threads); two threads against one 5 (the tangent filters), by mesh size 1
 # (the smoke run's one size), and by point order 2 (in order, shuffled); throughput and memory 6
 # rows each; the builds 1 (the smoke run measures this build only); MikkTSpace against the original
 # mikktspace.c, and its page faults, as many rows as the paired runs when the build has the
