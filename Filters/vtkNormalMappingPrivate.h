@@ -355,7 +355,12 @@ struct OutputFrames
     {
       if (array)
       {
-        array->Resize(tuples); // keeps the values, and can leave room beyond
+        // Both keep the values and can leave room beyond; VTK 9.7 deprecates Resize.
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 7, 0)
+        array->ReserveTuples(tuples);
+#else
+        array->Resize(tuples);
+#endif
         array->SetNumberOfTuples(tuples);
         array->Squeeze(); // gives that room back
       }

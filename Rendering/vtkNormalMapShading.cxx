@@ -21,6 +21,7 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
+#include "vtkVersionMacros.h"
 
 #include "vtkNormalMapFS.h"
 #include "vtkNormalMapGS.h"
@@ -348,14 +349,22 @@ void vtkNormalMapShading::FilterTextures(
 //------------------------------------------------------------------------------
 namespace
 {
-/// Whether the actor transforms its texture coordinates (vtkProp::GeneralTextureTransform):
-/// VTK compiles the transform into its shader only when the actor has one at the build.
+/// The actor key of a texture-coordinate transform, under its name in this VTK.
+vtkInformationDoubleVectorKey* TextureTransformKey()
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  return vtkProp::GENERAL_TEXTURE_TRANSFORM();
+#else
+  return vtkProp::GeneralTextureTransform();
+#endif
+}
+
+/// Whether the actor transforms its texture coordinates (TextureTransformKey): VTK compiles
+/// the transform into its shader only when the actor has one at the build.
 const double* TextureTransform(vtkActor* actor)
 {
   vtkInformation* keys = actor->GetPropertyKeys();
-  return keys && keys->Has(vtkProp::GeneralTextureTransform())
-    ? keys->Get(vtkProp::GeneralTextureTransform())
-    : nullptr;
+  return keys && keys->Has(TextureTransformKey()) ? keys->Get(TextureTransformKey()) : nullptr;
 }
 }
 
