@@ -21,7 +21,6 @@
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
-#include "vtkVersionMacros.h"
 
 #include "vtkNormalMapFS.h"
 #include "vtkNormalMapGS.h"
@@ -349,22 +348,13 @@ void vtkNormalMapShading::FilterTextures(
 //------------------------------------------------------------------------------
 namespace
 {
-/// The actor key of a texture-coordinate transform, under its name in this VTK.
-vtkInformationDoubleVectorKey* TextureTransformKey()
-{
-#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
-  return vtkProp::GENERAL_TEXTURE_TRANSFORM();
-#else
-  return vtkProp::GeneralTextureTransform();
-#endif
-}
-
-/// Whether the actor transforms its texture coordinates (TextureTransformKey): VTK compiles
-/// the transform into its shader only when the actor has one at the build.
+/// Whether the actor transforms its texture coordinates (vtkNormalMapShading::TextureTransformKey):
+/// VTK compiles the transform into its shader only when the actor has one at the build.
 const double* TextureTransform(vtkActor* actor)
 {
   vtkInformation* keys = actor->GetPropertyKeys();
-  return keys && keys->Has(TextureTransformKey()) ? keys->Get(TextureTransformKey()) : nullptr;
+  vtkInformationDoubleVectorKey* key = vtkNormalMapShading::TextureTransformKey();
+  return keys && keys->Has(key) ? keys->Get(key) : nullptr;
 }
 }
 

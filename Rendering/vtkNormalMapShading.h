@@ -9,9 +9,11 @@
 #ifndef vtkNormalMapShading_h
 #define vtkNormalMapShading_h
 
-#include "vtkShader.h"       // For vtkShader::Type
-#include "vtkSmartPointer.h" // For the dataset without tangents
-#include "vtkWeakPointer.h"  // For the actors warned about
+#include "vtkProp.h"          // For the texture-transform key
+#include "vtkShader.h"        // For vtkShader::Type
+#include "vtkSmartPointer.h"  // For the dataset without tangents
+#include "vtkVersionMacros.h" // For the texture-transform key's name
+#include "vtkWeakPointer.h"   // For the actors warned about
 
 #include <cstdint> // For std::uint64_t
 #include <map>     // For per-shader and per-actor state
@@ -38,6 +40,9 @@ public:
   static constexpr const char* SignAttribute = "nmTangentSignMC";
   /// The vertex attribute of the mapper's own copy of the texture coordinates (SampledTCoords).
   static constexpr const char* TCoordAttribute = "nmTCoord";
+
+  /// The actor key of a texture-coordinate transform, under its name in this VTK.
+  static vtkInformationDoubleVectorKey* TextureTransformKey();
 
   /// The settings of a normal-mapping mapper (values of vtkNormalMapPolyDataMapper's enums).
   struct Settings
@@ -214,5 +219,14 @@ private:
   /// Per actor and datasets, the reasons already warned about.
   std::map<std::pair<const vtkActor*, std::string>, WarnedReasons> Warned;
 };
+
+inline vtkInformationDoubleVectorKey* vtkNormalMapShading::TextureTransformKey()
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  return vtkProp::GENERAL_TEXTURE_TRANSFORM();
+#else
+  return vtkProp::GeneralTextureTransform();
+#endif
+}
 
 #endif

@@ -16,6 +16,7 @@
 #include "vtkNew.h"
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkNormalMapShading.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -34,7 +35,7 @@
 #include "vtkTexture.h"
 #include "vtkTexturedSphereSource.h"
 #include "vtkTransform.h"
-#include "vtkTransformPolyDataFilter.h"
+#include "vtkTransformFilter.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
 
@@ -313,11 +314,15 @@ vtkSmartPointer<vtkPolyData> Placed(vtkPolyData* mesh, double dx, double dy, dou
   vtkNew<vtkTransform> place;
   place->Translate(dx, dy, 0.0);
   place->Scale(1.0, sy, 1.0);
-  vtkNew<vtkTransformPolyDataFilter> filter;
+  // VTK 9.7's transform filter adds temporary arrays to its input and removes them, which
+  // changes the input's modification time: it reads a shallow copy, and the mesh stays as it is.
+  vtkNew<vtkPolyData> input;
+  input->ShallowCopy(mesh);
+  vtkNew<vtkTransformFilter> filter;
   filter->SetTransform(place);
-  filter->SetInputData(mesh);
+  filter->SetInputData(input);
   filter->Update();
-  return filter->GetOutput();
+  return filter->GetPolyDataOutput();
 }
 
 //------------------------------------------------------------------------------
@@ -605,7 +610,7 @@ vtkSmartPointer<vtkRenderWindow> MakeFlatScene(const FlatSetup& setup,
     if (a.TextureTransform)
     {
       vtkNew<vtkInformation> keys;
-      keys->Set(vtkProp::GeneralTextureTransform(), a.TextureTransform, 16);
+      keys->Set(vtkNormalMapShading::TextureTransformKey(), a.TextureTransform, 16);
       actor->SetPropertyKeys(keys);
     }
     vtkProperty* property = actor->GetProperty();

@@ -21,6 +21,7 @@
 #include "vtkNormalMapCompositePolyDataMapper.h"
 #include "vtkNormalMapObjectFactory.h"
 #include "vtkNormalMapPolyDataMapper.h"
+#include "vtkNormalMapShading.h"
 #include "vtkObjectFactoryCollection.h"
 #include "vtkOpaquePass.h"
 #include "vtkPointData.h"
@@ -171,7 +172,7 @@ int TestNormalMapBadInput(int, char*[])
     // at the build; the point-tangent frame must follow it). Same renderer: within 2 levels.
     const double flip[16] = { 1, 0, 0, 0, 0, -1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1 };
     vtkNew<vtkInformation> keys;
-    keys->Set(vtkProp::GeneralTextureTransform(), flip, 16);
+    keys->Set(vtkNormalMapShading::TextureTransformKey(), flip, 16);
     // A texture of its own: VTK 9.1's texture keeps the graphics resources of one window.
     Scene fresh(quad,
       nmtest::MakeNormalTexture(nmtest::MakeNormalMapImage(Pattern::Rivets, 64, Storage::OpenGL)));

@@ -13,6 +13,10 @@
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkVersionMacros.h>
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+#include <vtkMemoryResourceStream.h>
+#endif
 
 #include <gtest/gtest.h>
 
@@ -106,6 +110,20 @@ bool OneLine(const std::string& error)
 {
   return !error.empty() && error.find('\n') == std::string::npos;
 }
+
+/// Runs a VTK image reader on encoded bytes in memory, through the API this VTK has.
+void ReadFromMemory(vtkImageReader2* reader, const std::vector<unsigned char>& bytes)
+{
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 6, 0)
+  vtkNew<vtkMemoryResourceStream> stream;
+  stream->SetBuffer(bytes.data(), bytes.size());
+  reader->SetStream(stream);
+#else
+  reader->SetMemoryBuffer(bytes.data());
+  reader->SetMemoryBufferLength(static_cast<vtkIdType>(bytes.size()));
+#endif
+  reader->Update();
+}
 }
 
 // For valid files the decoder gives what VTK's readers give (the tool used them before).
@@ -119,9 +137,7 @@ TEST(NormalMapImages, DecodesLikeVTKReaders)
       const std::vector<unsigned char> png =
         Encode(writer.GetPointer(), Gradient(components, type));
       vtkNew<vtkPNGReader> reader; // valid data: VTK's reader is safe here
-      reader->SetMemoryBuffer(png.data());
-      reader->SetMemoryBufferLength(static_cast<vtkIdType>(png.size()));
-      reader->Update();
+      ReadFromMemory(reader, png);
       std::string error;
       auto ours = NormalMapImages::Decode(png.data(), png.size(), error);
       ExpectSameImage(ours,
@@ -136,9 +152,7 @@ TEST(NormalMapImages, DecodesLikeVTKReaders)
     const std::vector<unsigned char> jpeg =
       Encode(writer.GetPointer(), Gradient(components, VTK_UNSIGNED_CHAR));
     vtkNew<vtkJPEGReader> reader;
-    reader->SetMemoryBuffer(jpeg.data());
-    reader->SetMemoryBufferLength(static_cast<vtkIdType>(jpeg.size()));
-    reader->Update();
+    ReadFromMemory(reader, jpeg);
     std::string error;
     auto ours = NormalMapImages::Decode(jpeg.data(), jpeg.size(), error);
     ExpectSameImage(
