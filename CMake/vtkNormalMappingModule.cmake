@@ -77,11 +77,20 @@ option(NORMALMAPPING_MULTIVERSIONING
   "Compile the filter's vector loops also for AVX2 and AVX-512 (GCC, Clang 14+; x86-64 Linux)" ON)
 mark_as_advanced(NORMALMAPPING_MULTIVERSIONING)
 
+# The headers live in Filters/ and Rendering/ and install side by side into one include folder,
+# as consumers include them (ctest InstalledPackageExample). VTK 9.4 and later warn about every
+# header outside the module's own folder, suggesting a layout that would install them into
+# subfolders; those warnings (errors under -Werror=dev) are silenced for this one call.
+# (-Wno-dev, -Wdev and -Werror=dev set cache entries, which the unsets below uncover again.)
+set(CMAKE_SUPPRESS_DEVELOPER_WARNINGS ON)
+set(CMAKE_SUPPRESS_DEVELOPER_ERRORS ON)
 vtk_module_add_module(VTK::NormalMapping
   CLASSES ${_nm_classes}
   NOWRAP_HEADERS ${_nm_nowrap_headers}
   SOURCES ${_nm_sources}
   PRIVATE_HEADERS ${_nm_private_headers})
+unset(CMAKE_SUPPRESS_DEVELOPER_WARNINGS)
+unset(CMAKE_SUPPRESS_DEVELOPER_ERRORS)
 vtk_module_include(VTK::NormalMapping
   PUBLIC
     "$<BUILD_INTERFACE:${NORMALMAPPING_SOURCE_DIR}/Filters>"
