@@ -41,6 +41,15 @@ export DISPLAY=":$(cat "$work/display")"
 export NORMALMAPPING_HEADLESS_PATH="Xvfb $DISPLAY, Mesa llvmpipe"
 "$@"
 status=$?
+# On a failure, what the server says, and whether it went away during the test (a client then
+# dies with an X I/O error that says nothing of the cause).
+if [ "$status" -ne 0 ]; then
+  kill -0 "$server" 2>/dev/null || echo "RunHeadless: the Xvfb server on $DISPLAY exited during the test"
+  if [ -s "$work/log" ]; then
+    echo "RunHeadless: the Xvfb server's log:"
+    cat "$work/log"
+  fi
+fi
 kill "$server" 2>/dev/null
 wait "$server" 2>/dev/null
 rm -rf "$work"
