@@ -44,7 +44,9 @@ status=$?
 # On a failure, what the server says, and whether it went away during the test (a client then
 # dies with an X I/O error that says nothing of the cause).
 if [ "$status" -ne 0 ]; then
-  kill -0 "$server" 2>/dev/null || echo "RunHeadless: the Xvfb server on $DISPLAY exited during the test"
+  if ! kill -0 "$server" 2>/dev/null; then
+    echo "RunHeadless: the Xvfb server on $DISPLAY exited during the test"
+  fi
   if [ -s "$work/log" ]; then
     echo "RunHeadless: the Xvfb server's log:"
     cat "$work/log"
